@@ -1,0 +1,51 @@
+# Third-party code comes only from Debian 12 packages through find_package
+# (../shared/DEPENDENCIES.md lists the packages and the pitfalls worked around here).
+
+find_package(glm CONFIG REQUIRED)
+find_package(TBB CONFIG REQUIRED)
+find_package(OpenImageIO CONFIG REQUIRED)
+find_package(embree 3 CONFIG REQUIRED)
+find_package(TinyGLTF CONFIG REQUIRED)
+find_package(CLI11 CONFIG REQUIRED)
+
+# Pitfall 1: OpenImageIO's exported target names /usr/include/opencv4 even where OpenCV is absent;
+# drop include directories that do not exist so the generate step cannot fail on them.
+get_target_property(_oiio_inc OpenImageIO::OpenImageIO INTERFACE_INCLUDE_DIRECTORIES)
+if(_oiio_inc)
+  set(_oiio_kept "")
+  foreach(_d IN LISTS _oiio_inc)
+    if(EXISTS "${_d}" OR _d MATCHES "^\\$<")
+      list(APPEND _oiio_kept "${_d}")
+    endif()
+  endforeach()
+  set_target_properties(OpenImageIO::OpenImageIO PROPERTIES INTERFACE_INCLUDE_DIRECTORIES "${_oiio_kept}")
+endif()
+
+# Pitfall 2: OpenColorIO's CMake config is off the search path and computes a wrong prefix when forced;
+# build the imported target from the header and the library.
+if(NOT TARGET OpenColorIO::OpenColorIO)
+  find_path(OCIO_INCLUDE_DIR OpenColorIO/OpenColorIO.h REQUIRED)
+  find_library(OCIO_LIBRARY OpenColorIO REQUIRED)
+  add_library(OpenColorIO::OpenColorIO UNKNOWN IMPORTED)
+  set_target_properties(OpenColorIO::OpenColorIO PROPERTIES
+    IMPORTED_LOCATION "${OCIO_LIBRARY}"
+    INTERFACE_INCLUDE_DIRECTORIES "${OCIO_INCLUDE_DIR}")
+endif()
+
+# Third-party headers are SYSTEM so their warnings never mix with ours.
+foreach(_t glm::glm TBB::tbb OpenImageIO::OpenImageIO OpenImageIO::OpenImageIO_Util embree
+           TinyGLTF::TinyGLTF CLI11::CLI11 OpenColorIO::OpenColorIO)
+  if(TARGET ${_t})
+    get_target_property(_inc ${_t} INTERFACE_INCLUDE_DIRECTORIES)
+    if(_inc)
+      set_target_properties(${_t} PROPERTIES INTERFACE_SYSTEM_INCLUDE_DIRECTORIES "${_inc}")
+    endif()
+  endif()
+endforeach()
+
+if(SVBRDF_BUILD_TESTS)
+  find_package(GTest CONFIG REQUIRED)
+endif()
+if(SVBRDF_BUILD_BENCH)
+  find_package(benchmark CONFIG REQUIRED)
+endif()

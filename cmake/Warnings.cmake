@@ -1,0 +1,25 @@
+# Our code builds with zero warnings under -Wall -Wextra -Wpedantic; third-party headers are SYSTEM.
+add_library(svbrdf_warnings INTERFACE)
+target_compile_options(svbrdf_warnings INTERFACE -Wall -Wextra -Wpedantic)
+
+if(SVBRDF_SANITIZE)
+  add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
+  add_link_options(-fsanitize=address,undefined)
+endif()
+
+# svbrdf_module(NAME SOURCES... DEPS ...): a module library svbrdf_NAME with alias svbrdf::NAME,
+# include root at the repository root so code writes #include "appearance/bsdf.h".
+function(svbrdf_module name)
+  cmake_parse_arguments(M "" "" "SOURCES;DEPS" ${ARGN})
+  add_library(svbrdf_${name} STATIC ${M_SOURCES})
+  add_library(svbrdf::${name} ALIAS svbrdf_${name})
+  target_include_directories(svbrdf_${name} PUBLIC "${PROJECT_SOURCE_DIR}")
+  target_link_libraries(svbrdf_${name} PUBLIC ${M_DEPS} PRIVATE svbrdf_warnings)
+endfunction()
+
+# svbrdf_program(NAME SOURCES... DEPS ...): a thin main (CLI11) over a module library.
+function(svbrdf_program name)
+  cmake_parse_arguments(P "" "" "SOURCES;DEPS" ${ARGN})
+  add_executable(${name} ${P_SOURCES})
+  target_link_libraries(${name} PRIVATE ${P_DEPS} CLI11::CLI11 svbrdf_warnings)
+endfunction()
