@@ -30,7 +30,7 @@ render: build
 	$(BUILD)/svbrdf-render --out out/showcase.exr
 
 bench: build
-	@for b in $(BUILD)/bench/bench_*; do echo "== $$b"; $$b --benchmark_repetitions=5 --benchmark_report_aggregates_only=true; done
+	@for b in $(BUILD)/bench/*/bench_*; do echo "== $$b"; $$b --benchmark_repetitions=5 --benchmark_report_aggregates_only=true; done
 
 $(ASAN_BUILD)/build.ninja:
 	@$(MAKE) --no-print-directory deps

@@ -1,0 +1,44 @@
+#pragma once
+// The glTF 2.0 metallic-roughness BRDF (glTF 2.0 specification, Appendix B, current text with the
+// height-correlated Smith visibility), exactly as ../shared/spec/brdf-models.md writes it:
+//   α = max(roughness², 1e-3), D = GGX, V = height-correlated Smith over 4·|n·wi|·|n·wo|,
+//   s = V·D, w = (1 − |wo·h|)^5,
+//   dielectric = mix(base_color/π, s, 0.04 + 0.96·w), metal = s·(base_color + (1 − base_color)·w),
+//   f = mix(dielectric, metal, metallic).
+// This pure function is shared by the Bsdf model, the MIP reference and the renderer.
+#include <glm/glm.hpp>
+
+#include "appearance/bsdf.h"
+
+namespace svbrdf {
+
+struct GltfParams {
+  Rgb base_color{0.8f};  // linear
+  float metallic = 0.0f;
+  float roughness = 0.5f;  // perceptual; α = roughness²
+};
+
+inline float gltf_alpha(float roughness) { return glm::max(roughness * roughness, 1e-3f); }
+
+// f(wi, wo) in the frame whose z is the shading normal; 0 below either horizon.
+inline Rgb gltf_eval(const GltfParams& p, const glm::vec3& wi, const glm::vec3& wo) {
+  if (wi.z <= 0 || wo.z <= 0) return Rgb(0);
+  constexpr float kInvPi = 0.318309886183790671538f;
+  const glm::vec3 h = glm::normalize(wi + wo);
+  const float a = gltf_alpha(p.roughness), a2 = a * a;
+  // h.z > 0 always here (both directions above the horizon); wi·h = wo·h > 0, so χ⁺ = 1.
+  const float c2 = h.z * h.z;
+  const float denom = c2 * (a2 - 1.0f) + 1.0f;
+  const float d = a2 * kInvPi / (denom * denom);
+  const float vis = 0.5f / (wo.z * std::sqrt(a2 + (1.0f - a2) * wi.z * wi.z) +
+                            wi.z * std::sqrt(a2 + (1.0f - a2) * wo.z * wo.z));
+  const float s = vis * d;
+  const float x = 1.0f - glm::abs(glm::dot(wo, h));
+  const float w = (x * x) * (x * x) * x;
+  const float fd = 0.04f + 0.96f * w;
+  const Rgb dielectric = (1.0f - fd) * p.base_color * kInvPi + fd * s;
+  const Rgb metal = s * (p.base_color + (Rgb(1.0f) - p.base_color) * w);
+  return glm::mix(dielectric, metal, p.metallic);
+}
+
+}  // namespace svbrdf
