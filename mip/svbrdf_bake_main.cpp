@@ -1,14 +1,27 @@
 // svbrdf-bake: bakes procedural materials into texture sets and builds, queries and compares MIP
 // chains (../shared/spec/brdf-mip.md, "svbrdf-bake surface").
 #include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+
+#include "base/error.h"
+#include "mip/bake_commands.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"svbrdf-bake: bake material texture sets and BRDF-averaged MIP chains"};
   app.require_subcommand(1);
+  svbrdf::add_material_command(app);
+  svbrdf::add_mip_commands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
+  } catch (const svbrdf::Error& e) {
+    std::fprintf(stderr, "svbrdf-bake: %s\n", e.what());
+    return e.exit_code();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "svbrdf-bake: internal error: %s\n", e.what());
+    return 1;
   }
   return 0;
 }
