@@ -18,8 +18,13 @@ inline void write_atomically(const std::filesystem::path& path,
                              const std::function<void(const std::filesystem::path&)>& write) {
   namespace fs = std::filesystem;
   const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
-  const fs::path tmp =
-      dir / ("." + path.stem().string() + ".tmp" + std::to_string(::getpid()) + path.extension().string());
+  // Appended piece by piece: GCC 12 warns falsely (-Wrestrict, PR 105651) on "." + std::string.
+  std::string name = ".";
+  name += path.stem().string();
+  name += ".tmp";
+  name += std::to_string(::getpid());
+  name += path.extension().string();
+  const fs::path tmp = dir / name;
   try {
     write(tmp);
   } catch (...) {
