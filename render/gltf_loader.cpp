@@ -1,0 +1,680 @@
+#include "render/gltf_loader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <tbb/parallel_for.h>
+#include <tiny_gltf.h>
+
+#include "base/error.h"
+#include "render/gltf_accessor.h"
+#include "render/image_decode.h"
+#include "render/tangents.h"
+
+namespace svbrdf {
+
+namespace {
+
+using gltf::AccessorShape;
+
+std::string idx(const char* array, int i) { return std::string(array) + "[" + std::to_string(i) + "]"; }
+
+std::string first_line(const std::string& s) {
+  std::string line = s.substr(0, s.find('\n'));
+  while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+  return line;
+}
+
+// Raw bytes of each image, as tinygltf hands them to the image loader callback (external files it
+// read itself, data URIs it decoded, buffer views of a .glb). Decoding happens afterwards, through
+// OpenImageIO.
+struct ImageBytes {
+  std::vector<unsigned char> bytes;
+  std::string error;
+  bool loaded = false;
+};
+struct CallbackState {
+  tinygltf::Model* model = nullptr;
+  std::vector<ImageBytes> images;
+};
+
+bool keep_image_bytes(tinygltf::Image* image, const int index, std::string*, std::string*, int, int,
+                      const unsigned char* bytes, int size, void* user) {
+  auto* st = static_cast<CallbackState*>(user);
+  if (index < 0) return false;
+  if (static_cast<std::size_t>(index) >= st->images.size()) st->images.resize(std::size_t(index) + 1);
+  ImageBytes& ib = st->images[static_cast<std::size_t>(index)];
+  if (image->bufferView >= 0) {
+    // tinygltf 2.7 passes &buffer.data[view.byteOffset] and view.byteLength without checking that the
+    // view lies inside the buffer; check before reading a byte.
+    const auto& m = *st->model;
+    const auto& view = m.bufferViews[static_cast<std::size_t>(image->bufferView)];
+    const auto& buffer = m.buffers[static_cast<std::size_t>(view.buffer)];
+    if (std::uint64_t(view.byteOffset) + view.byteLength > buffer.data.size()) {
+      ib.error = idx("bufferViews", image->bufferView) + " spans bytes past the end of " +
+                 idx("buffers", view.buffer) + " (" + std::to_string(buffer.data.size()) + " bytes)";
+      return true;
+    }
+  }
+  if (size > 0 && bytes) ib.bytes.assign(bytes, bytes + size);
+  ib.loaded = true;
+  return true;
+}
+
+bool finite_all(const std::vector<double>& v) {
+  return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
+}
+
+class Loader {
+ public:
+  explicit Loader(const std::filesystem::path& path) : path_(path) { scene_.file = path; }
+
+  Scene run() {
+    read_model();
+    check_extensions();
+    read_images();
+    read_textures();
+    read_materials();
+    read_meshes();
+    read_lights();
+    read_nodes();
+    if (degenerate_triangles_ > 0)
+      scene_.warnings.push_back(std::to_string(degenerate_triangles_) + " zero-area triangles (first in " +
+                                first_degenerate_ + ") render as nothing");
+    return std::move(scene_);
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& where, const std::string& what) const {
+    throw input_error(path_.string() + (where.empty() ? "" : ": " + where), what);
+  }
+
+  void read_model() {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path_, ec)) fail("", "no such glTF file");
+    // A .glb starts with the magic "glTF"; trust the bytes over the extension.
+    char magic[4] = {};
+    {
+      std::ifstream f(path_, std::ios::binary);
+      f.read(magic, 4);
+    }
+    const bool binary = std::string(magic, 4) == "glTF";
+    tinygltf::TinyGLTF reader;
+    callback_.model = &model_;
+    reader.SetImageLoader(keep_image_bytes, &callback_);
+    reader.SetPreserveImageChannels(true);
+    std::string err, warn;
+    const bool ok = binary ? reader.LoadBinaryFromFile(&model_, &err, &warn, path_.string())
+                           : reader.LoadASCIIFromFile(&model_, &err, &warn, path_.string());
+    if (!ok) fail("", "not a readable glTF file: " + first_line(err.empty() ? warn : err));
+  }
+
+  void check_extensions() {
+    const auto& ok = supported_extensions();
+    auto supported = [&](const std::string& e) { return std::find(ok.begin(), ok.end(), e) != ok.end(); };
+    for (const auto& e : model_.extensionsRequired)
+      if (!supported(e)) fail("extensionsRequired", "requires " + e + ", which svbrdf-render does not support");
+    for (const auto& e : model_.extensionsUsed)
+      if (!supported(e))
+        scene_.warnings.push_back("optional extension " + e + " is not supported; the file renders without it");
+  }
+
+  void read_images() {
+    const std::size_t n = model_.images.size();
+    callback_.images.resize(std::max(callback_.images.size(), n));
+    scene_.images.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const tinygltf::Image& im = model_.images[i];
+      ImageDesc& d = scene_.images[i];
+      d.name = im.name;
+      d.uri = im.uri;
+      d.mime_type = im.mimeType;
+      d.where = idx("images", int(i));
+      const ImageBytes& ib = callback_.images[i];
+      if (!ib.error.empty()) fail(d.where, ib.error);
+      if (!ib.loaded || ib.bytes.empty())
+        fail(d.where, im.uri.empty() ? "has no image data" : "cannot read the image file '" + im.uri + "'");
+    }
+    // Decoding is the slow part of loading a textured scene; images are independent.
+    std::vector<std::string> errors(n);
+    tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
+      ImageDesc& d = scene_.images[i];
+      try {
+        d.pixels = decode_image(callback_.images[i].bytes, d.mime_type.empty() ? d.uri : d.mime_type,
+                                d.uri.empty() ? d.where : d.where + " ('" + d.uri + "')");
+      } catch (const Error& e) {
+        errors[i] = e.what();
+      }
+    });
+    for (std::size_t i = 0; i < n; ++i)
+      if (!errors[i].empty()) throw input_error(path_.string(), errors[i]);
+    callback_.images.clear();
+  }
+
+  static WrapMode wrap_mode(int gl, const std::string& where, const Loader& self) {
+    switch (gl) {
+      case TINYGLTF_TEXTURE_WRAP_REPEAT: return WrapMode::repeat;
+      case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return WrapMode::clamp_to_edge;
+      case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return WrapMode::mirrored_repeat;
+      default: self.fail(where, "unknown wrap mode " + std::to_string(gl));
+    }
+  }
+
+  void read_textures() {
+    for (std::size_t i = 0; i < model_.textures.size(); ++i) {
+      const tinygltf::Texture& t = model_.textures[i];
+      TextureDesc d;
+      d.where = idx("textures", int(i));
+      if (t.source >= 0) {
+        if (static_cast<std::size_t>(t.source) >= model_.images.size())
+          fail(d.where + ".source", "names " + idx("images", t.source) + ", but the file has " +
+                                        std::to_string(model_.images.size()) + " images");
+        d.image = t.source;
+      }
+      if (t.sampler >= 0) {
+        if (static_cast<std::size_t>(t.sampler) >= model_.samplers.size())
+          fail(d.where + ".sampler", "names " + idx("samplers", t.sampler) + ", but the file has " +
+                                         std::to_string(model_.samplers.size()) + " samplers");
+        const auto& s = model_.samplers[static_cast<std::size_t>(t.sampler)];
+        const std::string sw = idx("samplers", t.sampler);
+        d.sampler.wrap_s = wrap_mode(s.wrapS, sw + ".wrapS", *this);
+        d.sampler.wrap_t = wrap_mode(s.wrapT, sw + ".wrapT", *this);
+      }
+      scene_.textures.push_back(d);
+    }
+  }
+
+  // --- materials ---------------------------------------------------------------------------
+
+  static double number(const tinygltf::Value& v, const char* key, double fallback) {
+    if (!v.IsObject() || !v.Has(key)) return fallback;
+    const tinygltf::Value& x = v.Get(key);
+    return x.IsNumber() ? x.GetNumberAsDouble() : std::nan("");
+  }
+
+  float checked(double x, double lo, double hi, const std::string& where) const {
+    if (!std::isfinite(x) || x < lo || x > hi) {
+      std::ostringstream s;
+      s << "is " << x << ", outside [" << lo << ", " << hi << "]";
+      fail(where, s.str());
+    }
+    return static_cast<float>(x);
+  }
+
+  void apply_texture_transform(TextureRef& r, const tinygltf::Value& ext, const std::string& where) const {
+    if (!ext.IsObject() || !ext.Has("KHR_texture_transform")) return;
+    const tinygltf::Value& tt = ext.Get("KHR_texture_transform");
+    const std::string w = where + ".extensions.KHR_texture_transform";
+    auto vec2 = [&](const char* key, glm::vec2 fallback) {
+      if (!tt.Has(key)) return fallback;
+      const tinygltf::Value& a = tt.Get(key);
+      if (!a.IsArray() || a.ArrayLen() != 2 || !a.Get(0).IsNumber() || !a.Get(1).IsNumber())
+        fail(w + "." + key, "must be an array of two numbers");
+      const glm::vec2 v(a.Get(0).GetNumberAsDouble(), a.Get(1).GetNumberAsDouble());
+      if (!std::isfinite(v.x) || !std::isfinite(v.y)) fail(w + "." + key, "is not finite");
+      return v;
+    };
+    const double rot = number(tt, "rotation", 0.0);
+    if (!std::isfinite(rot)) fail(w + ".rotation", "is not a finite number");
+    r.transform = TextureTransform::make(vec2("offset", glm::vec2(0)), float(rot), vec2("scale", glm::vec2(1)));
+    if (tt.Has("texCoord")) {
+      const double tc = number(tt, "texCoord", 0);
+      if (tc != 0 && tc != 1) fail(w + ".texCoord", "is " + std::to_string(tc) + "; TEXCOORD_0 and _1 are read");
+      r.tex_coord = int(tc);
+    }
+  }
+
+  TextureRef texture_ref(int index, int tex_coord, const tinygltf::ExtensionMap& ext, const std::string& where) const {
+    TextureRef r;
+    if (index < 0) return r;
+    if (static_cast<std::size_t>(index) >= scene_.textures.size())
+      fail(where + ".index", "names " + idx("textures", index) + ", but the file has " +
+                                 std::to_string(scene_.textures.size()) + " textures");
+    if (scene_.textures[static_cast<std::size_t>(index)].image < 0)
+      fail(where + ".index", idx("textures", index) + " has no image this renderer can read");
+    if (tex_coord != 0 && tex_coord != 1)
+      fail(where + ".texCoord", "is " + std::to_string(tex_coord) + "; TEXCOORD_0 and _1 are read");
+    r.texture = index;
+    r.tex_coord = tex_coord;
+    tinygltf::Value::Object o(ext.begin(), ext.end());
+    apply_texture_transform(r, tinygltf::Value(o), where);
+    return r;
+  }
+
+  // A textureInfo inside an extension object (tinygltf leaves those as generic values).
+  TextureRef texture_ref(const tinygltf::Value& ext_obj, const char* key, const std::string& where) const {
+    if (!ext_obj.IsObject() || !ext_obj.Has(key)) return {};
+    const tinygltf::Value& ti = ext_obj.Get(key);
+    const std::string w = where + "." + key;
+    if (!ti.IsObject() || !ti.Has("index") || !ti.Get("index").IsNumber()) fail(w, "is not a textureInfo");
+    const int index = ti.Get("index").GetNumberAsInt();
+    if (index < 0) fail(w + ".index", "is negative");
+    const int tc = ti.Has("texCoord") ? ti.Get("texCoord").GetNumberAsInt() : 0;
+    tinygltf::ExtensionMap none;
+    TextureRef r = texture_ref(index, tc, none, w);
+    if (ti.Has("extensions")) apply_texture_transform(r, ti.Get("extensions"), w);
+    return r;
+  }
+
+  void read_materials() {
+    for (std::size_t i = 0; i < model_.materials.size(); ++i) {
+      const tinygltf::Material& m = model_.materials[i];
+      MaterialDesc d;
+      d.name = m.name;
+      d.where = idx("materials", int(i));
+      const std::string w = d.where;
+      const auto& pbr = m.pbrMetallicRoughness;
+      const std::string wp = w + ".pbrMetallicRoughness";
+      if (pbr.baseColorFactor.size() != 4 || !finite_all(pbr.baseColorFactor))
+        fail(wp + ".baseColorFactor", "must be four finite numbers");
+      for (int c = 0; c < 3; ++c)
+        d.base_color[c] = checked(pbr.baseColorFactor[std::size_t(c)], 0, 1, wp + ".baseColorFactor");
+      d.base_alpha = checked(pbr.baseColorFactor[3], 0, 1, wp + ".baseColorFactor");
+      d.base_color_texture = texture_ref(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+                                         pbr.baseColorTexture.extensions, wp + ".baseColorTexture");
+      d.metallic = checked(pbr.metallicFactor, 0, 1, wp + ".metallicFactor");
+      d.roughness = checked(pbr.roughnessFactor, 0, 1, wp + ".roughnessFactor");
+      d.metallic_roughness_texture =
+          texture_ref(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+                      pbr.metallicRoughnessTexture.extensions, wp + ".metallicRoughnessTexture");
+      d.normal_texture = texture_ref(m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions,
+                                     w + ".normalTexture");
+      if (!std::isfinite(m.normalTexture.scale)) fail(w + ".normalTexture.scale", "is not finite");
+      d.normal_texture.scale = float(m.normalTexture.scale);
+      d.occlusion_texture = texture_ref(m.occlusionTexture.index, m.occlusionTexture.texCoord,
+                                        m.occlusionTexture.extensions, w + ".occlusionTexture");
+      d.occlusion_texture.scale = checked(m.occlusionTexture.strength, 0, 1, w + ".occlusionTexture.strength");
+      if (m.emissiveFactor.size() != 3 || !finite_all(m.emissiveFactor))
+        fail(w + ".emissiveFactor", "must be three finite numbers");
+      for (int c = 0; c < 3; ++c) d.emissive[c] = checked(m.emissiveFactor[std::size_t(c)], 0, 1, w + ".emissiveFactor");
+      d.emissive_texture = texture_ref(m.emissiveTexture.index, m.emissiveTexture.texCoord,
+                                       m.emissiveTexture.extensions, w + ".emissiveTexture");
+      if (m.alphaMode == "OPAQUE") d.alpha_mode = AlphaMode::opaque;
+      else if (m.alphaMode == "MASK") d.alpha_mode = AlphaMode::mask;
+      else if (m.alphaMode == "BLEND") d.alpha_mode = AlphaMode::blend;
+      else fail(w + ".alphaMode", "is '" + m.alphaMode + "'; glTF allows OPAQUE, MASK and BLEND");
+      d.alpha_cutoff = checked(m.alphaCutoff, 0, 1e30, w + ".alphaCutoff");
+      d.double_sided = m.doubleSided;
+      read_material_extensions(m.extensions, d);
+      scene_.materials.push_back(std::move(d));
+    }
+  }
+
+  void read_material_extensions(const tinygltf::ExtensionMap& ext, MaterialDesc& d) const {
+    const std::string w = d.where + ".extensions.";
+    auto get = [&](const char* name) -> const tinygltf::Value* {
+      auto it = ext.find(name);
+      return it == ext.end() ? nullptr : &it->second;
+    };
+    if (const auto* e = get("KHR_materials_emissive_strength")) {
+      const std::string we = w + "KHR_materials_emissive_strength.emissiveStrength";
+      d.emissive_strength = checked(number(*e, "emissiveStrength", 1.0), 0, 1e30, we);
+    }
+    if (const auto* e = get("KHR_materials_ior")) {
+      const double ior = number(*e, "ior", 1.5);
+      // The extension allows ior = 0 as "specular off" in older drafts; glTF says ior ≥ 1.
+      d.ior = checked(ior, 1.0, 1e3, w + "KHR_materials_ior.ior");
+    }
+    if (const auto* e = get("KHR_materials_specular")) {
+      const std::string ws = w + "KHR_materials_specular";
+      d.specular = checked(number(*e, "specularFactor", 1.0), 0, 1, ws + ".specularFactor");
+      d.specular_texture = texture_ref(*e, "specularTexture", ws);
+      if (e->Has("specularColorFactor")) {
+        const auto& a = e->Get("specularColorFactor");
+        if (!a.IsArray() || a.ArrayLen() != 3) fail(ws + ".specularColorFactor", "must be three numbers");
+        for (int c = 0; c < 3; ++c)
+          d.specular_color[c] = checked(a.Get(c).IsNumber() ? a.Get(c).GetNumberAsDouble() : std::nan(""), 0, 1e30,
+                                        ws + ".specularColorFactor");
+      }
+      d.specular_color_texture = texture_ref(*e, "specularColorTexture", ws);
+    }
+    if (const auto* e = get("KHR_materials_transmission")) {
+      const std::string wt = w + "KHR_materials_transmission";
+      d.transmission = checked(number(*e, "transmissionFactor", 0.0), 0, 1, wt + ".transmissionFactor");
+      d.transmission_texture = texture_ref(*e, "transmissionTexture", wt);
+    }
+    if (const auto* e = get("KHR_materials_diffuse_roughness")) {
+      const std::string wr = w + "KHR_materials_diffuse_roughness";
+      d.diffuse_roughness = checked(number(*e, "diffuseRoughnessFactor", 0.0), 0, 1, wr + ".diffuseRoughnessFactor");
+      d.diffuse_roughness_texture = texture_ref(*e, "diffuseRoughnessTexture", wr);
+    }
+    if (get("KHR_materials_unlit")) d.unlit = true;
+  }
+
+  // --- meshes ------------------------------------------------------------------------------
+
+  template <typename V>
+  std::vector<V> read_attribute(const tinygltf::Primitive& p, const char* name, const std::vector<int>& types,
+                                const std::string& where, std::size_t vertex_count, int* comps_out = nullptr) {
+    auto it = p.attributes.find(name);
+    if (it == p.attributes.end()) return {};
+    const std::string w = where + ".attributes." + name;
+    int comps = 0;
+    const std::vector<float> f = gltf::read_floats(model_, it->second, AccessorShape{types, {}}, path_.string() + ": " + w, &comps);
+    const std::size_t n = f.size() / std::size_t(comps);
+    if (vertex_count != 0 && n != vertex_count)
+      fail(w, idx("accessors", it->second) + " has " + std::to_string(n) + " elements, POSITION has " +
+                  std::to_string(vertex_count));
+    std::vector<V> out(n, V(1.0f));
+    constexpr int kDim = V::length();
+    for (std::size_t i = 0; i < n; ++i)
+      for (int c = 0; c < std::min(comps, kDim); ++c) out[i][c] = f[i * std::size_t(comps) + std::size_t(c)];
+    if (comps_out) *comps_out = comps;
+    return out;
+  }
+
+  void read_meshes() {
+    scene_.meshes.resize(model_.meshes.size());
+    for (std::size_t mi = 0; mi < model_.meshes.size(); ++mi) {
+      const tinygltf::Mesh& mesh = model_.meshes[mi];
+      Mesh& out = scene_.meshes[mi];
+      out.name = mesh.name;
+      for (std::size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
+        const std::string where = idx("meshes", int(mi)) + ".primitives[" + std::to_string(pi) + "]";
+        MeshPrimitive prim;
+        if (read_primitive(mesh.primitives[pi], where, prim)) out.primitives.push_back(std::move(prim));
+      }
+    }
+  }
+
+  // False for primitives that are not surfaces (points, lines): skipped with a warning.
+  bool read_primitive(const tinygltf::Primitive& p, const std::string& where, MeshPrimitive& prim) {
+    const int mode = p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
+    if (mode == TINYGLTF_MODE_POINTS || mode == TINYGLTF_MODE_LINE || mode == TINYGLTF_MODE_LINE_LOOP ||
+        mode == TINYGLTF_MODE_LINE_STRIP) {
+      scene_.warnings.push_back(path_.string() + ": " + where + ": points and lines are not surfaces; skipped");
+      return false;
+    }
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN)
+      fail(where + ".mode", "is " + std::to_string(mode) + ", not a glTF primitive mode");
+    prim.where = where;
+    if (p.material >= 0) {
+      if (static_cast<std::size_t>(p.material) >= scene_.materials.size())
+        fail(where + ".material", "names " + idx("materials", p.material) + ", but the file has " +
+                                      std::to_string(scene_.materials.size()) + " materials");
+      prim.material = p.material;
+    }
+    if (!p.attributes.count("POSITION")) fail(where + ".attributes", "has no POSITION");
+    prim.positions = read_attribute<glm::vec3>(p, "POSITION", {TINYGLTF_TYPE_VEC3}, where, 0);
+    const std::size_t nv = prim.positions.size();
+    for (std::size_t i = 0; i < nv; ++i) {
+      const glm::vec3& v = prim.positions[i];
+      if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+        fail(where + ".attributes.POSITION", "vertex " + std::to_string(i) + " is not finite (NaN or infinity)");
+    }
+    prim.normals = read_attribute<glm::vec3>(p, "NORMAL", {TINYGLTF_TYPE_VEC3}, where, nv);
+    prim.tangents = read_attribute<glm::vec4>(p, "TANGENT", {TINYGLTF_TYPE_VEC4}, where, nv);
+    prim.texcoords[0] = read_attribute<glm::vec2>(p, "TEXCOORD_0", {TINYGLTF_TYPE_VEC2}, where, nv);
+    prim.texcoords[1] = read_attribute<glm::vec2>(p, "TEXCOORD_1", {TINYGLTF_TYPE_VEC2}, where, nv);
+    prim.colors = read_attribute<glm::vec4>(p, "COLOR_0", {TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4}, where, nv);
+
+    std::vector<std::uint32_t> idxs;
+    if (p.indices >= 0) {
+      idxs = gltf::read_indices(model_, p.indices, path_.string() + ": " + where + ".indices");
+      for (std::size_t k = 0; k < idxs.size(); ++k)
+        if (idxs[k] >= nv)
+          fail(where + ".indices", "index " + std::to_string(idxs[k]) + " (element " + std::to_string(k) +
+                                       ") is past the " + std::to_string(nv) + " vertices of POSITION");
+    } else {
+      idxs.resize(nv);
+      for (std::size_t k = 0; k < nv; ++k) idxs[k] = static_cast<std::uint32_t>(k);
+    }
+    if (mode == TINYGLTF_MODE_TRIANGLES) {
+      if (idxs.size() % 3 != 0)
+        fail(where + (p.indices >= 0 ? ".indices" : ".attributes.POSITION"),
+             std::to_string(idxs.size()) + " vertices do not make whole triangles");
+      prim.indices = std::move(idxs);
+    } else {
+      // Strips and fans as lists, keeping each triangle's winding (glTF §3.7.2.1).
+      for (std::size_t k = 2; k < idxs.size(); ++k) {
+        std::uint32_t a, b, c;
+        if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+          a = idxs[k - 2], b = idxs[k - 1], c = idxs[k];
+          if (k % 2 == 1) std::swap(a, b);
+        } else {
+          a = idxs[0], b = idxs[k - 1], c = idxs[k];
+        }
+        prim.indices.insert(prim.indices.end(), {a, b, c});
+      }
+    }
+    for (std::size_t t = 0; t < prim.triangle_count(); ++t) {
+      const glm::vec3 a = prim.positions[prim.indices[3 * t]], b = prim.positions[prim.indices[3 * t + 1]],
+                      c = prim.positions[prim.indices[3 * t + 2]];
+      if (glm::cross(b - a, c - a) == glm::vec3(0.0f) && degenerate_triangles_++ == 0) first_degenerate_ = where;
+    }
+
+    const MaterialDesc& mat = scene_.material_of(prim);
+    for (int s = 0; s < 2; ++s) {
+      const bool used = (mat.base_color_texture.present() && mat.base_color_texture.tex_coord == s) ||
+                        (mat.metallic_roughness_texture.present() && mat.metallic_roughness_texture.tex_coord == s) ||
+                        (mat.normal_texture.present() && mat.normal_texture.tex_coord == s) ||
+                        (mat.emissive_texture.present() && mat.emissive_texture.tex_coord == s) ||
+                        (mat.specular_texture.present() && mat.specular_texture.tex_coord == s) ||
+                        (mat.specular_color_texture.present() && mat.specular_color_texture.tex_coord == s) ||
+                        (mat.transmission_texture.present() && mat.transmission_texture.tex_coord == s) ||
+                        (mat.diffuse_roughness_texture.present() && mat.diffuse_roughness_texture.tex_coord == s);
+      if (used && prim.texcoords[s].empty())
+        fail(where + ".attributes", mat.where + " samples a texture with TEXCOORD_" + std::to_string(s) +
+                                        ", which this primitive does not have");
+    }
+    if (prim.normals.empty()) {
+      make_flat_normals(prim);
+    }
+    if (prim.tangents.empty() && mat.normal_texture.present()) generate_tangents(prim, mat.normal_texture.tex_coord);
+    return true;
+  }
+
+  // --- lights, nodes, cameras ----------------------------------------------------------------
+
+  void read_lights() {
+    for (std::size_t i = 0; i < model_.lights.size(); ++i) {
+      const tinygltf::Light& l = model_.lights[i];
+      const std::string w = "extensions.KHR_lights_punctual.lights[" + std::to_string(i) + "]";
+      LightDesc d;
+      d.name = l.name.empty() ? w : l.name;
+      if (l.type == "directional") d.type = LightDesc::Type::directional;
+      else if (l.type == "point") d.type = LightDesc::Type::point;
+      else if (l.type == "spot") d.type = LightDesc::Type::spot;
+      else fail(w + ".type", "is '" + l.type + "'; expected directional, point or spot");
+      if (!l.color.empty()) {
+        if (l.color.size() != 3) fail(w + ".color", "must be three numbers");
+        for (int c = 0; c < 3; ++c) d.color[c] = checked(l.color[std::size_t(c)], 0, 1e30, w + ".color");
+      }
+      d.intensity = checked(l.intensity, 0, 1e30, w + ".intensity");
+      d.range = checked(l.range, 0, 1e30, w + ".range");
+      if (d.type == LightDesc::Type::spot) {
+        d.outer_cone = checked(l.spot.outerConeAngle, 1e-6, 1.5707963267948966, w + ".spot.outerConeAngle");
+        d.inner_cone = checked(l.spot.innerConeAngle, 0, d.outer_cone, w + ".spot.innerConeAngle");
+      }
+      light_templates_.push_back(d);
+    }
+  }
+
+  glm::dmat4 local_transform(const tinygltf::Node& n, const std::string& w) const {
+    if (!n.matrix.empty()) {
+      if (n.matrix.size() != 16 || !finite_all(n.matrix)) fail(w + ".matrix", "must be 16 finite numbers");
+      return glm::make_mat4(n.matrix.data());  // column-major, as glTF stores it
+    }
+    glm::dmat4 m(1.0);
+    if (!n.translation.empty()) {
+      if (n.translation.size() != 3 || !finite_all(n.translation)) fail(w + ".translation", "must be 3 finite numbers");
+      m = glm::translate(m, glm::dvec3(n.translation[0], n.translation[1], n.translation[2]));
+    }
+    if (!n.rotation.empty()) {
+      if (n.rotation.size() != 4 || !finite_all(n.rotation)) fail(w + ".rotation", "must be 4 finite numbers");
+      glm::dquat q(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);  // glTF stores x, y, z, w
+      const double len = glm::length(q);
+      if (len < 1e-12) fail(w + ".rotation", "is a zero quaternion");
+      m = m * glm::mat4_cast(q / len);
+    }
+    if (!n.scale.empty()) {
+      if (n.scale.size() != 3 || !finite_all(n.scale)) fail(w + ".scale", "must be 3 finite numbers");
+      m = glm::scale(m, glm::dvec3(n.scale[0], n.scale[1], n.scale[2]));
+    }
+    return m;
+  }
+
+  void visit_node(int node, const glm::dmat4& world) {
+    const tinygltf::Node& n = model_.nodes[static_cast<std::size_t>(node)];
+    const std::string w = idx("nodes", node);
+    if (n.mesh >= 0) {
+      if (static_cast<std::size_t>(n.mesh) >= model_.meshes.size())
+        fail(w + ".mesh", "names " + idx("meshes", n.mesh) + ", but the file has " +
+                              std::to_string(model_.meshes.size()) + " meshes");
+      scene_.instances.push_back(Instance{n.mesh, node, world});
+      if (n.skin >= 0 && !warned_skin_) {
+        warned_skin_ = true;
+        scene_.warnings.push_back("skins are not animated; skinned meshes are drawn in their bind pose");
+      }
+    }
+    if (n.camera >= 0) {
+      if (static_cast<std::size_t>(n.camera) >= model_.cameras.size())
+        fail(w + ".camera", "names " + idx("cameras", n.camera) + ", but the file has " +
+                                std::to_string(model_.cameras.size()) + " cameras");
+      scene_.cameras.push_back(camera(n.camera, node, world));
+    }
+    auto it = n.extensions.find("KHR_lights_punctual");
+    if (it != n.extensions.end()) {
+      const std::string wl = w + ".extensions.KHR_lights_punctual.light";
+      const double li = number(it->second, "light", -1);
+      if (!(li >= 0) || li >= double(light_templates_.size()))
+        fail(wl, "names light " + std::to_string(li) + ", but the file has " +
+                     std::to_string(light_templates_.size()) + " lights");
+      LightDesc d = light_templates_[std::size_t(li)];
+      d.node = node;
+      d.position = glm::vec3(world * glm::dvec4(0, 0, 0, 1));
+      const glm::dvec3 dir = glm::dmat3(world) * glm::dvec3(0, 0, -1);
+      if (glm::length(dir) < 1e-300) fail(w, "has a singular transform; the light has no direction");
+      d.direction = glm::vec3(glm::normalize(dir));
+      scene_.lights.push_back(d);
+    }
+  }
+
+  CameraDesc camera(int ci, int node, const glm::dmat4& world) const {
+    const tinygltf::Camera& c = model_.cameras[static_cast<std::size_t>(ci)];
+    const std::string w = idx("cameras", ci);
+    CameraDesc d;
+    d.name = !c.name.empty() ? c.name : !model_.nodes[std::size_t(node)].name.empty() ? model_.nodes[std::size_t(node)].name : w;
+    d.node = node;
+    d.to_world = world;
+    if (c.type == "perspective") {
+      d.type = CameraDesc::Type::perspective;
+      d.yfov = checked(c.perspective.yfov, 1e-6, 3.14159, w + ".perspective.yfov");
+      d.aspect_ratio = checked(c.perspective.aspectRatio, 0, 1e6, w + ".perspective.aspectRatio");
+      d.znear = checked(c.perspective.znear, 0, 1e30, w + ".perspective.znear");
+      d.zfar = checked(c.perspective.zfar, 0, 1e30, w + ".perspective.zfar");
+    } else if (c.type == "orthographic") {
+      d.type = CameraDesc::Type::orthographic;
+      if (!std::isfinite(c.orthographic.xmag) || c.orthographic.xmag == 0)
+        fail(w + ".orthographic.xmag", "must be a finite nonzero number");
+      if (!std::isfinite(c.orthographic.ymag) || c.orthographic.ymag == 0)
+        fail(w + ".orthographic.ymag", "must be a finite nonzero number");
+      d.xmag = float(std::abs(c.orthographic.xmag));
+      d.ymag = float(std::abs(c.orthographic.ymag));
+      d.znear = checked(c.orthographic.znear, 0, 1e30, w + ".orthographic.znear");
+      d.zfar = checked(c.orthographic.zfar, 0, 1e30, w + ".orthographic.zfar");
+    } else {
+      fail(w + ".type", "is '" + c.type + "'; expected perspective or orthographic");
+    }
+    return d;
+  }
+
+  void read_nodes() {
+    const std::size_t nn = model_.nodes.size();
+    auto check_node = [&](int n, const std::string& where) {
+      if (n < 0 || static_cast<std::size_t>(n) >= nn)
+        fail(where, "names " + idx("nodes", n) + ", but the file has " + std::to_string(nn) + " nodes");
+    };
+    for (std::size_t i = 0; i < nn; ++i)
+      for (std::size_t c = 0; c < model_.nodes[i].children.size(); ++c)
+        check_node(model_.nodes[i].children[c], idx("nodes", int(i)) + ".children[" + std::to_string(c) + "]");
+
+    std::vector<int> roots;
+    std::string roots_where;
+    if (model_.scenes.empty()) {
+      // No scene: glTF leaves what to show to the application; show every parentless node.
+      std::vector<char> child(nn, 0);
+      for (const auto& n : model_.nodes)
+        for (int c : n.children) child[static_cast<std::size_t>(c)] = 1;
+      for (std::size_t i = 0; i < nn; ++i)
+        if (!child[i]) roots.push_back(int(i));
+      roots_where = "nodes";
+    } else {
+      int s = model_.defaultScene;
+      if (s < 0) s = 0;
+      if (static_cast<std::size_t>(s) >= model_.scenes.size())
+        fail("scene", "names " + idx("scenes", s) + ", but the file has " + std::to_string(model_.scenes.size()) +
+                          " scenes");
+      roots = model_.scenes[static_cast<std::size_t>(s)].nodes;
+      roots_where = idx("scenes", s) + ".nodes";
+      for (std::size_t r = 0; r < roots.size(); ++r) check_node(roots[r], roots_where + "[" + std::to_string(r) + "]");
+    }
+
+    // Depth-first with an explicit stack, so a deep or cyclic graph can neither overflow nor hang.
+    // 1 = on the current path, 2 = finished; meeting a node on the path is a cycle, meeting a finished
+    // one means it has two parents (glTF requires a forest).
+    std::vector<char> state(nn, 0);
+    struct Frame {
+      int node;
+      glm::dmat4 world;
+      std::size_t next_child;
+    };
+    std::vector<Frame> stack;
+    for (int root : roots) {
+      if (state[static_cast<std::size_t>(root)] != 0)
+        fail(roots_where, idx("nodes", root) + " is reached twice: glTF nodes form a tree");
+      const glm::dmat4 w = local_transform(model_.nodes[std::size_t(root)], idx("nodes", root));
+      state[static_cast<std::size_t>(root)] = 1;
+      visit_node(root, w);
+      stack.push_back({root, w, 0});
+      while (!stack.empty()) {
+        Frame& f = stack.back();
+        const auto& children = model_.nodes[static_cast<std::size_t>(f.node)].children;
+        if (f.next_child == children.size()) {
+          state[static_cast<std::size_t>(f.node)] = 2;
+          stack.pop_back();
+          continue;
+        }
+        const int c = children[f.next_child++];
+        const std::string wc = idx("nodes", f.node) + ".children";
+        if (state[static_cast<std::size_t>(c)] == 1)
+          fail(wc, "names " + idx("nodes", c) + ", its own ancestor: the node graph has a cycle");
+        if (state[static_cast<std::size_t>(c)] == 2)
+          fail(wc, "names " + idx("nodes", c) + ", which already has another parent: glTF nodes form a tree");
+        const glm::dmat4 w = f.world * local_transform(model_.nodes[static_cast<std::size_t>(c)], idx("nodes", c));
+        state[static_cast<std::size_t>(c)] = 1;
+        visit_node(c, w);
+        stack.push_back({c, w, 0});
+      }
+    }
+  }
+
+  std::filesystem::path path_;
+  tinygltf::Model model_;
+  CallbackState callback_;
+  Scene scene_;
+  std::vector<LightDesc> light_templates_;
+  std::size_t degenerate_triangles_ = 0;
+  std::string first_degenerate_;
+  bool warned_skin_ = false;
+};
+
+}  // namespace
+
+const std::vector<std::string>& supported_extensions() {
+  static const std::vector<std::string> k = {
+      "KHR_texture_transform",        "KHR_materials_emissive_strength", "KHR_materials_ior",
+      "KHR_materials_specular",       "KHR_materials_transmission",      "KHR_materials_diffuse_roughness",
+      "KHR_materials_unlit",          "KHR_lights_punctual",             "KHR_mesh_quantization"};
+  return k;
+}
+
+Scene load_gltf(const std::filesystem::path& path) { return Loader(path).run(); }
+
+}  // namespace svbrdf

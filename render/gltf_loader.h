@@ -1,0 +1,28 @@
+#pragma once
+// Reading a glTF 2.0 file (.gltf or .glb) into a Scene with tinygltf (Debian's shared library; images
+// are handed to OpenImageIO, never to stb). Every index, accessor, buffer view and buffer is checked;
+// a malformed file throws svbrdf::Error with one line naming the file and the JSON path of the
+// offending object, e.g. "scene.gltf: meshes[2].primitives[0].attributes.POSITION: ...".
+//
+// What is read: the default scene's node hierarchy (matrix or TRS), triangle primitives (indexed or
+// not; strips and fans become lists), POSITION, NORMAL, TANGENT, TEXCOORD_0/1, COLOR_0; materials with
+// the extensions listed in supported_extensions(); cameras; KHR_lights_punctual. Missing normals are
+// generated flat, missing tangents (where a normal map needs them) MikkTSpace-compatible. An
+// unsupported extension in extensionsRequired is an error; one only in extensionsUsed is a warning.
+// Not read: animations and morph targets (the static pose is drawn), skins (meshes drawn in their
+// bind pose, with a warning), occlusion textures are kept in the MaterialDesc but a path tracer
+// computes occlusion itself.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "render/scene.h"
+
+namespace svbrdf {
+
+Scene load_gltf(const std::filesystem::path& path);
+
+// The glTF extensions the loader understands.
+const std::vector<std::string>& supported_extensions();
+
+}  // namespace svbrdf
