@@ -1,6 +1,12 @@
 #include "textures/image.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+
+#include <array>
+#include <cctype>
+#include <cstring>
+#include <fstream>
 
 #include "base/atomic_file.h"
 #include "base/error.h"
@@ -8,6 +14,7 @@
 namespace svbrdf {
 
 namespace {
+
 OIIO::TypeDesc to_oiio(PixelFormat f) {
   switch (f) {
     case PixelFormat::uint8: return OIIO::TypeDesc::UINT8;
@@ -17,27 +24,292 @@ OIIO::TypeDesc to_oiio(PixelFormat f) {
   }
   return OIIO::TypeDesc::FLOAT;
 }
-}  // namespace
 
-Image read_image(const std::filesystem::path& path) {
-  auto in = OIIO::ImageInput::open(path.string());
-  if (!in) throw input_error(path.string(), "cannot read image: " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
+// OpenImageIO keeps per-thread error messages and prints any left unread at exit; every failure
+// path reads them, and an empty one gets a generic reason.
+std::string reason(std::string message, const char* fallback) {
+  while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) message.pop_back();
+  for (char& c : message)
+    if (c == '\n') c = ' ';
+  return message.empty() ? fallback : message;
+}
+
+PixelFormat from_oiio(OIIO::TypeDesc t) {
+  switch (t.basetype) {
+    case OIIO::TypeDesc::UINT8:
+    case OIIO::TypeDesc::INT8: return PixelFormat::uint8;
+    case OIIO::TypeDesc::UINT16:
+    case OIIO::TypeDesc::INT16: return PixelFormat::uint16;
+    case OIIO::TypeDesc::HALF: return PixelFormat::half;
+    default: return PixelFormat::float32;
+  }
+}
+
+// Values exactly as stored: PNG, TIFF and others keep straight (unassociated) alpha, and glTF
+// means its base color that way; by default OpenImageIO would premultiply color by alpha on read
+// and divide on write.
+const OIIO::ImageSpec& straight_alpha_config() {
+  static const OIIO::ImageSpec config = [] {
+    OIIO::ImageSpec c;
+    c.attribute("oiio:UnassociatedAlpha", 1);
+    return c;
+  }();
+  return config;
+}
+
+// Reads subimage 0, MIP level 0 of an opened input into floats.
+Image read_opened(OIIO::ImageInput& in, const std::string& where, PixelFormat* stored_format = nullptr) {
+  const OIIO::ImageSpec& spec = in.spec();
+  if (stored_format) *stored_format = from_oiio(spec.format);
+  check_image_size(where, spec.width, spec.height);
+  if (spec.nchannels < 1 || spec.nchannels > 64) throw input_error(where, "unsupported channel count " + std::to_string(spec.nchannels));
   Image img(spec.width, spec.height, spec.nchannels);
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, img.pixels.data()))
-    throw input_error(path.string(), "cannot decode image: " + in->geterror());
+  if (!in.read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, img.pixels.data()))
+    throw input_error(where, "cannot decode image (truncated or corrupt?): " + reason(in.geterror(), "read failed"));
+  // Some decoders (libjpeg, libpng) report a premature end as a warning and fill the rest; OIIO
+  // passes that on as a pending error even when read_image succeeds.
+  if (in.has_error()) throw input_error(where, "cannot decode image (truncated or corrupt?): " + reason(in.geterror(), "decoder error"));
   return img;
 }
 
+// The file extension OpenImageIO should try first for these bytes: by signature, else by MIME type.
+std::string extension_for(std::span<const std::byte> bytes, std::string_view mime) {
+  const auto starts = [&](std::initializer_list<unsigned char> sig) {
+    if (bytes.size() < sig.size()) return false;
+    std::size_t i = 0;
+    for (unsigned char b : sig)
+      if (std::to_integer<unsigned char>(bytes[i++]) != b) return false;
+    return true;
+  };
+  if (starts({0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'})) return ".png";
+  if (starts({0xff, 0xd8, 0xff})) return ".jpg";
+  if (starts({0x76, 0x2f, 0x31, 0x01})) return ".exr";
+  if (starts({'#', '?'})) return ".hdr";
+  if (starts({'I', 'I', 0x2a, 0x00}) || starts({'M', 'M', 0x00, 0x2a})) return ".tif";
+  // A file name as the hint: its extension.
+  if (const std::size_t dot = mime.rfind('.'); dot != std::string_view::npos && mime.substr(0, 6) != "image/") {
+    std::string ext(mime.substr(dot));
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    for (const char* known : {".png", ".jpg", ".jpeg", ".exr", ".hdr", ".tif", ".tiff"})
+      if (ext == known) return ext;
+  }
+  if (mime == "image/png") return ".png";
+  if (mime == "image/jpeg") return ".jpg";
+  if (mime == "image/x-exr" || mime == "image/aces") return ".exr";
+  if (mime == "image/vnd.radiance") return ".hdr";
+  if (mime == "image/tiff") return ".tif";
+  return "";
+}
+
+// CRC-32 of ISO 3309 / PNG (polynomial 0xedb88320, reflected), table-driven.
+std::uint32_t crc32(const std::byte* data, std::size_t n) {
+  static const std::array<std::uint32_t, 256> table = [] {
+    std::array<std::uint32_t, 256> t{};
+    for (std::uint32_t i = 0; i < 256; ++i) {
+      std::uint32_t c = i;
+      for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xedb88320u & (0u - (c & 1u)));
+      t[i] = c;
+    }
+    return t;
+  }();
+  std::uint32_t c = 0xffffffffu;
+  for (std::size_t i = 0; i < n; ++i) c = table[(c ^ std::to_integer<std::uint32_t>(data[i])) & 0xffu] ^ (c >> 8);
+  return ~c;
+}
+
+bool is_png(std::span<const std::byte> b) {
+  static constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (b.size() < 8) return false;
+  for (int i = 0; i < 8; ++i)
+    if (std::to_integer<unsigned char>(b[i]) != kSignature[i]) return false;
+  return true;
+}
+
+// Walks a PNG's chunks (PNG spec §5.3: length, type, data, CRC) up to IEND before libpng sees it:
+// libpng prints its own "libpng error" line to stderr for a truncated or damaged file, and the
+// project's programs print exactly one line for bad input, ours.
+void check_png_structure(std::span<const std::byte> b, const std::string& where) {
+  const auto be32 = [&](std::size_t at) {
+    return std::to_integer<std::uint32_t>(b[at]) << 24 | std::to_integer<std::uint32_t>(b[at + 1]) << 16 |
+           std::to_integer<std::uint32_t>(b[at + 2]) << 8 | std::to_integer<std::uint32_t>(b[at + 3]);
+  };
+  std::size_t at = 8;
+  for (int chunk = 0;; ++chunk) {
+    if (b.size() - at < 12) throw input_error(where, "truncated PNG: the file ends inside chunk " + std::to_string(chunk) + " (no IEND)");
+    const std::uint32_t length = be32(at);
+    if (length > 0x7fffffffu || b.size() - at - 12 < length)
+      throw input_error(where, "truncated PNG: chunk " + std::to_string(chunk) + " runs past the end of the file");
+    if (crc32(b.data() + at + 4, length + 4) != be32(at + 8 + length))
+      throw input_error(where, "corrupt PNG: CRC mismatch in chunk " + std::to_string(chunk));
+    const bool iend = std::to_integer<char>(b[at + 4]) == 'I' && std::to_integer<char>(b[at + 5]) == 'E' &&
+                      std::to_integer<char>(b[at + 6]) == 'N' && std::to_integer<char>(b[at + 7]) == 'D';
+    at += 12 + length;
+    if (iend) return;
+  }
+}
+
+std::vector<std::byte> read_file_bytes(const std::filesystem::path& path) {
+  std::ifstream f(path, std::ios::binary);
+  std::vector<std::byte> bytes;
+  if (!f) throw input_error(path.string(), "cannot open file");
+  f.seekg(0, std::ios::end);
+  const std::streamoff size = f.tellg();
+  f.seekg(0);
+  bytes.resize(std::size_t(std::max<std::streamoff>(size, 0)));
+  f.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(bytes.size()));
+  if (!f) throw input_error(path.string(), "cannot read file");
+  return bytes;
+}
+
+Image decode_memory(std::span<const std::byte> bytes, std::string_view mime_type, const std::string& name,
+                    PixelFormat* stored_format) {
+  if (bytes.empty()) throw input_error(name, "image data is empty");
+  if (is_png(bytes)) check_png_structure(bytes, name);
+  const std::string ext = extension_for(bytes, mime_type);
+  if (ext.empty())
+    throw input_error(name, "unsupported image type" + (mime_type.empty() ? std::string() : " \"" + std::string(mime_type) + "\""));
+  OIIO::Filesystem::IOMemReader proxy(bytes.data(), bytes.size());
+  // OpenImageIO picks the decoder by the name's extension; the proxy supplies the bytes.
+  // OpenImageIO 2.4 takes the proxy from the config when a config is given.
+  OIIO::ImageSpec config = straight_alpha_config();
+  OIIO::Filesystem::IOProxy* proxy_ptr = &proxy;
+  config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy_ptr);
+  auto in = OIIO::ImageInput::open("memory" + ext, &config, &proxy);
+  if (!in) throw input_error(name, "cannot decode image: " + reason(OIIO::geterror(), "unrecognized data"));
+  return read_opened(*in, name, stored_format);
+}
+
+int base64_value(char c) {
+  if (c >= 'A' && c <= 'Z') return c - 'A';
+  if (c >= 'a' && c <= 'z') return c - 'a' + 26;
+  if (c >= '0' && c <= '9') return c - '0' + 52;
+  if (c == '+' || c == '-') return 62;  // '-' and '_': the URL-safe alphabet of RFC 4648 §5
+  if (c == '/' || c == '_') return 63;
+  return -1;
+}
+
+int hex_value(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+
+}  // namespace
+
+void check_image_size(const std::string& where, long long width, long long height) {
+  if (width < 1 || height < 1)
+    throw input_error(where, "image has no pixels (" + std::to_string(width) + "x" + std::to_string(height) + ")");
+  if (width > kMaxImageSide || height > kMaxImageSide || width * height > kMaxImageTexels)
+    throw input_error(where, "image size " + std::to_string(width) + "x" + std::to_string(height) +
+                                 " is beyond the supported " + std::to_string(kMaxImageSide) + " per side, " +
+                                 std::to_string(kMaxImageTexels) + " texels in all");
+}
+
+Image read_image(const std::filesystem::path& path) { return read_image(path, nullptr); }
+
+Image read_image(const std::filesystem::path& path, PixelFormat* stored_format) {
+  const std::string where = path.string();
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw input_error(where, "no such image file");
+  if (std::filesystem::is_directory(path, ec)) throw input_error(where, "is a directory, not an image");
+  // PNGs are checked whole before libpng sees them (check_png_structure), so decode from memory.
+  if (char sig[8] = {}; std::ifstream(path, std::ios::binary).read(sig, 8) && is_png(std::as_bytes(std::span(sig))))
+    return decode_memory(read_file_bytes(path), "", where, stored_format);
+  auto in = OIIO::ImageInput::open(where, &straight_alpha_config());
+  if (!in) throw input_error(where, "cannot read image: " + reason(OIIO::geterror(), "unrecognized format"));
+  return read_opened(*in, where, stored_format);
+}
+
+Image read_image_from_memory(std::span<const std::byte> bytes, std::string_view mime_type, const std::string& name) {
+  return decode_memory(bytes, mime_type, name, nullptr);
+}
+
 void write_image(const std::filesystem::path& path, const Image& image, PixelFormat format) {
+  check_image_size(path.string(), image.width, image.height);
   write_atomically(path, [&](const std::filesystem::path& tmp) {
     auto out = OIIO::ImageOutput::create(path.string());
-    if (!out) throw input_error(path.string(), "no image writer for this extension: " + OIIO::geterror());
+    if (!out) throw input_error(path.string(), "no image writer for this extension: " + reason(OIIO::geterror(), "unknown"));
     OIIO::ImageSpec spec(image.width, image.height, image.channels, to_oiio(format));
-    if (!out->open(tmp.string(), spec) ||
-        !out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data()) || !out->close())
-      throw input_error(path.string(), "cannot write image: " + out->geterror());
+    spec.attribute("oiio:UnassociatedAlpha", 1);  // our alpha is straight: store it as it is
+    if (!out->open(tmp.string(), spec) || !out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data()) || !out->close())
+      throw input_error(path.string(), "cannot write image: " + reason(out->geterror(), "write failed"));
   });
+}
+
+bool is_data_uri(std::string_view uri) { return uri.size() >= 5 && uri.substr(0, 5) == "data:"; }
+
+DataUri decode_data_uri(std::string_view uri, const std::string& where) {
+  if (!is_data_uri(uri)) throw input_error(where, "not a data: URI");
+  const std::size_t comma = uri.find(',');
+  if (comma == std::string_view::npos) throw input_error(where, "data: URI without ',' before its payload");
+  std::string_view header = uri.substr(5, comma - 5);
+  const std::string_view payload = uri.substr(comma + 1);
+  bool base64 = false;
+  if (header.size() >= 7 && header.substr(header.size() - 7) == ";base64") {
+    base64 = true;
+    header.remove_suffix(7);
+  }
+  DataUri out;
+  out.mime_type = std::string(header.substr(0, header.find(';')));
+  if (base64) {
+    out.bytes.reserve(payload.size() / 4 * 3);
+    unsigned acc = 0;
+    int bits = 0;
+    std::size_t padding = 0;
+    for (std::size_t i = 0; i < payload.size(); ++i) {
+      const char c = payload[i];
+      if (c == '=') {
+        ++padding;
+        continue;
+      }
+      if (padding) throw input_error(where, "data: URI base64 has data after '=' padding");
+      const int v = base64_value(c);
+      if (v < 0) throw input_error(where, "data: URI has an invalid base64 character at offset " + std::to_string(comma + 1 + i));
+      acc = (acc << 6) | unsigned(v);
+      bits += 6;
+      if (bits >= 8) {
+        bits -= 8;
+        out.bytes.push_back(std::byte((acc >> bits) & 0xffu));
+      }
+    }
+    if (padding > 2 || bits >= 6) throw input_error(where, "data: URI base64 payload has a truncated length");
+  } else {
+    for (std::size_t i = 0; i < payload.size(); ++i) {
+      if (payload[i] == '%') {
+        const bool complete = i + 2 < payload.size();
+        const int hi = complete ? hex_value(payload[i + 1]) : -1;
+        const int lo = complete ? hex_value(payload[i + 2]) : -1;
+        if (hi < 0 || lo < 0) throw input_error(where, "data: URI has a bad %-escape at offset " + std::to_string(comma + 1 + i));
+        out.bytes.push_back(std::byte(hi * 16 + lo));
+        i += 2;
+      } else {
+        out.bytes.push_back(std::byte(static_cast<unsigned char>(payload[i])));
+      }
+    }
+  }
+  return out;
+}
+
+std::string encode_base64(std::span<const std::byte> bytes) {
+  static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  std::size_t i = 0;
+  for (; i + 2 < bytes.size(); i += 3) {
+    const unsigned v = std::to_integer<unsigned>(bytes[i]) << 16 | std::to_integer<unsigned>(bytes[i + 1]) << 8 |
+                       std::to_integer<unsigned>(bytes[i + 2]);
+    for (int s = 18; s >= 0; s -= 6) out.push_back(kAlphabet[(v >> s) & 63u]);
+  }
+  if (const std::size_t rest = bytes.size() - i) {
+    unsigned v = std::to_integer<unsigned>(bytes[i]) << 16;
+    if (rest == 2) v |= std::to_integer<unsigned>(bytes[i + 1]) << 8;
+    out.push_back(kAlphabet[(v >> 18) & 63u]);
+    out.push_back(kAlphabet[(v >> 12) & 63u]);
+    out.push_back(rest == 2 ? kAlphabet[(v >> 6) & 63u] : '=');
+    out.push_back('=');
+  }
+  return out;
 }
 
 }  // namespace svbrdf

@@ -4,6 +4,9 @@
 // OpenImageIO.
 #include <cstddef>
 #include <filesystem>
+#include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
 namespace svbrdf {
@@ -27,7 +30,38 @@ Image read_image(const std::filesystem::path& path);
 
 enum class PixelFormat { uint8, uint16, half, float32 };
 
+// read_image that also reports how the file stores its values (other integer types report uint16
+// or float32, whichever holds them exactly; other float types float32).
+Image read_image(const std::filesystem::path& path, PixelFormat* stored_format);
+
 // Writes through OpenImageIO, choosing the format by extension, atomically (temporary + rename).
+// No color-space metadata is written (glTF viewers must ignore it and the Khronos validator warns
+// about it); an integer format stores round(clamp(v, 0, 1) · max).
 void write_image(const std::filesystem::path& path, const Image& image, PixelFormat format);
+
+// Largest image the project reads or makes: a side of 32768 texels, 2^28 texels in all (1 GiB per
+// float channel). Anything larger, or an empty image, is refused as bad input.
+inline constexpr int kMaxImageSide = 32768;
+inline constexpr long long kMaxImageTexels = 1LL << 28;
+// Throws svbrdf::Error naming `where` unless 1 ≤ width, height ≤ kMaxImageSide, texels ≤ kMaxImageTexels.
+void check_image_size(const std::string& where, long long width, long long height);
+
+// Decodes an encoded image (PNG, JPEG, OpenEXR, HDR, TIFF...) held in memory through OpenImageIO
+// (an IOMemReader proxy): images inside a .glb buffer or a data: URI. The bytes' signature decides
+// the format; `mime_type` ("image/png", "image/jpeg", as glTF gives it, or a file name whose
+// extension names the format) is the fallback. `name` is what error messages call it (e.g.
+// "scene.glb: images[3]"). Values as stored, like read_image.
+Image read_image_from_memory(std::span<const std::byte> bytes, std::string_view mime_type, const std::string& name);
+
+// A parsed data: URI (RFC 2397) with base64 or percent-encoded payload.
+struct DataUri {
+  std::string mime_type;  // e.g. "image/png"; "text/plain;charset=US-ASCII" semantics when absent
+  std::vector<std::byte> bytes;
+};
+bool is_data_uri(std::string_view uri);
+// Throws svbrdf::Error naming `where` for a malformed URI or payload.
+DataUri decode_data_uri(std::string_view uri, const std::string& where);
+// Base64 (RFC 4648) without line breaks, for writing data: URIs.
+std::string encode_base64(std::span<const std::byte> bytes);
 
 }  // namespace svbrdf

@@ -1,0 +1,184 @@
+#include "textures/color.h"
+
+#include <OpenColorIO/OpenColorIO.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <array>
+#include <cstdlib>
+#include <sstream>
+
+#include "base/error.h"
+
+namespace OCIO = OCIO_NAMESPACE;
+
+namespace svbrdf {
+
+// Defined in the generated unit that embeds textures/ocio/config.ocio (textures/CMakeLists.txt).
+extern const char* const kBuiltinOcioConfig;
+
+std::string_view builtin_ocio_config_text() { return kBuiltinOcioConfig; }
+
+namespace {
+
+// OCIO's default CPU optimization approximates pow with a fast SSE polynomial (relative error
+// ~1e-5); the project checks the sRGB decode against IEC 61966-2-1 to 1e-6, so keep exact pow.
+constexpr auto kOptimization =
+    static_cast<OCIO::OptimizationFlags>(OCIO::OPTIMIZATION_DEFAULT & ~OCIO::OPTIMIZATION_FAST_LOG_EXP_POW);
+
+// Names under which configs in the wild (ours, the ACES 1.x and OCIO 2 ACES configs, Blender's)
+// carry the sRGB texture encoding; the first one the config knows is used.
+constexpr std::array<const char*, 6> kSrgbTextureNames = {
+    "sRGB - Texture", "srgb_tx", "Utility - sRGB - Texture", "Input - Generic - sRGB - Texture", "srgb_texture",
+    "sRGB"};
+
+OCIO::ConstCPUProcessorRcPtr cpu_processor(const OCIO::ConstConfigRcPtr& config, const char* from, const char* to) {
+  return config->getProcessor(from, to)->getOptimizedCPUProcessor(OCIO::BIT_DEPTH_F32, OCIO::BIT_DEPTH_F32,
+                                                                  kOptimization);
+}
+
+}  // namespace
+
+struct ColorConfig::Impl {
+  std::string source;
+  OCIO::ConstConfigRcPtr config;
+  std::string scene_linear, srgb_texture, display, view;
+  OCIO::ConstCPUProcessorRcPtr srgb_to_linear, linear_to_srgb;
+
+  Impl(std::string src, OCIO::ConstConfigRcPtr cfg) : source(std::move(src)), config(std::move(cfg)) {
+    config->validate();
+    const auto linear = config->getColorSpace(OCIO::ROLE_SCENE_LINEAR);
+    if (!linear) throw input_error(source, "OCIO config has no scene_linear role");
+    scene_linear = linear->getName();
+    for (const char* name : kSrgbTextureNames) {
+      if (const auto cs = config->getColorSpace(name)) {
+        srgb_texture = cs->getName();
+        break;
+      }
+    }
+    if (srgb_texture.empty())
+      throw input_error(source, "OCIO config has no sRGB texture color space (looked for \"sRGB - Texture\", "
+                                "\"srgb_tx\", \"Utility - sRGB - Texture\", \"sRGB\")");
+    display = config->getDefaultDisplay();
+    view = config->getDefaultView(display.c_str());
+    srgb_to_linear = cpu_processor(config, srgb_texture.c_str(), scene_linear.c_str());
+    linear_to_srgb = cpu_processor(config, scene_linear.c_str(), srgb_texture.c_str());
+  }
+};
+
+namespace {
+
+std::shared_ptr<const ColorConfig::Impl> make_impl(const std::string& source, const OCIO::ConstConfigRcPtr& config) {
+  return std::make_shared<const ColorConfig::Impl>(source, config);
+}
+
+// Gray and gray+alpha images become RGB(A): OCIO transforms need three color channels, and glTF
+// reads a gray color texture as R = G = B.
+void expand_gray(Image& image) {
+  if (image.channels >= 3) return;
+  const int in_c = image.channels, out_c = in_c == 1 ? 3 : 4;
+  Image rgb(image.width, image.height, out_c);
+  const std::size_t n = std::size_t(image.width) * image.height;
+  for (std::size_t p = 0; p < n; ++p) {
+    const float g = image.pixels[p * in_c];
+    for (int c = 0; c < 3; ++c) rgb.pixels[p * out_c + c] = g;
+    if (out_c == 4) rgb.pixels[p * out_c + 3] = image.pixels[p * in_c + 1];
+  }
+  image = std::move(rgb);
+}
+
+// Applies a CPU processor to channels 0..2 of every pixel, in parallel over bands of rows (the
+// processor is immutable and thread-safe).
+void apply_processor(const OCIO::ConstCPUProcessorRcPtr& cpu, Image& image) {
+  expand_gray(image);
+  if (image.width == 0 || image.height == 0) return;
+  const int c = image.channels;
+  const std::ptrdiff_t pixel_bytes = std::ptrdiff_t(sizeof(float)) * c;
+  const std::ptrdiff_t row_bytes = pixel_bytes * image.width;
+  const OCIO::ChannelOrdering order = c == 4 ? OCIO::CHANNEL_ORDERING_RGBA : OCIO::CHANNEL_ORDERING_RGB;
+  const int rows_per_task = std::max(1, (1 << 16) / std::max(1, image.width));
+  tbb::parallel_for(tbb::blocked_range<int>(0, image.height, rows_per_task), [&](const tbb::blocked_range<int>& r) {
+    float* first = image.pixels.data() + std::size_t(r.begin()) * image.width * c;
+    OCIO::PackedImageDesc desc(first, image.width, r.end() - r.begin(), order, OCIO::BIT_DEPTH_F32,
+                               sizeof(float), pixel_bytes, row_bytes);
+    cpu->apply(desc);
+  });
+}
+
+float apply_one(const OCIO::ConstCPUProcessorRcPtr& cpu, float v) {
+  float rgb[3] = {v, v, v};
+  cpu->applyRGB(rgb);
+  return rgb[0];
+}
+
+}  // namespace
+
+const ColorConfig& ColorConfig::builtin() {
+  // Immutable once built; C++ guarantees one thread-safe initialization.
+  static const ColorConfig config = [] {
+    try {
+      std::istringstream text{std::string(kBuiltinOcioConfig)};
+      return ColorConfig(make_impl("built-in OCIO config", OCIO::Config::CreateFromStream(text)));
+    } catch (const OCIO::Exception& e) {
+      throw Error(std::string("the built-in OCIO config is invalid: ") + e.what(), Error::Kind::internal);
+    }
+  }();
+  return config;
+}
+
+ColorConfig ColorConfig::from_file(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw input_error(path.string(), "no such OCIO config file");
+  try {
+    return ColorConfig(make_impl(path.string(), OCIO::Config::CreateFromFile(path.c_str())));
+  } catch (const OCIO::Exception& e) {
+    throw input_error(path.string(), std::string("invalid OCIO config: ") + e.what());
+  }
+}
+
+ColorConfig ColorConfig::resolve(const std::optional<std::filesystem::path>& explicit_path) {
+  if (explicit_path) return from_file(*explicit_path);
+  if (const char* env = std::getenv("OCIO"); env && *env) {
+    try {
+      return from_file(env);
+    } catch (const Error& e) {
+      throw input_error("$OCIO", e.what());
+    }
+  }
+  return builtin();
+}
+
+const std::string& ColorConfig::source() const { return impl_->source; }
+const std::string& ColorConfig::scene_linear_space() const { return impl_->scene_linear; }
+const std::string& ColorConfig::srgb_texture_space() const { return impl_->srgb_texture; }
+const std::string& ColorConfig::default_display() const { return impl_->display; }
+const std::string& ColorConfig::default_view() const { return impl_->view; }
+
+void ColorConfig::srgb_texture_to_linear(Image& image) const { apply_processor(impl_->srgb_to_linear, image); }
+void ColorConfig::linear_to_srgb_texture(Image& image) const { apply_processor(impl_->linear_to_srgb, image); }
+
+float ColorConfig::srgb_texture_to_linear(float v) const { return apply_one(impl_->srgb_to_linear, v); }
+float ColorConfig::linear_to_srgb_texture(float v) const { return apply_one(impl_->linear_to_srgb, v); }
+
+void ColorConfig::linear_to_display(Image& image, const std::string& display, const std::string& view) const {
+  const std::string& d = display.empty() ? impl_->display : display;
+  const std::string& v = view.empty() ? (display.empty() ? impl_->view : std::string(impl_->config->getDefaultView(d.c_str()))) : view;
+  try {
+    const auto cpu = impl_->config
+                         ->getProcessor(impl_->scene_linear.c_str(), d.c_str(), v.c_str(), OCIO::TRANSFORM_DIR_FORWARD)
+                         ->getOptimizedCPUProcessor(OCIO::BIT_DEPTH_F32, OCIO::BIT_DEPTH_F32, kOptimization);
+    apply_processor(cpu, image);
+  } catch (const OCIO::Exception& e) {
+    throw input_error(impl_->source, "display \"" + d + "\", view \"" + v + "\": " + e.what());
+  }
+}
+
+void ColorConfig::convert(Image& image, const std::string& from, const std::string& to) const {
+  try {
+    apply_processor(cpu_processor(impl_->config, from.c_str(), to.c_str()), image);
+  } catch (const OCIO::Exception& e) {
+    throw input_error(impl_->source, "\"" + from + "\" → \"" + to + "\": " + e.what());
+  }
+}
+
+}  // namespace svbrdf

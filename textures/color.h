@@ -1,0 +1,59 @@
+#pragma once
+// Color through OpenColorIO (DESIGN.md, "Data through the house"): color textures (base color,
+// emissive) are sRGB-encoded and go sRGB → scene-linear; data textures (normal, metallic-roughness,
+// occlusion) stay raw; rendered output goes scene-linear → display. The project's own config
+// (textures/ocio/config.ocio) is compiled into the library, so an installed binary needs no file;
+// $OCIO or an explicit path (the programs' --ocio-config) replaces it, e.g. with an ACES config.
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "textures/image.h"
+
+namespace svbrdf {
+
+class ColorConfig {
+ public:
+  // The config compiled into the library (textures/ocio/config.ocio).
+  static const ColorConfig& builtin();
+  // A config file; throws svbrdf::Error naming the file when it is missing or invalid, or when it
+  // has no scene-linear role or no sRGB texture color space.
+  static ColorConfig from_file(const std::filesystem::path& path);
+  // The config a program should use: `explicit_path` if given, else $OCIO if set and non-empty,
+  // else the built-in one.
+  static ColorConfig resolve(const std::optional<std::filesystem::path>& explicit_path = std::nullopt);
+
+  // "built-in" or the file's path: for messages.
+  const std::string& source() const;
+  // The color-space names this config uses for the three encodings the project needs.
+  const std::string& scene_linear_space() const;
+  const std::string& srgb_texture_space() const;
+  const std::string& default_display() const;
+  const std::string& default_view() const;
+
+  // In place, channels 0..2 (RGB); an alpha channel passes through unchanged. A gray image (1 or 2
+  // channels) is first expanded to RGB(A), as glTF reads gray color textures.
+  void srgb_texture_to_linear(Image& image) const;
+  void linear_to_srgb_texture(Image& image) const;
+  // Scene-linear → a display/view of the config (empty: its defaults), for rendered output.
+  void linear_to_display(Image& image, const std::string& display = {}, const std::string& view = {}) const;
+  // Any two color spaces of the config (names or aliases); throws svbrdf::Error for an unknown name.
+  void convert(Image& image, const std::string& from, const std::string& to) const;
+
+  // Per-value versions for tests and small lookups (through the same processors).
+  float srgb_texture_to_linear(float v) const;
+  float linear_to_srgb_texture(float v) const;
+
+  struct Impl;
+
+ private:
+  explicit ColorConfig(std::shared_ptr<const Impl> impl) : impl_(std::move(impl)) {}
+  std::shared_ptr<const Impl> impl_;
+};
+
+// The text of the built-in config, for tests and for users who want a copy to edit.
+std::string_view builtin_ocio_config_text();
+
+}  // namespace svbrdf

@@ -1,0 +1,119 @@
+#include "textures/material_loader.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+
+#include "base/error.h"
+#include "textures/normal_map.h"
+#include "textures/sampler.h"
+
+namespace svbrdf {
+
+namespace {
+
+void check_factor(float v, bool at_most_one, const std::string& what) {
+  if (!std::isfinite(v) || v < 0.0f || (at_most_one && v > 1.0f))
+    throw input_error(what, std::string("must be ") + (at_most_one ? "in [0, 1]" : "finite and ≥ 0") + ", got " + std::to_string(v));
+}
+
+void for_rows(int height, int width, const auto& body) {
+  const int grain = std::max(1, 16384 / std::max(1, width));
+  tbb::parallel_for(tbb::blocked_range<int>(0, height, grain), [&](const tbb::blocked_range<int>& r) {
+    for (int j = r.begin(); j != r.end(); ++j) body(j);
+  });
+}
+
+}  // namespace
+
+MaterialTexels decode_material_texels(const MaterialImages& in, const ColorConfig& color) {
+  for (int c = 0; c < 3; ++c) check_factor(in.base_color_factor[c], false, "base color factor");
+  check_factor(in.metallic_factor, true, "metallic factor");
+  check_factor(in.roughness_factor, true, "roughness factor");
+  if (!std::isfinite(in.normal_scale)) throw input_error("normal scale", "must be finite");
+
+  // The common size: the first present image sets it, every other must match it.
+  const Image* first = nullptr;
+  const std::string* first_name = nullptr;
+  const auto take = [&](const Image* img, const std::string& name) {
+    if (!img) return;
+    check_image_size(name, img->width, img->height);
+    if (!first) {
+      first = img;
+      first_name = &name;
+    } else if (img->width != first->width || img->height != first->height) {
+      throw input_error(name, "size " + std::to_string(img->width) + "x" + std::to_string(img->height) + " differs from " +
+                                  *first_name + " (" + std::to_string(first->width) + "x" + std::to_string(first->height) + ")");
+    }
+  };
+  take(in.base_color, in.base_color_name);
+  take(in.metallic_roughness, in.metallic_roughness_name);
+  take(in.normal, in.normal_name);
+  if (in.normal && in.normal->channels < 3)
+    throw input_error(in.normal_name, "a normal map needs RGB channels, this image has " + std::to_string(in.normal->channels));
+
+  MaterialTexels out = first ? MaterialTexels(first->width, first->height) : MaterialTexels(1, 1);
+  const glm::vec3 factor(in.base_color_factor);
+
+  if (in.base_color) {
+    Image linear = *in.base_color;
+    if (!in.base_color_is_linear) color.srgb_texture_to_linear(linear);  // gray becomes RGB here
+    for_rows(out.height, out.width, [&](int j) {
+      for (int i = 0; i < out.width; ++i) out.base_color[out.index(i, j)] = glm::vec3(texel(linear, i, j)) * factor;
+    });
+  } else {
+    std::fill(out.base_color.begin(), out.base_color.end(), factor);
+  }
+
+  if (in.metallic_roughness) {
+    const Image& mr = *in.metallic_roughness;
+    for_rows(out.height, out.width, [&](int j) {
+      for (int i = 0; i < out.width; ++i) {
+        const glm::vec4 t = texel(mr, i, j);
+        out.metallic[out.index(i, j)] = std::clamp(t.b, 0.0f, 1.0f) * in.metallic_factor;
+        out.roughness[out.index(i, j)] = std::clamp(t.g, 0.0f, 1.0f) * in.roughness_factor;
+      }
+    });
+  } else {
+    std::fill(out.metallic.begin(), out.metallic.end(), in.metallic_factor);
+    std::fill(out.roughness.begin(), out.roughness.end(), in.roughness_factor);
+  }
+
+  if (in.normal) {
+    const Image& nm = *in.normal;
+    for_rows(out.height, out.width, [&](int j) {
+      for (int i = 0; i < out.width; ++i) out.normal[out.index(i, j)] = decode_normal(glm::vec3(texel(nm, i, j)), in.normal_scale);
+    });
+  }
+  return out;
+}
+
+MaterialTexels load_material_texels(const MaterialFiles& files, const ColorConfig& color) {
+  std::optional<Image> base, mr, normal;
+  MaterialImages in;
+  if (files.base_color) {
+    PixelFormat stored{};
+    base = read_image(*files.base_color, &stored);
+    in.base_color_is_linear = stored == PixelFormat::half || stored == PixelFormat::float32;
+    in.base_color = &*base;
+    in.base_color_name = files.base_color->string();
+  }
+  if (files.metallic_roughness) {
+    mr = read_image(*files.metallic_roughness);
+    in.metallic_roughness = &*mr;
+    in.metallic_roughness_name = files.metallic_roughness->string();
+  }
+  if (files.normal) {
+    normal = read_image(*files.normal);
+    in.normal = &*normal;
+    in.normal_name = files.normal->string();
+  }
+  in.base_color_factor = files.base_color_factor;
+  in.metallic_factor = files.metallic_factor;
+  in.roughness_factor = files.roughness_factor;
+  in.normal_scale = files.normal_scale;
+  return decode_material_texels(in, color);
+}
+
+}  // namespace svbrdf

@@ -1,0 +1,60 @@
+#pragma once
+// A glTF metallic-roughness texture set → MaterialTexels, the decoded level-0 parameters of
+// ../shared/spec/brdf-mip.md ("The material at level 0"):
+//   base color = sRGB→linear(baseColorTexture.rgb, through OCIO) · baseColorFactor.rgb
+//   metallic   = metallicRoughnessTexture.b · metallicFactor       (glTF: metal in B)
+//   roughness  = metallicRoughnessTexture.g · roughnessFactor      (glTF: roughness in G)
+//   normal     = normalize((2·normalTexture.rgb − 1)·(s, s, 1)), s = normalTexture.scale
+// A missing texture contributes its factor alone (normal: (0, 0, 1)). All present textures must
+// have the same size, which is the result's size (1×1 when there is none). Texels are read at
+// their own (i, j): no filtering, no texture transform (the level-0 texel grid is the image's).
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "textures/color.h"
+#include "textures/image.h"
+#include "textures/material_texels.h"
+
+namespace svbrdf {
+
+// The images as stored (base color still sRGB-encoded), e.g. decoded from a .glb by the render
+// module; names are what error messages call them ("scene.glb: images[2]"). Images are borrowed.
+struct MaterialImages {
+  const Image* base_color = nullptr;
+  std::string base_color_name = "base color texture";
+  bool base_color_is_linear = false;  // true: already scene-linear (a float image), no sRGB decode
+  glm::vec4 base_color_factor{1.0f};  // linear RGBA; alpha is not part of MaterialTexels
+  const Image* metallic_roughness = nullptr;
+  std::string metallic_roughness_name = "metallic-roughness texture";
+  float metallic_factor = 1.0f;
+  float roughness_factor = 1.0f;
+  const Image* normal = nullptr;
+  std::string normal_name = "normal texture";
+  float normal_scale = 1.0f;
+};
+
+// Throws svbrdf::Error naming the image for different sizes or a normal map with fewer than three
+// channels, and for factors glTF does not allow (negative, or metallic/roughness above 1).
+MaterialTexels decode_material_texels(const MaterialImages& images, const ColorConfig& color = ColorConfig::builtin());
+
+// The same from files (any format OpenImageIO reads); each path is read once. A base color stored
+// as integers (PNG, JPEG, 8/16-bit TIFF) is sRGB-encoded, as glTF defines; one stored as floats
+// (OpenEXR, Radiance HDR, float TIFF) is taken as scene-linear, as those formats are by convention.
+struct MaterialFiles {
+  std::optional<std::filesystem::path> base_color;
+  glm::vec4 base_color_factor{1.0f};
+  std::optional<std::filesystem::path> metallic_roughness;
+  float metallic_factor = 1.0f;
+  float roughness_factor = 1.0f;
+  std::optional<std::filesystem::path> normal;
+  float normal_scale = 1.0f;
+};
+
+// Throws svbrdf::Error naming the file for a missing, truncated or corrupt image and for the
+// conditions of decode_material_texels.
+MaterialTexels load_material_texels(const MaterialFiles& files, const ColorConfig& color = ColorConfig::builtin());
+
+}  // namespace svbrdf
