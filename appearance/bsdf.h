@@ -37,6 +37,12 @@ struct BsdfSample {
 
 // Uniform random numbers for one sample: u.x selects among lobes / the energy split,
 // u.y and u.z drive the direction.
+//
+// The energy split (§27.14): the models of this library scatter (return an impulse or a finite
+// sample) exactly when u.x < scatter_probability(wo) and are absorbed otherwise; inside that
+// interval they use u.x / scatter_probability(wo) for their own choices. A mixture can thus hand
+// each lobe its own slice of u.x and keep every lobe's absolute split (mixture.h). A finite
+// direction that lands below the horizon is reported as absorbed too.
 using SampleU = glm::vec3;
 
 class Bsdf {
@@ -52,6 +58,9 @@ class Bsdf {
   // The density (solid angle) with which sample() produces finite wi, including the probability of
   // choosing the finite part.
   virtual float pdf(const glm::vec3& wi, const glm::vec3& wo) const = 0;
+  // The probability that sample(wo, ·) does not choose "absorbed" by its energy split (before the
+  // below-horizon rule), in [0, 1]. A model that never absorbs by choice keeps this default.
+  virtual float scatter_probability(const glm::vec3& /*wo*/) const { return 1.0f; }
 };
 
 }  // namespace svbrdf

@@ -1,16 +1,184 @@
 // svbrdf-brdf: a workbench for one BRDF model (../shared/spec/brdf-models.md, last section).
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <iostream>
+#include <string>
+#include <vector>
 
+#include "appearance/albedo.h"
+#include "appearance/direction_text.h"
+#include "appearance/fresnel_plot.h"
+#include "appearance/polar_plot.h"
+#include "appearance/registry.h"
+#include "appearance/rng.h"
 #include "base/error.h"
+
+namespace {
+
+using namespace svbrdf;
+
+struct ModelArgs {
+  std::string name;
+  std::vector<std::string> params, impulses;
+  std::unique_ptr<Bsdf> build() const { return make_model(name, params, impulses); }
+};
+
+void add_model_options(CLI::App* sub, ModelArgs& m) {
+  sub->add_option("model", m.name, "model name (see --help of the main program)")->required();
+  sub->add_option("--param", m.params, "a model parameter k=v (repeatable; RGB as r,g,b)")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  sub->add_option("--impulse", m.impulses, "add an impulse model NAME[:SCALE], e.g. mirror:0.4 (repeatable)")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+}
+
+// eval / pdf: one output line per input line of six numbers.
+void run_lines(const Bsdf& bsdf, bool density) {
+  std::string line;
+  long number = 0;
+  glm::vec3 wi, wo;
+  while (std::getline(std::cin, line)) {
+    ++number;
+    if (!parse_direction_line(line, number, wi, wo)) continue;
+    if (density) {
+      std::printf("%.9g\n", static_cast<double>(bsdf.pdf(wi, wo)));
+    } else {
+      const Rgb f = bsdf.eval(wi, wo);
+      std::printf("%.9g %.9g %.9g\n", static_cast<double>(f.x), static_cast<double>(f.y), static_cast<double>(f.z));
+    }
+  }
+  if (std::cin.bad()) throw Error("stdin: read error", Error::Kind::internal);
+}
+
+const char* kind_name(SampleKind k) {
+  switch (k) {
+    case SampleKind::finite: return "finite";
+    case SampleKind::impulse: return "impulse";
+    case SampleKind::absorbed: break;
+  }
+  return "absorbed";
+}
+
+void check_angle(double deg, double hi, const std::string& option) {
+  if (!(deg >= 0 && deg <= hi))
+    throw input_error(option, "angle " + std::to_string(deg) + " is out of range [0, " + std::to_string(hi) + "]");
+}
+
+void check_svg(const std::string& out) {
+  const auto ext = std::filesystem::path(out).extension().string();
+  if (ext == ".png") throw input_error("--out " + out, "PNG is not supported; write .svg");
+  if (ext != ".svg") throw input_error("--out " + out, "the plot is written as SVG: give a .svg file name");
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"svbrdf-brdf: evaluate, sample and plot one BRDF model of CGPP chapter 27"};
+  app.footer("Models and parameters:\n" + models_help());
   app.require_subcommand(1);
+
+  ModelArgs m;
+  CLI::App* eval = app.add_subcommand("eval", "f(wi, wo) per stdin line 'wi.x wi.y wi.z wo.x wo.y wo.z' -> 'r g b'");
+  add_model_options(eval, m);
+  CLI::App* pdf = app.add_subcommand("pdf", "the sampling density pdf(wi, wo) per stdin line");
+  add_model_options(pdf, m);
+
+  CLI::App* sample = app.add_subcommand("sample", "N samples 'wi.x wi.y wi.z pdf w.r w.g w.b kind' for one wo");
+  add_model_options(sample, m);
+  std::string wo_text;
+  long long count = 1;
+  std::uint64_t seed = 0;
+  sample->add_option("--wo", wo_text, "the outgoing direction x,y,z (unit)")->required();
+  sample->add_option("--count", count, "number of samples")->check(CLI::Range(0LL, 1000000000LL));
+  sample->add_option("--seed", seed, "random seed");
+
+  CLI::App* albedo = app.add_subcommand("albedo", "directional albedo of the finite part and the impulse total");
+  add_model_options(albedo, m);
+  double theta_o = 0;
+  int strata = 512;
+  albedo->add_option("--theta-o", theta_o, "angle of wo from the normal, degrees [0, 90]")->required();
+  albedo->add_option("--strata", strata, "estimate with strata^2 stratified samples")->check(CLI::Range(1, 4096));
+
+  CLI::App* plot = app.add_subcommand("plot", "polar plot (SVG): f black, sampling density blue, impulses arrows");
+  add_model_options(plot, m);
+  double theta_i = 30;
+  std::string out;
+  plot->add_option("--theta-i", theta_i, "angle of the light from the normal, degrees [0, 180]")->required();
+  plot->add_option("--out", out, "output file (.svg)")->required();
+
+  CLI::App* fresnel = app.add_subcommand("fresnel", "exact Fresnel against Schlick over the angle of incidence (SVG)");
+  std::string ior_text, eta_text, k_text;
+  fresnel->add_option("--ior", ior_text, "relative index of a dielectric");
+  fresnel->add_option("--eta", eta_text, "conductor: real part of the index (r,g,b or one number)");
+  fresnel->add_option("--k", k_text, "conductor: imaginary part of the index (r,g,b or one number)");
+  fresnel->add_option("--out", out, "output file (.svg)")->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
-  return 0;
+
+  try {
+    if (eval->parsed() || pdf->parsed()) {
+      const auto bsdf = m.build();
+      run_lines(*bsdf, pdf->parsed());
+    } else if (sample->parsed()) {
+      const glm::vec3 wo = parse_direction(wo_text, "--wo");
+      const auto bsdf = m.build();
+      Rng rng(mix64(seed), 0x5eed);
+      for (long long i = 0; i < count; ++i) {
+        const float ux = rng.next_float(), uy = rng.next_float(), uz = rng.next_float();
+        const BsdfSample s = bsdf->sample(wo, {ux, uy, uz});
+        std::printf("%.9g %.9g %.9g %.9g %.9g %.9g %.9g %s\n", static_cast<double>(s.wi.x), static_cast<double>(s.wi.y),
+                    static_cast<double>(s.wi.z), static_cast<double>(s.pdf), static_cast<double>(s.weight.x),
+                    static_cast<double>(s.weight.y), static_cast<double>(s.weight.z), kind_name(s.kind));
+      }
+    } else if (albedo->parsed()) {
+      check_angle(theta_o, 90, "--theta-o");
+      const auto bsdf = m.build();
+      const double t = theta_o * 3.14159265358979323846 / 180.0;
+      const glm::vec3 wo(static_cast<float>(std::sin(t)), 0.0f, static_cast<float>(std::cos(t)));
+      const Rgb a = directional_albedo(*bsdf, wo, strata), imp = impulse_total(*bsdf, wo);
+      std::printf("finite %.9g %.9g %.9g\nimpulse %.9g %.9g %.9g\n", static_cast<double>(a.x), static_cast<double>(a.y),
+                  static_cast<double>(a.z), static_cast<double>(imp.x), static_cast<double>(imp.y),
+                  static_cast<double>(imp.z));
+    } else if (plot->parsed()) {
+      check_angle(theta_i, 180, "--theta-i");
+      check_svg(out);
+      const auto bsdf = m.build();
+      std::string title = m.name;
+      for (const std::string& p : m.params) title += " " + p;
+      for (const std::string& p : m.impulses) title += " +" + p;
+      polar_plot_svg(polar_plot_data(*bsdf, static_cast<float>(theta_i)), title).write(out);
+    } else if (fresnel->parsed()) {
+      check_svg(out);
+      FresnelCurves c;
+      if (!ior_text.empty()) {
+        if (!eta_text.empty() || !k_text.empty()) throw input_error("fresnel", "give --ior, or --eta and --k, not both");
+        const float ior = parse_finite_number(ior_text, "--ior");
+        if (!(ior > 0)) throw input_error("--ior", "must be positive");
+        c = fresnel_curves_dielectric(ior);
+      } else {
+        if (eta_text.empty() || k_text.empty()) throw input_error("fresnel", "give --ior, or both --eta and --k");
+        const Rgb eta = parse_rgb(eta_text, "--eta"), k = parse_rgb(k_text, "--k");
+        if (!(glm::all(glm::greaterThan(eta, Rgb(0))) && glm::all(glm::greaterThanEqual(k, Rgb(0)))))
+          throw input_error("fresnel", "--eta must be positive and --k non-negative");
+        c = fresnel_curves_conductor(eta, k);
+      }
+      fresnel_plot_svg(c).write(out);
+      for (int ch = 0; ch < c.channels; ++ch)
+        std::printf("max |exact - schlick| %.6g at %.4g deg\n", static_cast<double>(c.max_difference[static_cast<std::size_t>(ch)]),
+                    static_cast<double>(c.max_at_deg[static_cast<std::size_t>(ch)]));
+    }
+  } catch (const Error& e) {
+    std::fprintf(stderr, "svbrdf-brdf: %s\n", e.what());
+    return e.exit_code();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "svbrdf-brdf: internal error: %s\n", e.what());
+    return 1;
+  }
+  std::fflush(stdout);
+  return std::ferror(stdout) ? 1 : 0;
 }
