@@ -49,7 +49,7 @@ const MaterialPreset& find_material_preset(std::string_view name) {
     if (p.name == name) return p;
   std::vector<std::string_view> names;
   for (const MaterialPreset& p : presets()) names.push_back(p.name);
-  throw input_error("preset", "unknown material preset \"" + std::string(name) + "\" (known: " + joined(names) + ")");
+  throw input_error("", "unknown material preset \"" + std::string(name) + "\" (known: " + joined(names) + ")");
 }
 
 double default_mm_per_texel(std::string_view preset, std::string_view variant) {
@@ -64,14 +64,13 @@ ProceduralMaterial generate_material(const MaterialRecipe& recipe, const ColorCo
   bool known = false;
   for (std::string_view v : preset.variants) known = known || v == variant;
   if (!known)
-    throw input_error("variant", "unknown variant \"" + variant + "\" of " + std::string(preset.name) + " (known: " +
-                                     joined(preset.variants) + ")");
+    throw input_error(std::string(preset.name), "unknown variant \"" + variant + "\" (known: " + joined(preset.variants) + ")");
   const int n = recipe.size;
   if (n < 1 || n > kMaxMaterialSize || (n & (n - 1)) != 0)
-    throw input_error("size", std::to_string(n) + " is not a power of two in [1, " + std::to_string(kMaxMaterialSize) + "]");
+    throw input_error("", "size " + std::to_string(n) + " is not a power of two in [1, " + std::to_string(kMaxMaterialSize) + "]");
   const double mm = recipe.mm_per_texel == 0.0 ? default_mm_per_texel(preset.name, variant) : recipe.mm_per_texel;
   if (!std::isfinite(mm) || mm <= 0.0 || mm > 1000.0)
-    throw input_error("mm per texel", "must be in (0, 1000], got " + std::to_string(mm));
+    throw input_error("", "mm per texel must be in (0, 1000], got " + std::to_string(mm));
   const auto stage = [&](std::string_view s) {
     if (progress) progress(s);
   };
