@@ -60,12 +60,4 @@ void for_each_row(int rows, const Body& body) {
   });
 }
 
-// The shortest periodic offset b − a on a circle of length period (minimum-image convention).
-inline double periodic_delta(double a, double b, double period) {
-  double d = std::fmod(b - a, period);
-  if (d > 0.5 * period) d -= period;
-  if (d < -0.5 * period) d += period;
-  return d;
-}
-
 }  // namespace svbrdf::family

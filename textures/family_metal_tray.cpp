@@ -114,23 +114,30 @@ void metal_tray(const Domain& d, std::string_view variant, std::uint64_t seed, C
     list.push_back(f);
   }
 
-  // Each print touches only its bounding box; overlapping prints keep the heavier residue.
+  // Each print touches only its bounding box, on the periodic texture: a box wider than the
+  // texture (a small tray) wraps onto itself, and every image of the print counts, so the texture
+  // still tiles. Overlapping prints keep the heavier residue. Rows r < min(box, size) are distinct
+  // texture rows, so the parallel loop never writes a texel twice at once.
   std::vector<float> coverage(t.size(), 0.0f), residue_rough(t.size(), 0.0f);
   for (const Print& f : list) {
     const double reach = 1.05 * std::max(f.across_mm, f.along_mm);
-    const int box = std::min(d.size, int(std::ceil(2.0 * reach / d.mm_per_texel)) + 2);
+    const int box = int(std::ceil(2.0 * reach / d.mm_per_texel)) + 2;
     const int i0 = int(std::floor((f.center.x - reach) / d.mm_per_texel)), j0 = int(std::floor((f.center.y - reach) / d.mm_per_texel));
-    for_each_row(box, [&](int bj) {
-      const int j = ((j0 + bj) % d.size + d.size) % d.size;
-      for (int bi = 0; bi < box; ++bi) {
-        const int i = ((i0 + bi) % d.size + d.size) % d.size;
-        const glm::dvec2 p(periodic_delta(f.center.x, (i + 0.5) * d.mm_per_texel, side),
-                           periodic_delta(f.center.y, (j + 0.5) * d.mm_per_texel, side));
-        const float c = residue(f, p);
-        const std::size_t k = t.index(i, j);
-        if (c > coverage[k]) {
-          coverage[k] = c;
-          residue_rough[k] = f.roughness;
+    const int span = std::min(box, d.size);
+    for_each_row(span, [&](int r) {
+      for (int bj = r; bj < box; bj += d.size) {
+        const int j = ((j0 + bj) % d.size + d.size) % d.size;
+        for (int c = 0; c < span; ++c) {
+          for (int bi = c; bi < box; bi += d.size) {
+            const int i = ((i0 + bi) % d.size + d.size) % d.size;
+            const glm::dvec2 p((i0 + bi + 0.5) * d.mm_per_texel - f.center.x, (j0 + bj + 0.5) * d.mm_per_texel - f.center.y);
+            const float cov = residue(f, p);
+            const std::size_t k = t.index(i, j);
+            if (cov > coverage[k]) {
+              coverage[k] = cov;
+              residue_rough[k] = f.roughness;
+            }
+          }
         }
       }
     });

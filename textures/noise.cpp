@@ -1,13 +1,12 @@
 #include "textures/noise.h"
 
+#include <array>
 #include <cmath>
 #include <limits>
 
 namespace svbrdf::noise {
 
 namespace {
-
-constexpr float kTwoPi = 6.28318530717958647692f;
 
 int wrap(long long i, int period) {
   const long long r = i % period;
@@ -17,10 +16,21 @@ int wrap(long long i, int period) {
 // Perlin's quintic fade 6t^5 − 15t^4 + 10t^3: C2 across lattice lines.
 float fade(float t) { return t * t * t * (t * (t * 6.0f - 15.0f) + 10.0f); }
 
-glm::vec2 lattice_gradient(std::uint64_t seed, int ix, int iy) {
-  const float a = kTwoPi * unit(seed, ix, iy, 0x67);
-  return {std::cos(a), std::sin(a)};
+// Gradients are drawn from 256 unit vectors at evenly spaced angles (Perlin 2002 also picks from a
+// fixed set): a table lookup instead of a sine and cosine per lattice corner.
+const std::array<glm::vec2, 256>& gradient_table() {
+  static const std::array<glm::vec2, 256> table = [] {
+    std::array<glm::vec2, 256> t{};
+    for (int k = 0; k < 256; ++k) {
+      const double a = 2.0 * 3.14159265358979323846 * (k + 0.5) / 256.0;
+      t[k] = glm::vec2(float(std::cos(a)), float(std::sin(a)));
+    }
+    return t;
+  }();
+  return table;
 }
+
+glm::vec2 lattice_gradient(std::uint64_t seed, int ix, int iy) { return gradient_table()[hash(seed, ix, iy, 0x67) >> 56]; }
 
 }  // namespace
 
@@ -68,8 +78,10 @@ CellularHit cellular(std::uint64_t seed, double u, double v, int cells, float ji
       const long long ix = static_cast<long long>(cx) + dx, iy = static_cast<long long>(cy) + dy;
       const int wx = wrap(ix, cells), wy = wrap(iy, cells);
       // The feature point of cell (wx, wy), placed in the unwrapped neighbour cell (ix, iy).
-      const float jx = 0.5f + jitter * (unit(seed, wx, wy, 0xf1) - 0.5f);
-      const float jy = 0.5f + jitter * (unit(seed, wx, wy, 0xf2) - 0.5f);
+      // Both jitter coordinates from one hash: its top and its next 24 bits.
+      const std::uint64_t h = hash(seed, wx, wy, 0xf1);
+      const float jx = 0.5f + jitter * (unit(h) - 0.5f);
+      const float jy = 0.5f + jitter * (unit(h << 24) - 0.5f);
       const glm::vec2 d(static_cast<float>(double(ix) + jx - x), static_cast<float>(double(iy) + jy - y));
       const float dist = glm::length(d);
       if (dist < hit.f1) {

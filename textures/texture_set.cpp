@@ -7,6 +7,8 @@
 #include <fstream>
 #include <vector>
 
+#include <tbb/parallel_invoke.h>
+
 #include "base/atomic_file.h"
 #include "base/error.h"
 #include "textures/sampler.h"
@@ -139,12 +141,12 @@ TextureSetFiles write_texture_set(const ProceduralMaterial& m, const std::filesy
   const auto stage = [&](std::string_view s) {
     if (progress) progress(s);
   };
-  stage("writing base color");
-  write_image(files.base_color, m.base_color, m.base_color_format);
-  stage("writing metallic-roughness");
-  write_image(files.metallic_roughness, m.metallic_roughness, m.metallic_roughness_format);
-  stage("writing normal map");
-  write_image(files.normal, m.normal, m.normal_format);
+  // PNG compression is single-threaded: write the three images at once.
+  stage("writing images");
+  tbb::parallel_invoke([&] { write_image(files.base_color, m.base_color, m.base_color_format); },
+                       [&] { write_image(files.metallic_roughness, m.metallic_roughness, m.metallic_roughness_format); },
+                       [&] { write_image(files.normal, m.normal, m.normal_format); });
+  stage("writing glTF");
   write_text(files.gltf, material_quad_gltf(m, files));
   return files;
 }
