@@ -9,7 +9,7 @@
 
 namespace svbrdf {
 
-// `strata`² samples, jittered on (u.y, u.z), u.x Latin-hypercube; deterministic for a seed.
+// strata² quasi-random samples (albedo.cpp says how); deterministic for a seed.
 Rgb directional_albedo(const Bsdf& bsdf, const glm::vec3& wo, int strata = 256, std::uint64_t seed = 1);
 Rgb impulse_total(const Bsdf& bsdf, const glm::vec3& wo);
 

@@ -9,6 +9,7 @@
 #include <glm/glm.hpp>
 
 #include "appearance/bsdf.h"
+#include "appearance/microfacet_distribution.h"
 
 namespace svbrdf {
 
@@ -23,13 +24,12 @@ inline float gltf_alpha(float roughness) { return glm::max(roughness * roughness
 // f(wi, wo) in the frame whose z is the shading normal; 0 below either horizon.
 inline Rgb gltf_eval(const GltfParams& p, const glm::vec3& wi, const glm::vec3& wo) {
   if (wi.z <= 0 || wo.z <= 0) return Rgb(0);
-  constexpr float kInvPi = 0.318309886183790671538f;
   const glm::vec3 h = glm::normalize(wi + wo);
   const float a = gltf_alpha(p.roughness), a2 = a * a;
   // h.z > 0 always here (both directions above the horizon); wi·h = wo·h > 0, so χ⁺ = 1.
-  const float c2 = h.z * h.z;
-  const float denom = c2 * (a2 - 1.0f) + 1.0f;
-  const float d = a2 * kInvPi / (denom * denom);
+  // D in the form without the 1 − cos² cancellation (microfacet_distribution.h): the plain form
+  // lost up to 3 % at the peak in floats for α near 1e-3.
+  const float d = ggx_d(a, h);
   const float vis = 0.5f / (wo.z * std::sqrt(a2 + (1.0f - a2) * wi.z * wi.z) +
                             wi.z * std::sqrt(a2 + (1.0f - a2) * wo.z * wo.z));
   const float s = vis * d;
