@@ -43,7 +43,7 @@ void surface_filter(const RTCFilterFunctionNArguments* args) {
       // Stochastic opacity: one uniform number per (ray, surface, triangle), so a path's decision
       // never depends on traversal order or thread.
       const std::uint64_t h =
-          mix64(ctx->seed ^ mix64(reinterpret_cast<std::uintptr_t>(g) + 0x9E3779B97F4A7C15ULL * (tri + 1)));
+          mix64(ctx->seed ^ mix64((std::uint64_t(g->id) << 32) + tri + 1));
       const float xi = static_cast<float>(h >> 40) * 0x1p-24f;
       if (xi >= alpha) args->valid[i] = 0;
     }
@@ -103,6 +103,7 @@ EmbreeScene::EmbreeScene(const EmbreeDevice& device, const Scene& scene, const T
   std::vector<int> uses(scene.meshes.size(), 0);
   for (const Instance& in : scene.instances) ++uses[static_cast<std::size_t>(in.mesh)];
 
+  std::uint32_t next_geometry_id = 0;
   auto data_for = [&](const MeshPrimitive& p, int instance, bool flipped) {
     GeometryData d;
     d.prim = &p;
@@ -111,6 +112,7 @@ EmbreeScene::EmbreeScene(const EmbreeDevice& device, const Scene& scene, const T
     d.instance = instance;
     d.flipped = flipped;
     d.cull_back = !d.material->double_sided && d.material->transmission == 0.0f;
+    d.id = next_geometry_id++;
     return d;
   };
 

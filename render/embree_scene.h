@@ -26,6 +26,7 @@ struct GeometryData {
   int instance = -1;      // Scene::instances index of world-space geometry; −1 inside an instanced mesh
   bool flipped = false;   // Embree holds triangle (i0, i2, i1): a mirroring transform was baked in
   bool cull_back = false;
+  std::uint32_t id = 0;   // stable across runs (a pointer is not): seeds stochastic opacity
 };
 
 // A ray query's result: where along the ray, which triangle of which placed primitive, and the

@@ -1,0 +1,115 @@
+#include "render/camera.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace svbrdf {
+
+Camera::Camera(const CameraDesc& d, int width, int height) : type_(d.type), width_(width), height_(height) {
+  const glm::dmat4& m = d.to_world;
+  position_ = glm::vec3(m * glm::dvec4(0, 0, 0, 1));
+  // Orthonormalize the node's axes: glTF camera nodes should not scale, but a scale must not skew rays.
+  const glm::dvec3 f = -glm::normalize(glm::dvec3(m[2]));
+  glm::dvec3 up = glm::dvec3(m[1]);
+  glm::dvec3 r = glm::cross(f, up);
+  if (glm::length(r) < 1e-12) r = glm::dvec3(m[0]);
+  r = glm::normalize(r);
+  up = glm::normalize(glm::cross(r, f));
+  forward_ = glm::vec3(f), right_ = glm::vec3(r), up_ = glm::vec3(up);
+  const float aspect = float(width) / float(height);
+  if (type_ == CameraDesc::Type::perspective) {
+    half_h_ = std::tan(0.5f * d.yfov);
+    half_w_ = half_h_ * aspect;
+  } else {
+    half_h_ = d.ymag;
+    half_w_ = d.ymag * aspect;
+  }
+  znear_ = d.znear;
+  zfar_ = d.zfar;
+}
+
+CameraDesc Camera::framing(const glm::vec3& lo, const glm::vec3& hi) {
+  CameraDesc d;
+  d.name = "framing";
+  d.type = CameraDesc::Type::perspective;
+  d.yfov = glm::radians(40.0f);
+  const glm::vec3 center = 0.5f * (lo + hi);
+  const float radius = std::max(0.5f * glm::length(hi - lo), 1e-3f);
+  const float dist = 1.15f * radius / std::sin(0.5f * d.yfov);
+  const glm::vec3 dir = glm::normalize(glm::vec3(0.0f, 0.35f, 1.0f));  // from the front, a little above
+  const glm::vec3 eye = center + dir * dist;
+  const glm::vec3 f = -dir, r = glm::normalize(glm::cross(f, glm::vec3(0, 1, 0))), u = glm::cross(r, f);
+  glm::dmat4 m(1.0);
+  m[0] = glm::dvec4(glm::dvec3(r), 0);
+  m[1] = glm::dvec4(glm::dvec3(u), 0);
+  m[2] = glm::dvec4(glm::dvec3(-f), 0);
+  m[3] = glm::dvec4(glm::dvec3(eye), 1);
+  d.to_world = m;
+  d.znear = 0.0f;
+  return d;
+}
+
+// Film (x, y) → camera-space point on the plane z = −1 (perspective) or z = 0 (orthographic),
+// expressed in the right/up units of that plane.
+glm::vec3 Camera::direction_camera(float x, float y) const {
+  const float sx = (2.0f * x / float(width_) - 1.0f) * half_w_;
+  const float sy = (1.0f - 2.0f * y / float(height_)) * half_h_;
+  return {sx, sy, -1.0f};
+}
+
+Ray Camera::ray_at(float x, float y) const {
+  const glm::vec3 c = direction_camera(x, y);
+  Ray r;
+  if (type_ == CameraDesc::Type::perspective) {
+    const glm::vec3 d = right_ * c.x + up_ * c.y + forward_;
+    const float len = glm::length(d);
+    r.origin = position_;
+    r.dir = d / len;
+    // znear/zfar are distances along −Z; along this ray they scale by len.
+    r.tnear = znear_ * len;
+    r.tfar = zfar_ > 0.0f ? zfar_ * len : 3.4e38f;
+  } else {
+    r.origin = position_ + right_ * c.x + up_ * c.y;
+    r.dir = forward_;
+    r.tnear = znear_;
+    r.tfar = zfar_ > 0.0f ? zfar_ : 3.4e38f;
+  }
+  return r;
+}
+
+CameraRay Camera::generate(float x, float y) const {
+  CameraRay cr;
+  cr.ray = ray_at(x, y);
+  const Ray rx = ray_at(x + 1.0f, y), ry = ray_at(x, y + 1.0f);
+  cr.dx_origin = rx.origin, cr.dx_dir = rx.dir;
+  cr.dy_origin = ry.origin, cr.dy_dir = ry.dir;
+  return cr;
+}
+
+void Camera::approximate_dp(const glm::vec3& p, const glm::vec3& n, glm::vec3& dpdx, glm::vec3& dpdy) const {
+  // The camera's one-pixel offsets at the image centre, applied to a camera ray aimed at p.
+  glm::vec3 o, d, ox, dx, oy, dy;
+  if (type_ == CameraDesc::Type::perspective) {
+    o = ox = oy = position_;
+    const glm::vec3 to_p = p - position_;
+    const float dist = glm::length(to_p);
+    d = dist > 0.0f ? to_p / dist : forward_;
+    const float px = 2.0f * half_w_ / float(width_), py = 2.0f * half_h_ / float(height_);
+    dx = glm::normalize(d + right_ * px);
+    dy = glm::normalize(d - up_ * py);
+  } else {
+    d = dx = dy = forward_;
+    o = p - forward_;
+    ox = o + right_ * (2.0f * half_w_ / float(width_));
+    oy = o - up_ * (2.0f * half_h_ / float(height_));
+  }
+  auto on_plane = [&](const glm::vec3& ro, const glm::vec3& rd) {
+    const float denom = glm::dot(n, rd);
+    if (std::abs(denom) < 1e-8f) return p;
+    return ro + rd * (glm::dot(n, p - ro) / denom);
+  };
+  dpdx = on_plane(ox, dx) - p;
+  dpdy = on_plane(oy, dy) - p;
+}
+
+}  // namespace svbrdf

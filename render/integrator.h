@@ -1,0 +1,57 @@
+#pragma once
+// Unidirectional path tracing (Kajiya 1986; CGPP ch. 32; pbrt-v4 §13.4) with next-event estimation
+// to the punctual lights and the environment, multiple importance sampling with the power heuristic
+// (Veach & Guibas 1995) between environment sampling and BSDF sampling, Russian roulette and a
+// maximum depth. One call traces one camera sample; everything random comes from the Rng passed in,
+// so a pixel's value never depends on which thread traced it.
+#include <cstdint>
+#include <vector>
+
+#include "appearance/rng.h"
+#include "render/camera.h"
+#include "render/embree_scene.h"
+#include "render/lights.h"
+#include "render/texture_set.h"
+
+namespace svbrdf {
+
+enum class LightSampling {
+  mis,   // environment by both strategies, weighted by the power heuristic
+  nee,   // environment by light sampling only
+  bsdf,  // environment by BSDF sampling only
+};
+
+enum class TextureFilter { level0, param, brdf };
+
+// Everything a path reads, built once per render.
+struct RenderWorld {
+  const Scene* scene = nullptr;
+  const TextureSet* textures = nullptr;
+  const EmbreeScene* bvh = nullptr;
+  const Camera* camera = nullptr;
+  std::vector<LightDesc> lights;  // punctual lights, world space
+  Environment environment = Environment::uniform(Rgb(0.0f));
+  float scene_extent = 1.0f;      // bounding-box diagonal, for ray offsets
+};
+
+struct IntegratorSettings {
+  int max_depth = 16;   // scattering events; 0 renders emission and the environment only
+  int rr_depth = 3;     // Russian roulette from this depth on
+  LightSampling light_sampling = LightSampling::mis;
+  TextureFilter filter = TextureFilter::level0;
+};
+
+// One camera sample's results: radiance and the first hit's auxiliary values.
+struct PathSample {
+  Rgb radiance{0.0f};
+  Rgb albedo{0.0f};
+  glm::vec3 normal{0.0f};
+  float depth = 0.0f;      // distance to the first hit (0 when the ray escapes)
+  float mip_level = 0.0f;  // log2 of the base color footprint in texels at the first hit
+  std::uint32_t rays = 0;  // rays traced (closest-hit and shadow)
+};
+
+PathSample trace_path(const RenderWorld& world, const IntegratorSettings& settings, float film_x, float film_y,
+                      Rng& rng);
+
+}  // namespace svbrdf

@@ -1,0 +1,58 @@
+#pragma once
+// The lights the integrator samples: KHR_lights_punctual lights (plus --sun) and the environment.
+// Units are radiometric (issue 6, "Units"): a directional light delivers `intensity` W/m² to a surface
+// facing it; a point or spot light has radiant intensity `intensity` W/sr, falling off with the
+// inverse square and glTF's range window; the environment's value is radiance.
+#include <memory>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "render/scene.h"
+#include "textures/image.h"
+
+namespace svbrdf {
+
+// What a punctual light delivers at a point: the direction toward it, the distance (infinite for a
+// directional light) and the irradiance on a surface facing it.
+struct LightArrival {
+  glm::vec3 wi{0.0f};
+  float distance = 0.0f;
+  Rgb irradiance{0.0f};
+};
+
+LightArrival arrive(const LightDesc& light, const glm::vec3& p);
+
+// The environment at infinity: a uniform radiance or an equirectangular image. The image's mapping:
+// direction d (glTF world, +Y up) ↦ u = 1/2 + atan2(d.x, −d.z)/(2π), v = acos(d.y)/π, so the image's
+// centre is seen looking along −Z (glTF's default view) and its top row is straight up.
+class Environment {
+ public:
+  static Environment uniform(const Rgb& radiance);
+  // Throws svbrdf::Error for an unreadable image.
+  static Environment from_image(Image image, const std::string& where);
+
+  bool black() const { return black_; }
+  Rgb radiance(const glm::vec3& dir) const;
+  // A direction drawn with density pdf (solid angle) roughly proportional to radiance·sinθ.
+  glm::vec3 sample(glm::vec2 u, float& pdf) const;
+  float pdf(const glm::vec3& dir) const;
+
+ private:
+  Rgb uniform_{0.0f};
+  bool black_ = true;
+  Image image_;  // RGB, empty for a uniform environment
+  // Piecewise-constant 2D distribution over pixels (rows then columns), the textbook construction
+  // (pbrt-v4 §A.5.2 / Pharr et al. 2023 "Piecewise2D"): row CDF and per-row column CDFs.
+  std::vector<float> row_cdf_;   // height + 1
+  std::vector<float> col_cdf_;   // height × (width + 1)
+  std::vector<float> row_func_;  // per row integral (unnormalized)
+  std::vector<float> pixel_func_;
+  float total_ = 0.0f;
+};
+
+// "--sun elevation,azimuth[,irradiance]" in degrees: a directional light toward the scene from
+// elevation above the horizon (+Y up) and azimuth measured from −Z toward +X.
+LightDesc sun_light(float elevation_deg, float azimuth_deg, float irradiance);
+
+}  // namespace svbrdf

@@ -1,0 +1,25 @@
+#pragma once
+// Writing a render: the radiance as linear OpenEXR (half by default, float on request; no exposure
+// applied), a display-referred PNG beside it, and optional AOVs, each written atomically.
+#include <filesystem>
+
+#include "render/renderer.h"
+
+namespace svbrdf {
+
+struct OutputOptions {
+  std::filesystem::path exr;
+  std::filesystem::path png;  // empty: beside the EXR with the same stem
+  bool float32 = false;
+  float exposure = 0.0f;      // stops, PNG only
+  bool aovs = false;          // <stem>.albedo.exr, .normal.exr, .depth.exr, .level.exr
+};
+
+void write_outputs(const Film& film, const OutputOptions& options);
+
+// Scene-linear → 8-bit sRGB display values: 2^exposure, then the sRGB transfer function
+// (IEC 61966-2-1), clamped. A stand-in for the OpenColorIO display transform of the textures
+// module (its ColorConfig::linear_to_display) until that is in main.
+Image to_display(const Image& linear, float exposure);
+
+}  // namespace svbrdf

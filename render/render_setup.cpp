@@ -1,0 +1,99 @@
+#include "render/render_setup.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "base/error.h"
+#include "textures/image.h"
+
+namespace svbrdf {
+
+namespace {
+
+std::optional<std::vector<float>> parse_numbers(const std::string& text) {
+  std::vector<float> v;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    try {
+      std::size_t used = 0;
+      const float x = std::stof(item, &used);
+      if (used != item.size() || !std::isfinite(x)) return std::nullopt;
+      v.push_back(x);
+    } catch (...) {
+      return std::nullopt;
+    }
+  }
+  return v;
+}
+
+int pick_camera(const Scene& scene, const std::string& which) {
+  if (which.empty()) return scene.cameras.empty() ? -1 : 0;
+  if (std::all_of(which.begin(), which.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+    const long i = std::stol(which);
+    if (i < long(scene.cameras.size())) return int(i);
+  } else {
+    for (std::size_t i = 0; i < scene.cameras.size(); ++i)
+      if (scene.cameras[i].name == which) return int(i);
+  }
+  std::string names;
+  for (std::size_t i = 0; i < scene.cameras.size(); ++i)
+    names += (i ? ", " : "") + std::to_string(i) + " '" + scene.cameras[i].name + "'";
+  throw input_error("--camera " + which, scene.cameras.empty() ? "the scene has no cameras"
+                                                                : "no such camera; the scene has " + names);
+}
+
+}  // namespace
+
+std::optional<Rgb> parse_color(const std::string& text) {
+  const auto v = parse_numbers(text);
+  if (!v) return std::nullopt;
+  if (v->size() == 1) return Rgb((*v)[0]);
+  if (v->size() == 3) return Rgb((*v)[0], (*v)[1], (*v)[2]);
+  return std::nullopt;
+}
+
+PreparedScene::PreparedScene(Scene scene, const SceneSetup& setup) : scene_(std::move(scene)) {
+  textures_ = std::make_unique<TextureSet>(scene_);
+  bvh_ = std::make_unique<EmbreeScene>(device_, scene_, *textures_);
+
+  const int ci = pick_camera(scene_, setup.camera);
+  const CameraDesc desc = ci >= 0 ? scene_.cameras[std::size_t(ci)] : Camera::framing(bvh_->bounds_min(), bvh_->bounds_max());
+  int width = setup.width, height = setup.height;
+  if (width <= 0 || height <= 0) {
+    float aspect = 16.0f / 9.0f;
+    if (desc.type == CameraDesc::Type::perspective && desc.aspect_ratio > 0.0f) aspect = desc.aspect_ratio;
+    if (desc.type == CameraDesc::Type::orthographic) aspect = desc.xmag / desc.ymag;
+    height = 360;
+    width = std::max(1, int(std::lround(height * aspect)));
+  }
+  camera_ = std::make_unique<Camera>(desc, width, height);
+
+  world_.scene = &scene_;
+  world_.textures = textures_.get();
+  world_.bvh = bvh_.get();
+  world_.camera = camera_.get();
+  world_.lights = scene_.lights;
+  world_.scene_extent = bvh_->empty() ? 1.0f : glm::length(bvh_->bounds_max() - bvh_->bounds_min());
+
+  if (!setup.sun.empty()) {
+    const auto v = parse_numbers(setup.sun);
+    if (!v || (v->size() != 2 && v->size() != 3) || (v->size() == 3 && (*v)[2] < 0.0f))
+      throw input_error("--sun " + setup.sun, "expected elevation,azimuth[,irradiance] in degrees and W/m²");
+    world_.lights.push_back(sun_light((*v)[0], (*v)[1], v->size() == 3 ? (*v)[2] : 1.0f));
+  }
+
+  if (setup.env.empty()) {
+    // Issue 6: without --env, a scene with no lights gets a uniform white environment of radiance 1.
+    world_.environment = Environment::uniform(world_.lights.empty() ? Rgb(1.0f) : Rgb(0.0f));
+  } else if (const auto c = parse_color(setup.env)) {
+    if (!(c->x >= 0.0f && c->y >= 0.0f && c->z >= 0.0f))
+      throw input_error("--env " + setup.env, "a radiance cannot be negative");
+    world_.environment = Environment::uniform(*c);
+  } else {
+    world_.environment = Environment::from_image(read_image(setup.env), setup.env);
+  }
+}
+
+}  // namespace svbrdf

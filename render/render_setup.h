@@ -1,0 +1,47 @@
+#pragma once
+// From a loaded Scene and the command line's choices to everything a render needs: the textures,
+// the Embree scene, the camera, the lights and the environment, kept alive together.
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "render/camera.h"
+#include "render/embree_device.h"
+#include "render/embree_scene.h"
+#include "render/integrator.h"
+#include "render/scene.h"
+#include "render/texture_set.h"
+
+namespace svbrdf {
+
+struct SceneSetup {
+  std::string camera;  // index or name; empty: the scene's first camera, else a framing camera
+  int width = 0, height = 0;  // 0: from the camera's aspect ratio at 360 rows, else 640×360
+  // "--env": empty for the default (white radiance 1 when the scene has no lights, none when it
+  // has); "r,g,b" or "v" for a uniform radiance; anything else names an equirectangular image.
+  std::string env;
+  // "--sun elevation,azimuth[,irradiance]" in degrees and W/m²; empty for none.
+  std::string sun;
+};
+
+class PreparedScene {
+ public:
+  PreparedScene(Scene scene, const SceneSetup& setup);
+  const RenderWorld& world() const { return world_; }
+  const Scene& scene() const { return scene_; }
+  const Camera& camera() const { return *camera_; }
+  const EmbreeScene& bvh() const { return *bvh_; }
+
+ private:
+  Scene scene_;
+  EmbreeDevice device_;
+  std::unique_ptr<TextureSet> textures_;
+  std::unique_ptr<EmbreeScene> bvh_;
+  std::unique_ptr<Camera> camera_;
+  RenderWorld world_;
+};
+
+// "r,g,b" or "v" as a color; nullopt when the text is not numbers.
+std::optional<Rgb> parse_color(const std::string& text);
+
+}  // namespace svbrdf

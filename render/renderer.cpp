@@ -1,0 +1,147 @@
+#include "render/renderer.h"
+
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <mutex>
+#include <thread>
+
+#include <tbb/blocked_range2d.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "render/embree_device.h"
+
+namespace svbrdf {
+
+Film::Film(int w, int h)
+    : width(w),
+      height(h),
+      radiance_sum(std::size_t(w) * h, glm::dvec3(0.0)),
+      samples(std::size_t(w) * h, 0u),
+      albedo_sum(std::size_t(w) * h, glm::vec3(0.0f)),
+      normal_sum(std::size_t(w) * h, glm::vec3(0.0f)),
+      depth_sum(std::size_t(w) * h, 0.0f),
+      level_sum(std::size_t(w) * h, 0.0f) {}
+
+namespace {
+template <typename F>
+Image mean_image(const Film& f, int channels, F&& value) {
+  Image im(f.width, f.height, channels);
+  for (std::size_t p = 0; p < f.samples.size(); ++p) {
+    if (f.samples[p] == 0) continue;
+    const double inv = 1.0 / f.samples[p];
+    for (int c = 0; c < channels; ++c) im.pixels[p * channels + c] = static_cast<float>(value(p, c) * inv);
+  }
+  return im;
+}
+}  // namespace
+
+Image Film::radiance() const { return mean_image(*this, 3, [&](std::size_t p, int c) { return radiance_sum[p][c]; }); }
+Image Film::albedo() const { return mean_image(*this, 3, [&](std::size_t p, int c) { return double(albedo_sum[p][c]); }); }
+Image Film::normal() const { return mean_image(*this, 3, [&](std::size_t p, int c) { return double(normal_sum[p][c]); }); }
+Image Film::depth() const { return mean_image(*this, 1, [&](std::size_t p, int) { return double(depth_sum[p]); }); }
+Image Film::mip_level() const { return mean_image(*this, 1, [&](std::size_t p, int) { return double(level_sum[p]); }); }
+
+Rng pixel_rng(std::uint64_t seed, int x, int y, int width, std::uint32_t index) {
+  const std::uint64_t pixel = std::uint64_t(y) * std::uint64_t(width) + std::uint64_t(x);
+  return Rng(mix64(seed * 0x9E3779B97F4A7C15ULL + mix64(pixel + 1)), index);
+}
+
+Film render(const RenderWorld& world, const RenderOptions& opt, RenderStats* stats) {
+  const int w = world.camera->width(), h = world.camera->height();
+  Film film(w, h);
+  const int spp = std::max(opt.spp, 1);
+  // About 16 passes: frequent enough to stop soon after Ctrl-C, few enough to cost nothing.
+  const int pass_spp = std::max(1, (spp + 15) / 16);
+  constexpr int kTile = 16;
+  const int tiles_x = (w + kTile - 1) / kTile, tiles_y = (h + kTile - 1) / kTile;
+
+  std::atomic<std::uint64_t> rays{0}, samples_done{0};
+  std::atomic<bool> stop{false};
+  bool timed_out = false;
+  const auto start = std::chrono::steady_clock::now();
+  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  const std::uint64_t samples_total = std::uint64_t(w) * h * spp;
+
+  // A watcher thread: progress reports, the time limit and the cancel flag.
+  std::mutex m;
+  std::condition_variable cv;
+  bool finished = false;
+  std::thread watcher([&] {
+    std::unique_lock<std::mutex> lock(m);
+    while (!finished) {
+      cv.wait_for(lock, std::chrono::milliseconds(200));
+      if (finished) break;
+      if (opt.cancel && opt.cancel->load()) stop = true;
+      if (opt.time_limit > 0.0 && elapsed() >= opt.time_limit) {
+        timed_out = true;
+        stop = true;
+      }
+      if (opt.progress) opt.progress({samples_done.load(), samples_total, rays.load(), elapsed()});
+    }
+  });
+
+  tbb::task_arena arena(opt.threads > 0 ? opt.threads : tbb::task_arena::automatic);
+  try {
+    for (int first = 0; first < spp && !stop; first += pass_spp) {
+      const int last = std::min(spp, first + pass_spp);
+      arena.execute([&] {
+        tbb::parallel_for(tbb::blocked_range2d<int>(0, tiles_y, 1, 0, tiles_x, 1), [&](const tbb::blocked_range2d<int>& r) {
+          set_denormals_zero();  // DEPENDENCIES.md pitfall 6: in every thread that traces
+          std::uint64_t tile_rays = 0, tile_samples = 0;
+          for (int ty = r.rows().begin(); ty < r.rows().end(); ++ty)
+            for (int tx = r.cols().begin(); tx < r.cols().end(); ++tx) {
+              if (stop.load(std::memory_order_relaxed)) continue;
+              for (int y = ty * kTile; y < std::min(h, (ty + 1) * kTile); ++y)
+                for (int x = tx * kTile; x < std::min(w, (tx + 1) * kTile); ++x) {
+                  const std::size_t p = std::size_t(y) * w + x;
+                  for (int s = first; s < last; ++s) {
+                    Rng rng = pixel_rng(opt.seed, x, y, w, std::uint32_t(s));
+                    const float jx = rng.next_float(), jy = rng.next_float();
+                    const PathSample ps = trace_path(world, opt.integrator, float(x) + jx, float(y) + jy, rng);
+                    tile_rays += ps.rays;
+                    // A non-finite sample would poison the pixel; it counts as black (never seen in tests).
+                    const Rgb L = std::isfinite(ps.radiance.x + ps.radiance.y + ps.radiance.z) ? ps.radiance : Rgb(0.0f);
+                    film.radiance_sum[p] += glm::dvec3(L);
+                    film.albedo_sum[p] += ps.albedo;
+                    film.normal_sum[p] += ps.normal;
+                    film.depth_sum[p] += ps.depth;
+                    film.level_sum[p] += ps.mip_level;
+                    ++film.samples[p];
+                    ++tile_samples;
+                  }
+                }
+            }
+          rays += tile_rays;
+          samples_done += tile_samples;
+        });
+      });
+    }
+  } catch (...) {
+    {
+      std::lock_guard<std::mutex> lock(m);
+      finished = true;
+    }
+    cv.notify_all();
+    watcher.join();
+    throw;
+  }
+  {
+    std::lock_guard<std::mutex> lock(m);
+    finished = true;
+  }
+  cv.notify_all();
+  watcher.join();
+  if (opt.progress) opt.progress({samples_done.load(), samples_total, rays.load(), elapsed()});
+  if (stats) {
+    stats->seconds = elapsed();
+    stats->rays = rays.load();
+    stats->samples = samples_done.load();
+    stats->timed_out = timed_out;
+    stats->interrupted = !timed_out && stop.load();
+  }
+  return film;
+}
+
+}  // namespace svbrdf

@@ -1,0 +1,63 @@
+#pragma once
+// Rendering an image: samples per pixel in passes over 16×16 tiles spread over oneTBB, every sample
+// seeded by (seed, pixel, sample index) so the image is bit-identical for any thread count and any
+// pass split. A pass boundary is where an interruption (Ctrl-C, --time-limit) stops; every pixel
+// then holds the mean of the samples it got.
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "render/integrator.h"
+#include "textures/image.h"
+
+namespace svbrdf {
+
+// Accumulated samples: per pixel the sum of radiance and the number of samples, plus the first-hit
+// AOVs (sums too).
+struct Film {
+  int width = 0, height = 0;
+  std::vector<glm::dvec3> radiance_sum;
+  std::vector<std::uint32_t> samples;
+  std::vector<glm::vec3> albedo_sum, normal_sum;
+  std::vector<float> depth_sum, level_sum;
+
+  Film(int w, int h);
+  // Means per pixel (zero where no sample landed): RGB radiance, RGB albedo, XYZ normal, depth, MIP level.
+  Image radiance() const;
+  Image albedo() const;
+  Image normal() const;
+  Image depth() const;
+  Image mip_level() const;
+};
+
+struct ProgressInfo {
+  std::uint64_t samples_done = 0, samples_total = 0;
+  std::uint64_t rays = 0;
+  double seconds = 0.0;
+};
+
+struct RenderOptions {
+  int spp = 64;
+  int threads = 0;  // 0: all cores
+  std::uint64_t seed = 0;
+  IntegratorSettings integrator;
+  double time_limit = 0.0;                  // seconds; 0 = none
+  const std::atomic<bool>* cancel = nullptr;  // set by a signal handler (Ctrl-C)
+  std::function<void(const ProgressInfo&)> progress;  // called about every 0.2 s from one thread
+};
+
+struct RenderStats {
+  double seconds = 0.0;
+  std::uint64_t rays = 0;
+  std::uint64_t samples = 0;
+  bool interrupted = false;  // cancelled (Ctrl-C)
+  bool timed_out = false;    // stopped by the time limit
+};
+
+Film render(const RenderWorld& world, const RenderOptions& options, RenderStats* stats = nullptr);
+
+// The random-number generator of sample `index` of pixel (x, y): independent of everything else.
+Rng pixel_rng(std::uint64_t seed, int x, int y, int width, std::uint32_t index);
+
+}  // namespace svbrdf

@@ -1,0 +1,156 @@
+#include "render/surface.h"
+
+#include <cmath>
+
+#include "textures/normal_map.h"
+
+namespace svbrdf {
+
+namespace {
+
+template <typename T>
+T lerp3(const std::vector<T>& a, const std::uint32_t* i, float b0, float b1, float b2) {
+  return b0 * a[i[0]] + b1 * a[i[1]] + b2 * a[i[2]];
+}
+
+glm::vec3 normalize_or(const glm::vec3& v, const glm::vec3& fallback) {
+  const float l = glm::length(v);
+  return l > 0.0f && std::isfinite(l) ? v / l : fallback;
+}
+
+// Keeps a shading normal on the geometric normal's side, so no light leaks through a surface
+// whose interpolated normals lean past the horizon.
+glm::vec3 same_side(const glm::vec3& ns, const glm::vec3& ng) {
+  const float c = glm::dot(ns, ng);
+  if (c >= 1e-3f) return ns;
+  return glm::normalize(ns + (1e-3f - c) * ng);
+}
+
+}  // namespace
+
+SurfacePoint make_surface_point(const EmbreeScene& bvh, const RayHit& hit, const glm::vec3& ray_dir) {
+  SurfacePoint sp;
+  sp.geom = hit.geom;
+  sp.material = hit.geom->material;
+  const MeshPrimitive& prim = *hit.geom->prim;
+  const std::uint32_t* i = &prim.indices[3 * std::size_t(hit.triangle)];
+  const float b1 = hit.b1, b2 = hit.b2, b0 = 1.0f - b1 - b2;
+  const glm::mat4& m = bvh.to_world(hit.instance);
+  const glm::mat3& nm = bvh.normal_to_world(hit.instance);
+  const glm::mat3 m3(m);
+
+  const glm::vec3 p0 = prim.positions[i[0]], p1 = prim.positions[i[1]], p2 = prim.positions[i[2]];
+  sp.p = glm::vec3(m * glm::vec4(b0 * p0 + b1 * p1 + b2 * p2, 1.0f));
+  // The front face is counter-clockwise in the mesh's own space (glTF §3.7.2.1), whatever the
+  // transform's determinant; normals transform with the inverse transpose.
+  const glm::vec3 ng_front = normalize_or(nm * glm::cross(p1 - p0, p2 - p0), glm::vec3(0, 0, 1));
+  sp.front = glm::dot(ng_front, ray_dir) < 0.0f;
+  const glm::vec3 ns_front = normalize_or(nm * lerp3(prim.normals, i, b0, b1, b2), ng_front);
+
+  for (int s = 0; s < 2; ++s)
+    if (!prim.texcoords[s].empty()) sp.uv[s] = lerp3(prim.texcoords[s], i, b0, b1, b2);
+  if (!prim.colors.empty()) sp.color = lerp3(prim.colors, i, b0, b1, b2);
+
+  // ∂p/∂u, ∂p/∂v of TEXCOORD_0 from the triangle's edges (pbrt-v4 §6.5.3).
+  glm::vec3 tangent_hint(0.0f);
+  if (!prim.texcoords[0].empty()) {
+    const glm::vec2 t0 = prim.texcoords[0][i[0]], t1 = prim.texcoords[0][i[1]], t2 = prim.texcoords[0][i[2]];
+    const glm::vec2 d1 = t1 - t0, d2 = t2 - t0;
+    const glm::vec3 e1 = m3 * (p1 - p0), e2 = m3 * (p2 - p0);
+    const float det = d1.x * d2.y - d1.y * d2.x;
+    if (std::abs(det) > 1e-20f) {
+      sp.dpdu = (d2.y * e1 - d1.y * e2) / det;
+      sp.dpdv = (-d2.x * e1 + d1.x * e2) / det;
+    }
+  }
+  if (!prim.tangents.empty()) {
+    const glm::vec4 t = lerp3(prim.tangents, i, b0, b1, b2);
+    tangent_hint = m3 * glm::vec3(t);
+    // B = w·(N × T) in the mesh's space; carried to the world it keeps or flips its handedness.
+    const glm::vec3 n_obj = lerp3(prim.normals, i, b0, b1, b2);
+    const glm::vec3 b_world = m3 * ((t.w < 0.0f ? -1.0f : 1.0f) * glm::cross(n_obj, glm::vec3(t)));
+    sp.bitangent_sign = glm::dot(b_world, glm::cross(ns_front, tangent_hint)) < 0.0f ? -1.0f : 1.0f;
+  } else {
+    tangent_hint = sp.dpdu;
+  }
+  sp.tangent = tangent_hint;
+
+  glm::vec3 ns = same_side(ns_front, ng_front), ng = ng_front;
+  if (!sp.front) ns = -ns, ng = -ng;
+  sp.ng = ng;
+  sp.shading = Frame::from_normal_tangent(ns, normalize_or(tangent_hint, glm::vec3(0.0f)));
+  return sp;
+}
+
+void apply_normal_map(SurfacePoint& sp, const TextureSet& textures) {
+  const MaterialDesc& m = *sp.material;
+  if (!m.normal_texture.present()) return;
+  const MeshPrimitive& prim = *sp.geom->prim;
+  if (prim.tangents.empty()) return;  // the loader makes tangents wherever a normal map is used
+  const glm::vec3 rgb = glm::vec3(textures.lookup(m.normal_texture, sp.uv[m.normal_texture.tex_coord], false));
+  const glm::vec3 t = decode_normal(rgb, m.normal_texture.scale);
+  // The tangent frame of the front face (a back face mirrors the mapped normal with it).
+  const glm::vec3 n = sp.front ? sp.shading.n : -sp.shading.n;
+  const glm::vec3 tan = normalize_or(sp.tangent - n * glm::dot(n, sp.tangent), sp.shading.s);
+  const glm::vec3 b = sp.bitangent_sign * glm::cross(n, tan);
+  glm::vec3 mapped = normalize_or(t.x * tan + t.y * b + t.z * n, n);
+  if (!sp.front) mapped = -mapped;
+  mapped = same_side(mapped, sp.ng);
+  sp.shading = Frame::from_normal_tangent(mapped, sp.shading.s);
+}
+
+ShadingParams shading_params(const SurfacePoint& sp, const TextureSet& textures) {
+  const MaterialDesc& m = *sp.material;
+  ShadingParams sh;
+  auto tex = [&](const TextureRef& r, bool color) { return textures.lookup(r, sp.uv[r.tex_coord], color); };
+  sh.base_color = m.base_color * Rgb(sp.color);
+  if (m.base_color_texture.present()) sh.base_color *= Rgb(tex(m.base_color_texture, true));
+  sh.metallic = m.metallic;
+  sh.roughness = m.roughness;
+  if (m.metallic_roughness_texture.present()) {
+    const glm::vec4 mr = tex(m.metallic_roughness_texture, false);
+    sh.metallic *= mr.b;  // glTF: metalness in B, roughness in G
+    sh.roughness *= mr.g;
+  }
+  sh.emission = m.emissive * m.emissive_strength;
+  if (m.emissive_texture.present()) sh.emission *= Rgb(tex(m.emissive_texture, true));
+  sh.ior = m.ior;
+  sh.specular = m.specular;
+  if (m.specular_texture.present()) sh.specular *= tex(m.specular_texture, false).a;
+  sh.specular_color = m.specular_color;
+  if (m.specular_color_texture.present()) sh.specular_color *= Rgb(tex(m.specular_color_texture, true));
+  sh.transmission = m.transmission;
+  if (m.transmission_texture.present()) sh.transmission *= tex(m.transmission_texture, false).r;
+  sh.diffuse_roughness = m.diffuse_roughness;
+  if (m.diffuse_roughness_texture.present()) sh.diffuse_roughness *= tex(m.diffuse_roughness_texture, false).r;
+  sh.unlit = m.unlit;
+  return sh;
+}
+
+Footprint footprint(const SurfacePoint& sp, const glm::vec3& dpdx, const glm::vec3& dpdy) {
+  // Least squares: dp ≈ dpdu·du + dpdv·dv, solved through the 2×2 normal equations.
+  const float a = glm::dot(sp.dpdu, sp.dpdu), b = glm::dot(sp.dpdu, sp.dpdv), c = glm::dot(sp.dpdv, sp.dpdv);
+  const float det = a * c - b * b;
+  Footprint f;
+  if (!(std::abs(det) > 1e-30f)) return f;
+  auto solve = [&](const glm::vec3& dp) {
+    const float r0 = glm::dot(sp.dpdu, dp), r1 = glm::dot(sp.dpdv, dp);
+    const glm::vec2 d((c * r0 - b * r1) / det, (a * r1 - b * r0) / det);
+    return std::isfinite(d.x) && std::isfinite(d.y) ? d : glm::vec2(0.0f);
+  };
+  f.duvdx = solve(dpdx);
+  f.duvdy = solve(dpdy);
+  return f;
+}
+
+void camera_dp(const SurfacePoint& sp, const CameraRay& cr, glm::vec3& dpdx, glm::vec3& dpdy) {
+  auto on_plane = [&](const glm::vec3& o, const glm::vec3& d) {
+    const float denom = glm::dot(sp.ng, d);
+    if (std::abs(denom) < 1e-12f) return sp.p;
+    return o + d * (glm::dot(sp.ng, sp.p - o) / denom);
+  };
+  dpdx = on_plane(cr.dx_origin, cr.dx_dir) - sp.p;
+  dpdy = on_plane(cr.dy_origin, cr.dy_dir) - sp.p;
+}
+
+}  // namespace svbrdf

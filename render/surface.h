@@ -1,0 +1,59 @@
+#pragma once
+// What the integrator knows at a hit: the world-space point and normals, the shading frame (with the
+// normal map applied), texture coordinates and their footprint, and the material's parameters there.
+#include <glm/glm.hpp>
+
+#include "appearance/frame.h"
+#include "render/camera.h"
+#include "render/embree_scene.h"
+
+namespace svbrdf {
+
+struct SurfacePoint {
+  glm::vec3 p{0.0f};
+  glm::vec3 ng{0.0f, 0.0f, 1.0f};  // geometric normal on the side the ray came from
+  Frame shading;                   // z = shading normal (interpolated, normal-mapped), same side as ng
+  glm::vec2 uv[2]{};               // TEXCOORD_0/1 (zero when absent)
+  glm::vec4 color{1.0f};           // COLOR_0
+  glm::vec3 dpdu{0.0f}, dpdv{0.0f};  // world ∂p/∂(u, v) of TEXCOORD_0
+  glm::vec3 tangent{0.0f};         // world TANGENT (or ∂p/∂u when absent), not normalized
+  float bitangent_sign = 1.0f;     // B = sign·(N × T) in world space, N the front-face shading normal
+  bool front = true;               // the ray hit the front face
+  const GeometryData* geom = nullptr;
+  const MaterialDesc* material = nullptr;
+};
+
+// The material's parameters at one point, textures applied (glTF §3.9: factors multiply textures;
+// COLOR_0 multiplies base color).
+struct ShadingParams {
+  Rgb base_color{1.0f};  // linear
+  float metallic = 0.0f;
+  float roughness = 1.0f;  // perceptual
+  Rgb emission{0.0f};      // radiance
+  float ior = 1.5f;
+  float specular = 1.0f;
+  Rgb specular_color{1.0f};
+  float transmission = 0.0f;
+  float diffuse_roughness = 0.0f;
+  bool unlit = false;
+};
+
+// The texture footprint of a hit: uv derivatives per pixel step, for MIP level selection.
+struct Footprint {
+  glm::vec2 duvdx{0.0f}, duvdy{0.0f};
+};
+
+SurfacePoint make_surface_point(const EmbreeScene& bvh, const RayHit& hit, const glm::vec3& ray_dir);
+
+// Applies the material's normal map to sp.shading (tangent space, +Y up, scale; glTF §3.9.3).
+void apply_normal_map(SurfacePoint& sp, const TextureSet& textures);
+
+ShadingParams shading_params(const SurfacePoint& sp, const TextureSet& textures);
+
+// uv derivatives from the position derivatives (least squares on ∂p/∂u, ∂p/∂v; pbrt-v4 §10.1.1).
+Footprint footprint(const SurfacePoint& sp, const glm::vec3& dpdx, const glm::vec3& dpdy);
+
+// The position differentials of a camera ray's two offset rays on the tangent plane at the hit.
+void camera_dp(const SurfacePoint& sp, const CameraRay& cr, glm::vec3& dpdx, glm::vec3& dpdy);
+
+}  // namespace svbrdf

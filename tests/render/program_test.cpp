@@ -1,0 +1,110 @@
+// svbrdf-render as a program: exit codes, one-line errors, the EXR it writes, Ctrl-C.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+
+#include "gltf_test_files.h"
+#include "textures/image.h"
+
+namespace svbrdf {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kProgram = std::string(SVBRDF_BINARY_DIR) + "/svbrdf-render";
+
+struct RunResult {
+  int code = -1;
+  std::string err;
+};
+
+RunResult run_program(const std::string& args, const test::TempDir& dir, const std::string& prefix = "") {
+  const fs::path err = dir.path() / "stderr.txt";
+  const std::string cmd = prefix + "'" + kProgram + "' " + args + " 2> '" + err.string() + "' > /dev/null";
+  const int status = std::system(cmd.c_str());
+  RunResult r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  std::ifstream in(err);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  r.err = ss.str();
+  return r;
+}
+
+TEST(Program, MalformedGltfIsOneLineAndExit2) {
+  test::TempDir dir;
+  test::GltfQuad q;
+  q.indices = {0, 1, 2, 0, 2, 7};
+  const fs::path f = dir.write("bad.gltf", q.json());
+  const RunResult r = run_program("'" + f.string() + "' -q -o '" + (dir.path() / "o.exr").string() + "'", dir);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("meshes[0].primitives[0].indices"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(fs::exists(dir.path() / "o.exr")) << "nothing written for bad input";
+}
+
+TEST(Program, BadArgumentsExit2) {
+  test::TempDir dir;
+  const fs::path f = dir.write("q.gltf", test::GltfQuad().json());
+  const std::string base = "'" + f.string() + "' -q -o '" + (dir.path() / "o.exr").string() + "' ";
+  EXPECT_EQ(run_program(base + "--res 12by3", dir).code, 2);
+  EXPECT_EQ(run_program(base + "--camera 3", dir).code, 2);
+  EXPECT_EQ(run_program(base + "--env nowhere.exr", dir).code, 2);
+  const RunResult p = run_program(base + "--filter param", dir);
+  EXPECT_EQ(p.code, 2);
+  EXPECT_NE(p.err.find("not available yet"), std::string::npos) << p.err;
+  EXPECT_EQ(run_program("'" + (dir.path() / "none.gltf").string() + "' -q", dir).code, 2);
+}
+
+// End to end through the file format: a Lambertian quad (glTF's specular layer off through
+// KHR_materials_specular) under a KHR_lights_punctual directional light of intensity E at 60°,
+// an orthographic glTF camera, a black environment: every pixel of the float EXR is ρ/π·E·cos 60°.
+TEST(Program, UnitsEndToEnd) {
+  test::TempDir dir;
+  test::GltfQuad q;
+  q.positions = {-4, -4, 0, 4, -4, 0, 4, 4, 0, -4, 4, 0};
+  q.materials = R"([{"pbrMetallicRoughness": {"baseColorFactor": [0.25, 0.5, 0.75, 1], "metallicFactor": 0},
+                     "extensions": {"KHR_materials_specular": {"specularFactor": 0}}}])";
+  q.primitive_extra = R"(, "material": 0)";
+  // Light node: rotated so its −Z travels along −(sin 60°, 0, cos 60°): a rotation of 60° about +Y.
+  q.nodes = R"([{"mesh": 0}, {"camera": 0, "translation": [0, 0, 3]},
+                {"rotation": [0, 0.5, 0, 0.8660254037844387], "extensions": {"KHR_lights_punctual": {"light": 0}}}])";
+  q.scene_nodes = "[0, 1, 2]";
+  q.top_extra = R"(, "cameras": [{"type": "orthographic", "orthographic": {"xmag": 1, "ymag": 1, "znear": 0.01, "zfar": 10}}],
+    "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_specular"],
+    "extensions": {"KHR_lights_punctual": {"lights": [{"type": "directional", "intensity": 2.5}]}})";
+  const fs::path f = dir.write("lit.gltf", q.json());
+  const fs::path out = dir.path() / "lit.exr";
+  const RunResult r = run_program("'" + f.string() + "' -q --float --env 0,0,0 --res 8x8 --spp 2 -o '" + out.string() + "'", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  ASSERT_TRUE(fs::exists(dir.path() / "lit.png"));
+  const Image im = read_image(out);
+  ASSERT_EQ(im.width, 8);
+  const float rho[3] = {0.25f, 0.5f, 0.75f};
+  for (int c = 0; c < 3; ++c) {
+    const float expected = rho[c] / 3.14159265f * 2.5f * 0.5f;
+    EXPECT_NEAR(im.at(3, 4, c), expected, 2e-6f * expected);
+  }
+}
+
+// Ctrl-C: the render stops, writes what accumulated and exits 130; --time-limit stops and exits 0.
+TEST(Program, InterruptWritesAndExits130) {
+  test::TempDir dir;
+  const fs::path f = dir.write("q.gltf", test::GltfQuad().json());
+  const fs::path out = dir.path() / "i.exr";
+  const std::string args = "'" + f.string() + "' -q --res 256x256 --spp 1000000 -o '" + out.string() + "'";
+  const RunResult r = run_program(args, dir, "timeout --preserve-status -s INT 2 ");
+  EXPECT_EQ(r.code, 130) << r.err;
+  ASSERT_TRUE(fs::exists(out));
+  EXPECT_EQ(read_image(out).width, 256);
+  const fs::path out2 = dir.path() / "t.exr";
+  const RunResult t = run_program("'" + f.string() + "' -q --res 64x64 --spp 1000000 --time-limit 0.5 -o '" + out2.string() + "'", dir);
+  EXPECT_EQ(t.code, 0) << t.err;
+  EXPECT_TRUE(fs::exists(out2));
+}
+
+}  // namespace
+}  // namespace svbrdf
