@@ -32,14 +32,14 @@ MerlTable::MerlTable() : f_(3 * static_cast<std::size_t>(kCells), 0.0f) {}
 int MerlTable::cell_of(const glm::vec3& wi_f, const glm::vec3& wo_f) {
   const glm::dvec3 wi(wi_f), wo(wo_f);
   const glm::dvec3 h = glm::normalize(wi + wo);
-  const double theta_h = std::acos(std::clamp(h.z, -1.0, 1.0));
-  const double phi_h = std::atan2(h.y, h.x);
-  // d = wi rotated by −φh about z, then by −θh about y (Rusinkiewicz 1998).
-  const double cp = std::cos(phi_h), sp = std::sin(phi_h);
+  // d = wi rotated by −φh about z, then by −θh about y (Rusinkiewicz 1998), with the sines and
+  // cosines of φh and θh read off h itself rather than through trigonometric calls.
+  const double st = std::sqrt(h.x * h.x + h.y * h.y), ct = h.z;
+  const double theta_h = std::atan2(st, ct);
+  const double cp = st > 0 ? h.x / st : 1.0, sp = st > 0 ? h.y / st : 0.0;
   const glm::dvec3 a(wi.x * cp + wi.y * sp, -wi.x * sp + wi.y * cp, wi.z);
-  const double ct = std::cos(theta_h), st = std::sin(theta_h);
   const glm::dvec3 d(a.x * ct - a.z * st, a.y, a.x * st + a.z * ct);
-  const double theta_d = std::acos(std::clamp(d.z, -1.0, 1.0));
+  const double theta_d = std::atan2(std::sqrt(d.x * d.x + d.y * d.y), d.z);
   double phi_d = std::atan2(d.y, d.x);
   if (phi_d < 0) phi_d += kPiD;  // the reciprocity fold φd ~ φd + π
   const int ih = theta_h <= 0 ? 0 : clamp_index(std::sqrt(theta_h / kHalfPi) * kThetaH, kThetaH);
@@ -61,15 +61,15 @@ void MerlTable::center_directions(int theta_h, int theta_d, int phi_d, glm::vec3
 }
 
 Rgb MerlTable::at(int c) const {
-  const auto i = static_cast<std::size_t>(c), n = static_cast<std::size_t>(kCells);
-  return {f_[i], f_[i + n], f_[i + 2 * n]};
+  const auto i = 3 * static_cast<std::size_t>(c);
+  return {f_[i], f_[i + 1], f_[i + 2]};
 }
 
 void MerlTable::set(int c, const Rgb& f) {
-  const auto i = static_cast<std::size_t>(c), n = static_cast<std::size_t>(kCells);
+  const auto i = 3 * static_cast<std::size_t>(c);
   f_[i] = f.x;
-  f_[i + n] = f.y;
-  f_[i + 2 * n] = f.z;
+  f_[i + 1] = f.y;
+  f_[i + 2] = f.z;
 }
 
 Rgb MerlTable::lookup(const glm::vec3& wi, const glm::vec3& wo) const {
@@ -102,8 +102,8 @@ MerlTable MerlTable::read(const std::filesystem::path& path) {
     double v;
     std::memcpy(&v, p + i * sizeof(double), sizeof(double));
     if (!std::isfinite(v)) throw input_error(where, "value " + std::to_string(i) + " is not a finite number");
-    const std::size_t channel = i / static_cast<std::size_t>(kCells);
-    t.f_[i] = v < 0 ? 0.0f : static_cast<float>(v * kScale[channel]);  // negative: not measured
+    const std::size_t channel = i / static_cast<std::size_t>(kCells), cell = i % static_cast<std::size_t>(kCells);
+    t.f_[3 * cell + channel] = v < 0 ? 0.0f : static_cast<float>(v * kScale[channel]);  // negative: not measured
   }
   return t;
 }
@@ -114,7 +114,8 @@ void MerlTable::write(const std::filesystem::path& path) const {
   std::memcpy(bytes.data(), dims, kHeaderBytes);
   char* p = bytes.data() + kHeaderBytes;
   for (std::size_t i = 0; i < f_.size(); ++i) {
-    const double v = static_cast<double>(f_[i]) / kScale[i / static_cast<std::size_t>(kCells)];
+    const std::size_t channel = i / static_cast<std::size_t>(kCells), cell = i % static_cast<std::size_t>(kCells);
+    const double v = static_cast<double>(f_[3 * cell + channel]) / kScale[channel];
     std::memcpy(p + i * sizeof(double), &v, sizeof(double));
   }
   write_atomically(path, [&](const std::filesystem::path& tmp) {

@@ -48,7 +48,7 @@ class MerlTable {
   Rgb lookup(const glm::vec3& wi, const glm::vec3& wo) const;
 
  private:
-  std::vector<float> f_;  // 3 planes of kCells, already scaled to f
+  std::vector<float> f_;  // RGB interleaved per cell (one cache line a lookup), already scaled to f
 };
 
 class Measured final : public Bsdf {

@@ -70,6 +70,18 @@ inline glm::vec3 sample_ggx_visible(float alpha, const glm::vec3& wo, const glm:
   return glm::normalize(glm::vec3(alpha * hs.x, alpha * hs.y, std::max(hs.z, 1e-9f)));
 }
 
+// The density of a visible normal: D_wo(h) = G1(wo) max(0, wo·h) D(h) / wo.z (Heitz 2014, eq. 2).
+inline float ggx_visible_pdf(float alpha, const glm::vec3& wo, const glm::vec3& h) {
+  const float oh = glm::dot(wo, h);
+  if (wo.z <= 0 || oh <= 0) return 0.0f;
+  return oh * ggx_d(alpha, h) / ((1.0f + ggx_lambda(alpha, wo)) * wo.z);
+}
+inline float beckmann_visible_pdf(float alpha, const glm::vec3& wo, const glm::vec3& h) {
+  const float oh = glm::dot(wo, h);
+  if (wo.z <= 0 || oh <= 0) return 0.0f;
+  return oh * beckmann_d(alpha, h) / ((1.0f + beckmann_lambda(alpha, wo)) * wo.z);
+}
+
 // Samples a Beckmann visible normal for wo (wo.z > 0) by inverting the visible-slope CDF
 // (Heitz & d'Eon 2014, §4). Defined in microfacet_distribution.cpp.
 glm::vec3 sample_beckmann_visible(float alpha, const glm::vec3& wo, const glm::vec2& u);

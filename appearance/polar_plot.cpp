@@ -75,8 +75,8 @@ Svg polar_plot_svg(const PolarPlotData& d, const std::string& title) {
   for (int k = 0; k < d.impulses.count; ++k) {
     const Impulse& imp = d.impulses.items[static_cast<std::size_t>(k)];
     const float m = luminance(imp.magnitude);
-    svg.arrow(origin, at(imp.direction, radius * std::min(m, 1.5f)), "#c0392b", 3);
-    svg.text(at(imp.direction, radius * std::min(m, 1.5f) + 16), g(m), 12, "#c0392b", "middle");
+    svg.arrow(origin, at(imp.direction, radius * std::min(m, 1.05f)), "#c0392b", 3);
+    svg.text(at(imp.direction, radius * std::min(m, 1.05f) + 16), g(m), 12, "#c0392b", "middle");
   }
   svg.text({16, 26}, title, 16);
   svg.text({16, 48}, "theta_i = " + g(d.theta_i_deg) + " deg; outer circle = " + g(peak) + " /sr", 13, "#444444");

@@ -6,7 +6,8 @@
 //   blue:  pdf(w, d), the density with which sample(wo = d) chooses wi = w (same unit, 1/sr,
 //          drawn to the same radial scale),
 //   arrows: the impulses of impulses_out(d), length = luminance of the magnitude × the radius
-//          that stands for 1 (impulses carry no 1/sr), and a gray arrow for the incoming light.
+//          that stands for 1 (impulses carry no 1/sr; capped at 1.05, the value is written at the
+//          tip), and a gray arrow for the incoming light.
 // The lower half is drawn only when something (a refraction, a value) lies there.
 #include <string>
 #include <vector>

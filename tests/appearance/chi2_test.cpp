@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 #include "appearance/lambert.h"
 #include "appearance/sampling.h"
 #include "test_models.h"
@@ -48,6 +50,29 @@ INSTANTIATE_TEST_SUITE_P(AllSamplers, SamplerChi2, ::testing::Range<std::size_t>
                              if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
                            return s;
                          });
+
+// The heavier variant (ctest label `long`, run with SVBRDF_LONG=1): ten times the samples and more
+// directions, down to 89.5°. Its own Bonferroni correction.
+TEST(LongSamplerChi2, AllSamplersManyDirections) {
+  if (!std::getenv("SVBRDF_LONG")) GTEST_SKIP() << "set SVBRDF_LONG=1 (ctest -L long)";
+  constexpr double kTheta[] = {0, 10, 25, 45, 60, 70, 78, 84, 87, 89.5};
+  const double alpha = 0.01 / static_cast<double>(sampler_cases().size() * std::size(kTheta));
+  for (std::size_t c = 0; c < sampler_cases().size(); ++c) {
+    const ModelCase& mc = sampler_cases()[c];
+    const auto bsdf = mc.build();
+    for (std::size_t k = 0; k < std::size(kTheta); ++k) {
+      Chi2Options opt;
+      opt.samples = 1000000;
+      opt.max_depth = 12;
+      opt.seed = 90000 + c * 31 + k;
+      const Chi2Result r = chi2_test(*bsdf, direction_deg(kTheta[k], 11.0 + 37.0 * static_cast<double>(k)), opt);
+      EXPECT_GT(r.p_value, alpha) << mc.label() << " at θo = " << kTheta[k] << ": χ² = " << r.statistic << " with "
+                                  << r.dof << " dof; worst " << r.worst;
+      const double f = r.finite_fraction, se = std::sqrt(std::max(f * (1 - f), 1e-12) / opt.samples);
+      EXPECT_NEAR(r.pdf_integral, f, 0.01 * f + 4 * se) << mc.label() << " at θo = " << kTheta[k];
+    }
+  }
+}
 
 // The harness must be able to fail: a Lambert sampler whose pdf claims a slightly different shape
 // (cos^1.15 instead of cos, renormalized) is rejected far below the significance level.

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <complex>
 
 #include "appearance/fresnel.h"
 #include "appearance/fresnel_plot.h"
@@ -45,6 +46,28 @@ TEST(Fresnel, TotalInternalReflectionGlassToAir) {
   const double ti = 0.5, tt = std::asin(std::sin(ti) / 1.5);
   EXPECT_NEAR(fresnel_dielectric(static_cast<float>(std::cos(tt)), 1 / 1.5f),
               fresnel_dielectric(static_cast<float>(std::cos(ti)), 1.5f), 1e-6);
+}
+
+// The conductor reflectance straight from the complex Fresnel equations (Snell with a complex
+// index, principal square root), in double.
+FresnelPolarized conductor_complex(double cos_i, double eta, double k) {
+  using C = std::complex<double>;
+  const C n(eta, k);
+  const C cos_t = std::sqrt(1.0 - (1.0 - cos_i * cos_i) / (n * n));
+  const C rs = (cos_i - n * cos_t) / (cos_i + n * cos_t), rp = (n * cos_i - cos_t) / (n * cos_i + cos_t);
+  return {static_cast<float>(std::norm(rs)), static_cast<float>(std::norm(rp))};
+}
+
+TEST(Fresnel, ConductorMatchesTheComplexEquations) {
+  for (const auto& [eta, k] : {std::pair{0.2, 3.9}, std::pair{0.92, 2.45}, std::pair{1.1, 2.14}, std::pair{2.9, 3.0},
+                               std::pair{1.5, 0.0}, std::pair{0.05, 0.5}, std::pair{3.0, 0.01}})
+    for (int i = 0; i <= 90; ++i) {
+      const double c = std::cos(i * kPiD / 180);
+      const FresnelPolarized ref = conductor_complex(c, eta, k);
+      const FresnelPolarized got = fresnel_conductor_polarized(static_cast<float>(c), static_cast<float>(eta), static_cast<float>(k));
+      EXPECT_NEAR(got.rs, ref.rs, 1e-5) << eta << " " << k << " " << i;
+      EXPECT_NEAR(got.rp, ref.rp, 1e-5) << eta << " " << k << " " << i;
+    }
 }
 
 TEST(Fresnel, ExactMatchesTheAngleForm) {

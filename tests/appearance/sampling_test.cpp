@@ -161,6 +161,13 @@ TEST(SamplingHelpers, DensitiesIntegrateToOneAndErfInverseInverts) {
   }
   for (float x : {-0.999f, -0.7f, -0.1f, 0.0f, 0.3f, 0.9f, 0.99999f})
     EXPECT_NEAR(std::erf(static_cast<double>(erf_inverse(x))), x, 2e-7) << x;
+  // The free visible-normal densities are the distribution's.
+  for (const glm::vec3& h : {direction_deg(5, 10), direction_deg(30, 200), direction_deg(70, 80)}) {
+    const glm::vec3 wo = direction_deg(60, 40);
+    EXPECT_FLOAT_EQ(ggx_visible_pdf(0.3f, wo, h), (MicrofacetDistribution{MicrofacetType::ggx, 0.3f}.visible_pdf(wo, h)));
+    EXPECT_FLOAT_EQ(beckmann_visible_pdf(0.3f, wo, h),
+                    (MicrofacetDistribution{MicrofacetType::beckmann, 0.3f}.visible_pdf(wo, h)));
+  }
   // Visible normals face the viewer.
   const MicrofacetDistribution d{MicrofacetType::beckmann, 0.4f};
   for (int i = 0; i < 1000; ++i) {

@@ -1,0 +1,123 @@
+// ns per eval and per sample of every model of brdf-models.md (default parameters unless named),
+// over 4096 precomputed random direction pairs / random numbers so the branch mix is realistic.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "appearance/gltf_bsdf.h"
+#include "appearance/measured.h"
+#include "appearance/mixture.h"
+#include "appearance/registry.h"
+#include "appearance/rng.h"
+
+namespace {
+
+using namespace svbrdf;
+
+constexpr std::size_t kN = 4096;
+
+struct Inputs {
+  std::vector<glm::vec3> wi, wo;
+  std::vector<SampleU> u;
+  Inputs() {
+    Rng rng(42, 1);
+    auto dir = [&] {
+      const float z = 0.02f + 0.98f * rng.next_float(), phi = 6.2831853f * rng.next_float();
+      const float r = std::sqrt(1 - z * z);
+      return glm::vec3(r * std::cos(phi), r * std::sin(phi), z);
+    };
+    for (std::size_t i = 0; i < kN; ++i) {
+      wi.push_back(dir());
+      wo.push_back(dir());
+      u.push_back({rng.next_float(), rng.next_float(), rng.next_float()});
+    }
+  }
+};
+const Inputs& inputs() {
+  static const Inputs in;
+  return in;
+}
+
+void eval_bench(benchmark::State& state, std::shared_ptr<const Bsdf> bsdf) {
+  const Inputs& in = inputs();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(bsdf->eval(in.wi[i], in.wo[i]));
+    i = (i + 1) & (kN - 1);
+  }
+}
+
+void sample_bench(benchmark::State& state, std::shared_ptr<const Bsdf> bsdf) {
+  const Inputs& in = inputs();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(bsdf->sample(in.wo[i], in.u[i]));
+    i = (i + 1) & (kN - 1);
+  }
+}
+
+void pdf_bench(benchmark::State& state, std::shared_ptr<const Bsdf> bsdf) {
+  const Inputs& in = inputs();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(bsdf->pdf(in.wi[i], in.wo[i]));
+    i = (i + 1) & (kN - 1);
+  }
+}
+
+// A two-lobe mixture of gltf lobes on the stack, as the MIP lookup builds per shading point.
+class TwoGltfLobes final : public Bsdf {
+ public:
+  TwoGltfLobes() : a_({Rgb(0.8f, 0.2f, 0.1f), 0.0f, 0.6f}), b_({Rgb(0.9f), 1.0f, 0.15f}) {
+    mix_.add(a_, 0.7f);
+    mix_.add(b_, 0.3f);
+  }
+  Rgb eval(const glm::vec3& wi, const glm::vec3& wo) const override { return mix_.eval(wi, wo); }
+  BsdfSample sample(const glm::vec3& wo, const SampleU& u) const override { return mix_.sample(wo, u); }
+  float pdf(const glm::vec3& wi, const glm::vec3& wo) const override { return mix_.pdf(wi, wo); }
+
+ private:
+  GltfBsdf a_, b_;
+  Mixture mix_;
+};
+
+struct Registrar {
+  Registrar() {
+    struct Case {
+      std::string label, name;
+      std::vector<std::string> params, impulses;
+    };
+    std::vector<Case> cases = {
+        {"lambert", "lambert", {}, {}},
+        {"phong", "phong", {}, {}},
+        {"blinn-phong", "blinn-phong", {}, {}},
+        {"lafortune/2lobes", "lafortune", {"lobe=-1,-1,1,20", "lobe=1,1,1,5,0.2,0.2,0.2"}, {}},
+        {"microfacet/ggx", "microfacet", {}, {}},
+        {"microfacet/beckmann", "microfacet", {"distribution=beckmann"}, {}},
+        {"microfacet/ggx-conductor", "microfacet", {"fresnel=conductor"}, {}},
+        {"cook-torrance", "cook-torrance", {}, {}},
+        {"oren-nayar", "oren-nayar", {}, {}},
+        {"gltf", "gltf", {}, {}},
+        {"mirror", "mirror", {}, {}},
+        {"dielectric", "dielectric", {}, {}},
+        {"conductor-mirror", "conductor-mirror", {}, {}},
+        {"lambert+mirror:0.4", "lambert", {"albedo=0.2"}, {"mirror:0.4"}},
+    };
+    std::vector<std::pair<std::string, std::shared_ptr<const Bsdf>>> models;
+    for (const Case& c : cases) models.push_back({c.label, make_model(c.name, c.params, c.impulses)});
+    GltfParams g;
+    g.roughness = 0.4f;
+    models.push_back({"measured", std::make_shared<Measured>(std::make_shared<MerlTable>(MerlTable::tabulate(GltfBsdf(g))))});
+    models.push_back({"mixture/2-gltf-lobes", std::make_shared<TwoGltfLobes>()});
+    for (const auto& [label, bsdf] : models) {
+      benchmark::RegisterBenchmark(("eval/" + label).c_str(), eval_bench, bsdf);
+      benchmark::RegisterBenchmark(("sample/" + label).c_str(), sample_bench, bsdf);
+      benchmark::RegisterBenchmark(("pdf/" + label).c_str(), pdf_bench, bsdf);
+    }
+  }
+} registrar;
+
+}  // namespace
