@@ -161,8 +161,12 @@ float ColorConfig::srgb_texture_to_linear(float v) const { return apply_one(impl
 float ColorConfig::linear_to_srgb_texture(float v) const { return apply_one(impl_->linear_to_srgb, v); }
 
 void ColorConfig::linear_to_display(Image& image, const std::string& display, const std::string& view) const {
-  const std::string& d = display.empty() ? impl_->display : display;
-  const std::string& v = view.empty() ? (display.empty() ? impl_->view : std::string(impl_->config->getDefaultView(d.c_str()))) : view;
+  const std::string d = display.empty() ? impl_->display : display;
+  std::string v = view;
+  if (v.empty()) {
+    const char* default_view = impl_->config->getDefaultView(d.c_str());
+    v = default_view ? default_view : "";
+  }
   try {
     const auto cpu = impl_->config
                          ->getProcessor(impl_->scene_linear.c_str(), d.c_str(), v.c_str(), OCIO::TRANSFORM_DIR_FORWARD)
