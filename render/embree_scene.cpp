@@ -57,7 +57,7 @@ float surface_alpha(const GeometryData& g, unsigned triangle, float b1, float b2
   float alpha = m.base_alpha;
   const MeshPrimitive& p = *g.prim;
   if (m.base_color_texture.present()) {
-    const glm::vec2 uv = interpolate(p.texcoords[m.base_color_texture.tex_coord], p, triangle, b1, b2);
+    const glm::vec2 uv = interpolate(p.texcoords[m.base_color_texture.uv_set()], p, triangle, b1, b2);
     alpha *= g.textures->lookup(m.base_color_texture, uv, true).a;
   }
   if (!p.colors.empty()) {

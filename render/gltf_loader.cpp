@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <span>
 #include <sstream>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -14,7 +15,6 @@
 
 #include "base/error.h"
 #include "render/gltf_accessor.h"
-#include "render/image_decode.h"
 #include "render/tangents.h"
 
 namespace svbrdf {
@@ -146,8 +146,9 @@ class Loader {
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
       ImageDesc& d = scene_.images[i];
       try {
-        d.pixels = decode_image(callback_.images[i].bytes, d.mime_type.empty() ? d.uri : d.mime_type,
-                                d.uri.empty() ? d.where : d.where + " ('" + d.uri + "')");
+        const auto& b = callback_.images[i].bytes;
+        d.pixels = read_image_from_memory(std::as_bytes(std::span(b.data(), b.size())), d.mime_type,
+                                          d.uri.empty() ? d.where : d.where + " ('" + d.uri + "')");
       } catch (const Error& e) {
         errors[i] = e.what();
       }
@@ -155,15 +156,6 @@ class Loader {
     for (std::size_t i = 0; i < n; ++i)
       if (!errors[i].empty()) throw input_error(path_.string(), errors[i]);
     callback_.images.clear();
-  }
-
-  static WrapMode wrap_mode(int gl, const std::string& where, const Loader& self) {
-    switch (gl) {
-      case TINYGLTF_TEXTURE_WRAP_REPEAT: return WrapMode::repeat;
-      case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return WrapMode::clamp_to_edge;
-      case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return WrapMode::mirrored_repeat;
-      default: self.fail(where, "unknown wrap mode " + std::to_string(gl));
-    }
   }
 
   void read_textures() {
@@ -183,8 +175,10 @@ class Loader {
                                          std::to_string(model_.samplers.size()) + " samplers");
         const auto& s = model_.samplers[static_cast<std::size_t>(t.sampler)];
         const std::string sw = idx("samplers", t.sampler);
-        d.sampler.wrap_s = wrap_mode(s.wrapS, sw + ".wrapS", *this);
-        d.sampler.wrap_t = wrap_mode(s.wrapT, sw + ".wrapT", *this);
+        const std::string file = path_.string() + ": ";
+        d.sampler.wrap_s = wrap_mode_from_gltf(s.wrapS, file + sw + ".wrapS");
+        d.sampler.wrap_t = wrap_mode_from_gltf(s.wrapT, file + sw + ".wrapT");
+        if (s.magFilter >= 0) d.sampler.filter = filter_mode_from_gltf(s.magFilter, file + sw + ".magFilter");
       }
       scene_.textures.push_back(d);
     }
@@ -222,12 +216,13 @@ class Loader {
     };
     const double rot = number(tt, "rotation", 0.0);
     if (!std::isfinite(rot)) fail(w + ".rotation", "is not a finite number");
-    r.transform = TextureTransform::make(vec2("offset", glm::vec2(0)), float(rot), vec2("scale", glm::vec2(1)));
+    int override_set = -1;
     if (tt.Has("texCoord")) {
       const double tc = number(tt, "texCoord", 0);
       if (tc != 0 && tc != 1) fail(w + ".texCoord", "is " + std::to_string(tc) + "; TEXCOORD_0 and _1 are read");
-      r.tex_coord = int(tc);
+      override_set = int(tc);
     }
+    r.transform = TextureTransform::make(vec2("offset", glm::vec2(0)), float(rot), vec2("scale", glm::vec2(1)), override_set);
   }
 
   TextureRef texture_ref(int index, int tex_coord, const tinygltf::ExtensionMap& ext, const std::string& where) const {
@@ -451,14 +446,14 @@ class Loader {
 
     const MaterialDesc& mat = scene_.material_of(prim);
     for (int s = 0; s < 2; ++s) {
-      const bool used = (mat.base_color_texture.present() && mat.base_color_texture.tex_coord == s) ||
-                        (mat.metallic_roughness_texture.present() && mat.metallic_roughness_texture.tex_coord == s) ||
-                        (mat.normal_texture.present() && mat.normal_texture.tex_coord == s) ||
-                        (mat.emissive_texture.present() && mat.emissive_texture.tex_coord == s) ||
-                        (mat.specular_texture.present() && mat.specular_texture.tex_coord == s) ||
-                        (mat.specular_color_texture.present() && mat.specular_color_texture.tex_coord == s) ||
-                        (mat.transmission_texture.present() && mat.transmission_texture.tex_coord == s) ||
-                        (mat.diffuse_roughness_texture.present() && mat.diffuse_roughness_texture.tex_coord == s);
+      const bool used = (mat.base_color_texture.present() && mat.base_color_texture.uv_set() == s) ||
+                        (mat.metallic_roughness_texture.present() && mat.metallic_roughness_texture.uv_set() == s) ||
+                        (mat.normal_texture.present() && mat.normal_texture.uv_set() == s) ||
+                        (mat.emissive_texture.present() && mat.emissive_texture.uv_set() == s) ||
+                        (mat.specular_texture.present() && mat.specular_texture.uv_set() == s) ||
+                        (mat.specular_color_texture.present() && mat.specular_color_texture.uv_set() == s) ||
+                        (mat.transmission_texture.present() && mat.transmission_texture.uv_set() == s) ||
+                        (mat.diffuse_roughness_texture.present() && mat.diffuse_roughness_texture.uv_set() == s);
       if (used && prim.texcoords[s].empty())
         fail(where + ".attributes", mat.where + " samples a texture with TEXCOORD_" + std::to_string(s) +
                                         ", which this primitive does not have");
@@ -466,7 +461,7 @@ class Loader {
     if (prim.normals.empty()) {
       make_flat_normals(prim);
     }
-    if (prim.tangents.empty() && mat.normal_texture.present()) generate_tangents(prim, mat.normal_texture.tex_coord);
+    if (prim.tangents.empty() && mat.normal_texture.present()) generate_tangents(prim, mat.normal_texture.uv_set());
     return true;
   }
 

@@ -54,7 +54,7 @@ LightDesc sun_light(float elevation_deg, float azimuth_deg, float irradiance) {
   l.type = LightDesc::Type::directional;
   l.intensity = irradiance;
   const float el = glm::radians(elevation_deg), az = glm::radians(azimuth_deg);
-  const glm::vec3 toward_sun(std::cos(el) * std::sin(az), std::sin(el), -std::cos(el) * std::cos(az));
+  const glm::vec3 toward_sun(std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az));
   l.direction = -toward_sun;
   return l;
 }

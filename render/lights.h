@@ -51,8 +51,9 @@ class Environment {
   float total_ = 0.0f;
 };
 
-// "--sun elevation,azimuth[,irradiance]" in degrees: a directional light toward the scene from
-// elevation above the horizon (+Y up) and azimuth measured from −Z toward +X.
+// "--sun elevation,azimuth[,irradiance]" in degrees: a directional light coming from `elevation`
+// above the horizon (+Y up) and `azimuth` measured from +Z (glTF's front, where a default camera
+// stands) toward +X, so azimuth 0 lights what faces the viewer.
 LightDesc sun_light(float elevation_deg, float azimuth_deg, float irradiance);
 
 }  // namespace svbrdf

@@ -2,43 +2,17 @@
 // A glTF material as the renderer reads it (DESIGN.md, "Data through the house", step 1): the
 // factors, and for every texture slot a reference to a texture with its uv set and
 // KHR_texture_transform. Nothing here is decoded yet; textures are sampled at shading time.
-#include <cmath>
 #include <string>
 
 #include <glm/glm.hpp>
 
 #include "appearance/bsdf.h"
+#include "textures/sampler.h"
 
 namespace svbrdf {
 
-// KHR_texture_transform: uv' = T · R · S · uv with u' = cos·u + sin·v, v' = −sin·u + cos·v, the
-// rotation the reference viewers use (KhronosGroup/glTF issue #1563: the README's GLSL listing is
-// transposed) and the textures module's sampler (textures/sampler.h) adopts. A stand-in until that
-// sampler is in main.
-struct TextureTransform {
-  glm::vec2 offset{0.0f};
-  float rotation = 0.0f;  // radians
-  glm::vec2 scale{1.0f};
-
-  static TextureTransform make(glm::vec2 offset, float rotation, glm::vec2 scale) {
-    TextureTransform t;
-    t.offset = offset, t.rotation = rotation, t.scale = scale;
-    t.cos_ = std::cos(rotation), t.sin_ = std::sin(rotation);
-    return t;
-  }
-  bool is_identity() const { return offset == glm::vec2(0) && rotation == 0.0f && scale == glm::vec2(1); }
-  glm::vec2 apply(glm::vec2 uv) const { return apply_linear(uv) + offset; }
-  // The linear part, for carrying uv derivatives (footprints) through the transform.
-  glm::vec2 apply_linear(glm::vec2 duv) const {
-    const glm::vec2 su = duv * scale;
-    return {cos_ * su.x + sin_ * su.y, -sin_ * su.x + cos_ * su.y};
-  }
-
- private:
-  float cos_ = 1.0f, sin_ = 0.0f;
-};
-
-// One texture slot of a material: which texture, which TEXCOORD_n, the transform, and the slot's
+// One texture slot of a material: which texture, the textureInfo's TEXCOORD_n, its
+// KHR_texture_transform (textures/sampler.h, with the extension's texCoord override), and the slot's
 // scalar (normalTexture.scale, occlusionTexture.strength; 1 elsewhere).
 struct TextureRef {
   int texture = -1;  // index into Scene::textures; −1 when the slot is empty
@@ -47,6 +21,8 @@ struct TextureRef {
   float scale = 1.0f;
 
   bool present() const { return texture >= 0; }
+  // The TEXCOORD set to read: the transform's override if any, else the textureInfo's.
+  int uv_set() const { return transform.effective_tex_coord(tex_coord); }
 };
 
 enum class AlphaMode { opaque, mask, blend };

@@ -7,17 +7,15 @@
 
 namespace svbrdf {
 
-Image to_display(const Image& linear, float exposure) {
+Image to_display(const Image& linear, float exposure, const ColorConfig& color) {
   Image out = linear;
   const float scale = std::exp2(exposure);
-  for (float& v : out.pixels) {
-    const float x = std::clamp(v * scale, 0.0f, 1.0f);
-    v = x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1.0f / 2.4f) - 0.055f;
-  }
+  for (float& v : out.pixels) v *= scale;
+  color.linear_to_display(out);
   return out;
 }
 
-void write_outputs(const Film& film, const OutputOptions& o) {
+void write_outputs(const Film& film, const OutputOptions& o, const ColorConfig& color) {
   namespace fs = std::filesystem;
   auto ensure_dir = [](const fs::path& p) {
     if (!p.has_parent_path()) return;
@@ -31,7 +29,7 @@ void write_outputs(const Film& film, const OutputOptions& o) {
   fs::path png = o.png;
   if (png.empty()) png = fs::path(o.exr).replace_extension(".png");
   ensure_dir(png);
-  write_image(png, to_display(radiance, o.exposure), PixelFormat::uint8);
+  write_image(png, to_display(radiance, o.exposure, color), PixelFormat::uint8);
   if (o.aovs) {
     auto aov = [&](const char* name) {
       fs::path p = o.exr;

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "render/renderer.h"
+#include "textures/color.h"
 
 namespace svbrdf {
 
@@ -15,11 +16,9 @@ struct OutputOptions {
   bool aovs = false;          // <stem>.albedo.exr, .normal.exr, .depth.exr, .level.exr
 };
 
-void write_outputs(const Film& film, const OutputOptions& options);
+void write_outputs(const Film& film, const OutputOptions& options, const ColorConfig& color = ColorConfig::builtin());
 
-// Scene-linear → 8-bit sRGB display values: 2^exposure, then the sRGB transfer function
-// (IEC 61966-2-1), clamped. A stand-in for the OpenColorIO display transform of the textures
-// module (its ColorConfig::linear_to_display) until that is in main.
-Image to_display(const Image& linear, float exposure);
+// Scene-linear → display values: 2^exposure, then the config's default display and view.
+Image to_display(const Image& linear, float exposure, const ColorConfig& color = ColorConfig::builtin());
 
 }  // namespace svbrdf

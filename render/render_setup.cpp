@@ -54,8 +54,8 @@ std::optional<Rgb> parse_color(const std::string& text) {
   return std::nullopt;
 }
 
-PreparedScene::PreparedScene(Scene scene, const SceneSetup& setup) : scene_(std::move(scene)) {
-  textures_ = std::make_unique<TextureSet>(scene_);
+PreparedScene::PreparedScene(Scene scene, const SceneSetup& setup, const ColorConfig& color) : scene_(std::move(scene)) {
+  textures_ = std::make_unique<TextureSet>(scene_, color);
   bvh_ = std::make_unique<EmbreeScene>(device_, scene_, *textures_);
 
   const int ci = pick_camera(scene_, setup.camera);

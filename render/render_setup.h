@@ -11,6 +11,7 @@
 #include "render/integrator.h"
 #include "render/scene.h"
 #include "render/texture_set.h"
+#include "textures/color.h"
 
 namespace svbrdf {
 
@@ -26,7 +27,7 @@ struct SceneSetup {
 
 class PreparedScene {
  public:
-  PreparedScene(Scene scene, const SceneSetup& setup);
+  PreparedScene(Scene scene, const SceneSetup& setup, const ColorConfig& color = ColorConfig::builtin());
   const RenderWorld& world() const { return world_; }
   const Scene& scene() const { return scene_; }
   const Camera& camera() const { return *camera_; }

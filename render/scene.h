@@ -12,6 +12,7 @@
 
 #include "render/material_desc.h"
 #include "textures/image.h"
+#include "textures/sampler.h"
 
 namespace svbrdf {
 
@@ -41,16 +42,9 @@ struct Instance {
   glm::dmat4 to_world{1.0};
 };
 
-enum class WrapMode { repeat, clamp_to_edge, mirrored_repeat };
-
-struct SamplerDesc {
-  WrapMode wrap_s = WrapMode::repeat;
-  WrapMode wrap_t = WrapMode::repeat;
-};
-
 struct TextureDesc {
   int image = -1;  // index into Scene::images
-  SamplerDesc sampler;
+  Sampler sampler;  // the glTF sampler's wrap modes and filter (textures/sampler.h)
   std::string where;  // "textures[4]"
 };
 

@@ -87,7 +87,7 @@ void apply_normal_map(SurfacePoint& sp, const TextureSet& textures) {
   if (!m.normal_texture.present()) return;
   const MeshPrimitive& prim = *sp.geom->prim;
   if (prim.tangents.empty()) return;  // the loader makes tangents wherever a normal map is used
-  const glm::vec3 rgb = glm::vec3(textures.lookup(m.normal_texture, sp.uv[m.normal_texture.tex_coord], false));
+  const glm::vec3 rgb = glm::vec3(textures.lookup(m.normal_texture, sp.uv[m.normal_texture.uv_set()], false));
   const glm::vec3 t = decode_normal(rgb, m.normal_texture.scale);
   // The tangent frame of the front face (a back face mirrors the mapped normal with it).
   const glm::vec3 n = sp.front ? sp.shading.n : -sp.shading.n;
@@ -102,7 +102,7 @@ void apply_normal_map(SurfacePoint& sp, const TextureSet& textures) {
 ShadingParams shading_params(const SurfacePoint& sp, const TextureSet& textures) {
   const MaterialDesc& m = *sp.material;
   ShadingParams sh;
-  auto tex = [&](const TextureRef& r, bool color) { return textures.lookup(r, sp.uv[r.tex_coord], color); };
+  auto tex = [&](const TextureRef& r, bool color) { return textures.lookup(r, sp.uv[r.uv_set()], color); };
   sh.base_color = m.base_color * Rgb(sp.color);
   if (m.base_color_texture.present()) sh.base_color *= Rgb(tex(m.base_color_texture, true));
   sh.metallic = m.metallic;

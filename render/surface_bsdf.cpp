@@ -4,12 +4,12 @@
 #include <cmath>
 
 #include "appearance/gltf.h"
+#include "appearance/microfacet_distribution.h"
+#include "appearance/sampling.h"
 
 namespace svbrdf {
 
 namespace {
-constexpr float kPiF = 3.14159265358979323846f;
-constexpr float kInvPiF = 0.318309886183790671538f;
 
 float max3(const Rgb& c) { return std::max(c.x, std::max(c.y, c.z)); }
 float pow5(float x) {
@@ -20,68 +20,28 @@ float pow5(float x) {
 float ggx_vis(float a2, float ci, float co) {
   return 0.5f / (co * std::sqrt(a2 + (1.0f - a2) * ci * ci) + ci * std::sqrt(a2 + (1.0f - a2) * co * co));
 }
-glm::vec3 cosine_sample(glm::vec2 u) {
-  // Malley's method over the concentric disk (Shirley & Chiu 1997).
-  const float a = 2.0f * u.x - 1.0f, b = 2.0f * u.y - 1.0f;
-  float r = 0.0f, phi = 0.0f;
-  if (a != 0.0f || b != 0.0f) {
-    if (a * a > b * b) r = a, phi = (kPiF / 4.0f) * (b / a);
-    else r = b, phi = (kPiF / 2.0f) - (kPiF / 4.0f) * (a / b);
-  }
-  const float x = r * std::cos(phi), y = r * std::sin(phi);
-  return {x, y, std::sqrt(std::max(0.0f, 1.0f - x * x - y * y))};
-}
 }  // namespace
 
-float ggx_d_standin(float alpha, const glm::vec3& h) {
-  if (h.z <= 0.0f) return 0.0f;
-  // α²/(π(cos²θ(α²−1)+1)²) written with sin²θ = h.x² + h.y², so nothing cancels near the peak.
-  const float a2 = alpha * alpha;
-  const float q = a2 * h.z * h.z + h.x * h.x + h.y * h.y;
-  const float len2 = glm::dot(h, h);
-  return a2 * len2 * len2 * kInvPiF / (q * q);
-}
-
-float ggx_g1_standin(float alpha, const glm::vec3& w) {
-  if (w.z <= 0.0f) return 0.0f;
-  const float t2 = (w.x * w.x + w.y * w.y) / (w.z * w.z);
-  return 2.0f / (1.0f + std::sqrt(1.0f + alpha * alpha * t2));
-}
-
-glm::vec3 ggx_sample_visible_standin(float alpha, const glm::vec3& wo, glm::vec2 u) {
-  const glm::vec3 vh = glm::normalize(glm::vec3(alpha * wo.x, alpha * wo.y, wo.z));
-  const float len2 = vh.x * vh.x + vh.y * vh.y;
-  const glm::vec3 t1 = len2 > 0.0f ? glm::vec3(-vh.y, vh.x, 0.0f) / std::sqrt(len2) : glm::vec3(1, 0, 0);
-  const glm::vec3 t2 = glm::cross(vh, t1);
-  const float r = std::sqrt(u.x), phi = 2.0f * kPiF * u.y;
-  const float p1 = r * std::cos(phi);
-  float p2 = r * std::sin(phi);
-  const float s = 0.5f * (1.0f + vh.z);
-  p2 = (1.0f - s) * std::sqrt(std::max(0.0f, 1.0f - p1 * p1)) + s * p2;
-  const glm::vec3 nh = p1 * t1 + p2 * t2 + std::sqrt(std::max(0.0f, 1.0f - p1 * p1 - p2 * p2)) * vh;
-  return glm::normalize(glm::vec3(alpha * nh.x, alpha * nh.y, std::max(1e-7f, nh.z)));
-}
-
 float eon_fon_albedo(float mu, float r) {
-  constexpr float c1 = 0.5f - 2.0f / (3.0f * kPiF);
+  constexpr float c1 = 0.5f - 2.0f / (3.0f * kPi);
   const float mc = 1.0f - mu;
   const float g_over_pi = mc * (0.0571085289f + mc * (0.491881867f + mc * (-0.332181442f + mc * 0.0714429953f)));
   return (1.0f + r * g_over_pi) / (1.0f + c1 * r);
 }
 
 Rgb eon_eval(const Rgb& rho, float r, const glm::vec3& wi, const glm::vec3& wo) {
-  constexpr float c1 = 0.5f - 2.0f / (3.0f * kPiF);
-  constexpr float c2 = 2.0f / 3.0f - 28.0f / (15.0f * kPiF);
+  constexpr float c1 = 0.5f - 2.0f / (3.0f * kPi);
+  constexpr float c2 = 2.0f / 3.0f - 28.0f / (15.0f * kPi);
   const float mi = wi.z, mo = wo.z;
   const float s = glm::dot(wi, wo) - mi * mo;
   const float s_over_t = s > 0.0f ? s / std::max(mi, mo) : s;
   const float af = 1.0f / (1.0f + c1 * r);
-  const Rgb f_ss = rho * kInvPiF * (af * (1.0f + r * s_over_t));
+  const Rgb f_ss = rho * kInvPi * (af * (1.0f + r * s_over_t));
   const float avg = af * (1.0f + c2 * r);
   const Rgb rho_ms = rho * rho * avg / (Rgb(1.0f) - rho * (1.0f - avg));
   const float e_o = eon_fon_albedo(mo, r), e_i = eon_fon_albedo(mi, r);
   const float eps = 1e-7f;
-  const Rgb f_ms = rho_ms * kInvPiF *
+  const Rgb f_ms = rho_ms * kInvPi *
                    (std::max(eps, 1.0f - e_o) * std::max(eps, 1.0f - e_i) / std::max(eps, 1.0f - avg));
   return f_ss + f_ms;
 }
@@ -98,14 +58,14 @@ SurfaceBsdf::SurfaceBsdf(const ShadingParams& p) : p_(p) {
 
 Rgb SurfaceBsdf::diffuse_f(const glm::vec3& wi, const glm::vec3& wo) const {
   if (p_.diffuse_roughness > 0.0f) return eon_eval(p_.base_color, std::min(p_.diffuse_roughness, 1.0f), wi, wo);
-  return p_.base_color * kInvPiF;
+  return p_.base_color * kInvPi;
 }
 
 Rgb SurfaceBsdf::eval(const glm::vec3& wi, const glm::vec3& wo) const {
   if (wi.z <= 0.0f || wo.z <= 0.0f) return Rgb(0.0f);
   const glm::vec3 h = glm::normalize(wi + wo);
   const float a2 = alpha_ * alpha_;
-  const float s = ggx_vis(a2, wi.z, wo.z) * ggx_d_standin(alpha_, h);
+  const float s = ggx_vis(a2, wi.z, wo.z) * ggx_d(alpha_, h);
   const float w = pow5(1.0f - std::abs(glm::dot(wo, h)));
   const Rgb fr = f0_ + (Rgb(1.0f) - f0_) * w;
   const Rgb base = (1.0f - p_.transmission) * diffuse_f(wi, wo);
@@ -149,11 +109,11 @@ SurfaceBsdf::LobeChoice SurfaceBsdf::choose(const glm::vec3& wo) const {
 float SurfaceBsdf::pdf(const glm::vec3& wi, const glm::vec3& wo) const {
   if (wi.z <= 0.0f || wo.z <= 0.0f) return 0.0f;
   const LobeChoice c = choose(wo);
-  float p = c.diffuse * wi.z * kInvPiF;
+  float p = c.diffuse * wi.z * kInvPi;
   if (c.specular > 0.0f) {
     const glm::vec3 h = glm::normalize(wi + wo);
     // Visible-normal density D_wo(h) = G1(wo)·max(0, wo·h)·D(h)/wo.z, over the reflection Jacobian 4·(wo·h).
-    p += c.specular * ggx_g1_standin(alpha_, wo) * ggx_d_standin(alpha_, h) / (4.0f * wo.z);
+    p += c.specular * (1.0f / (1.0f + ggx_lambda(alpha_, wo))) * ggx_d(alpha_, h) / (4.0f * wo.z);
   }
   return p;
 }
@@ -171,10 +131,10 @@ BsdfSample SurfaceBsdf::sample(const glm::vec3& wo, const SampleU& u) const {
     out.kind = SampleKind::impulse;
     return out;
   } else if (u.x < c.transmission + c.specular) {
-    const glm::vec3 h = ggx_sample_visible_standin(alpha_, wo, uv);
+    const glm::vec3 h = sample_ggx_visible(alpha_, wo, uv);
     wi = 2.0f * glm::dot(wo, h) * h - wo;
   } else if (c.diffuse > 0.0f) {
-    wi = cosine_sample(uv);
+    wi = sample_cosine_hemisphere(uv);
   } else {
     return out;
   }

@@ -43,12 +43,6 @@ class SurfaceBsdf final : public Bsdf {
   float transmission_weight_;
 };
 
-// Stand-ins for the appearance module's microfacet helpers (GGX D, Smith Λ, visible-normal sampling
-// after Heitz 2018, "Sampling the GGX Distribution of Visible Normals"), until those are in main.
-float ggx_d_standin(float alpha, const glm::vec3& h);
-float ggx_g1_standin(float alpha, const glm::vec3& w);
-glm::vec3 ggx_sample_visible_standin(float alpha, const glm::vec3& wo, glm::vec2 u);
-
 // EON's directional albedo of its single-scattering (FON) part, the fitted form of the paper's
 // Listing 1 (error < 0.1 %), and the full EON BRDF.
 float eon_fon_albedo(float mu, float r);

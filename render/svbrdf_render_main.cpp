@@ -16,6 +16,7 @@
 #include "render/progress.h"
 #include "render/render_setup.h"
 #include "render/renderer.h"
+#include "textures/color.h"
 
 namespace {
 
@@ -41,7 +42,7 @@ fs::path find_showcase(const char* argv0) {
 
 int main(int argc, char** argv) {
   CLI::App app{"svbrdf-render: path-trace a textured glTF 2.0 scene"};
-  std::string scene_file, out = "", png, res, camera, env, sun, filter = "level0", light_sampling = "mis";
+  std::string scene_file, out = "", png, res, camera, env, sun, filter = "level0", light_sampling = "mis", ocio;
   int spp = 64, threads = 0, max_depth = 16;
   std::uint64_t seed = 0;
   double time_limit = 0.0;
@@ -66,6 +67,7 @@ int main(int argc, char** argv) {
   app.add_option("--light-sampling", light_sampling, "environment sampling: mis | nee | bsdf")
       ->check(CLI::IsMember({"mis", "nee", "bsdf"}));
   app.add_option("--exposure", exposure, "exposure in stops for the PNG (the EXR is never scaled)");
+  app.add_option("--ocio-config", ocio, "OpenColorIO config for texture decoding and the PNG (default: $OCIO, else the built-in one)");
   app.add_flag("--float", use_float, "write 32-bit float EXR (default half)");
   app.add_flag("--aov", aovs, "also write albedo, normal, depth and MIP-level EXRs beside the output");
   app.add_flag("-q,--quiet", quiet, "no progress output");
@@ -94,9 +96,11 @@ int main(int argc, char** argv) {
     if (out.empty()) out = (fs::path("out") / scene_path.stem()).string() + ".exr";
     if (fs::path(out).extension() != ".exr") throw svbrdf::input_error("--out " + out, "the output must be an .exr file");
 
+    const svbrdf::ColorConfig color =
+        svbrdf::ColorConfig::resolve(ocio.empty() ? std::nullopt : std::optional<fs::path>(ocio));
     svbrdf::Scene scene = svbrdf::load_gltf(scene_path);
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "svbrdf-render: warning: %s\n", w.c_str());
-    const svbrdf::PreparedScene prepared(std::move(scene), setup);
+    const svbrdf::PreparedScene prepared(std::move(scene), setup, color);
 
     svbrdf::RenderOptions options;
     options.spp = spp;
@@ -122,7 +126,7 @@ int main(int argc, char** argv) {
     oo.float32 = use_float;
     oo.exposure = exposure;
     oo.aovs = aovs;
-    svbrdf::write_outputs(film, oo);
+    svbrdf::write_outputs(film, oo, color);
     if (!quiet) std::fprintf(stderr, "svbrdf-render: wrote %s\n", out.c_str());
     if (stats.interrupted) {
       std::fprintf(stderr, "svbrdf-render: interrupted; wrote the %llu samples that had accumulated\n",

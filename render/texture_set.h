@@ -1,40 +1,44 @@
 #pragma once
-// The scene's textures ready for lookups at shading time: color images (base color, emissive,
-// specular color) converted sRGB → linear once, data images kept raw. Lookups are the `level0`
-// filter of issue 6: the nearest texel at the exact uv, with the sampler's wrap modes and the slot's
-// KHR_texture_transform. Allocation-free and thread-safe after construction.
-//
-// A stand-in until the textures module's sampler and OpenColorIO config are in main (issue 4):
-// then the conversion goes through its ColorConfig and the lookup through its sample().
+// The scene's textures ready for lookups at shading time, through the textures module: color images
+// (base color, emissive, specular color) converted sRGB → scene-linear once by its OpenColorIO
+// config, data images kept raw; lookups by its sampler (textures/sampler.h) with the glTF sampler's
+// wrap modes and the slot's KHR_texture_transform. The `level0` filter of issue 6 is the nearest
+// texel at the exact uv. Allocation-free and thread-safe after construction.
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "render/scene.h"
+#include "textures/color.h"
 
 namespace svbrdf {
 
 class TextureSet {
  public:
-  explicit TextureSet(const Scene& scene);
+  TextureSet(const Scene& scene, const ColorConfig& color = ColorConfig::builtin());
 
   // The slot's texture at `uv` (the primitive's TEXCOORD_n, before the slot's transform); RGBA with
   // gray expanded and a missing alpha read as 1. `color` selects the linearized copy.
-  glm::vec4 lookup(const TextureRef& ref, glm::vec2 uv, bool color) const;
+  glm::vec4 lookup(const TextureRef& ref, glm::vec2 uv, bool color) const {
+    const Prepared& p = textures_[static_cast<std::size_t>(ref.texture)];
+    const Image& image = color && p.linear ? *p.linear : *p.raw;
+    return sample(image, p.sampler, ref.transform.apply(uv));
+  }
 
   // Texture size in texels (for footprints and the MIP-level AOV).
-  glm::ivec2 size(const TextureRef& ref) const;
+  glm::ivec2 size(const TextureRef& ref) const {
+    const Image& im = *textures_[static_cast<std::size_t>(ref.texture)].raw;
+    return {im.width, im.height};
+  }
 
  private:
   struct Prepared {
     const Image* raw = nullptr;
-    Image linear;  // empty unless a color slot uses the image
+    const Image* linear = nullptr;  // null unless a color slot uses the image
+    Sampler sampler;                // nearest, with the texture's wrap modes
   };
-  const Scene& scene_;
-  std::vector<Prepared> images_;
+  std::vector<Image> linear_images_;  // per scene image; empty when no color slot uses it
+  std::vector<Prepared> textures_;     // per scene texture
 };
-
-// IEC 61966-2-1 sRGB decoding (stand-in for the OCIO path; same numbers: 0.5 → 0.214041).
-float srgb_to_linear(float c);
 
 }  // namespace svbrdf
