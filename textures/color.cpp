@@ -27,10 +27,19 @@ constexpr auto kOptimization =
     static_cast<OCIO::OptimizationFlags>(OCIO::OPTIMIZATION_DEFAULT & ~OCIO::OPTIMIZATION_FAST_LOG_EXP_POW);
 
 // Names under which configs in the wild (ours, the ACES 1.x and OCIO 2 ACES configs, Blender's)
-// carry the sRGB texture encoding; the first one the config knows is used.
+// carry linear Rec.709 and the sRGB texture encoding; the first one the config knows is used.
+constexpr std::array<const char*, 5> kLinearRec709Names = {"Linear Rec.709 (sRGB)", "lin_rec709", "Utility - Linear - sRGB",
+                                                          "Linear Rec.709", "lin_srgb"};
 constexpr std::array<const char*, 6> kSrgbTextureNames = {
     "sRGB - Texture", "srgb_tx", "Utility - sRGB - Texture", "Input - Generic - sRGB - Texture", "srgb_texture",
     "sRGB"};
+
+template <std::size_t N>
+std::string first_known(const OCIO::ConstConfigRcPtr& config, const std::array<const char*, N>& names) {
+  for (const char* name : names)
+    if (const auto cs = config->getColorSpace(name)) return cs->getName();
+  return {};
+}
 
 OCIO::ConstCPUProcessorRcPtr cpu_processor(const OCIO::ConstConfigRcPtr& config, const char* from, const char* to) {
   return config->getProcessor(from, to)->getOptimizedCPUProcessor(OCIO::BIT_DEPTH_F32, OCIO::BIT_DEPTH_F32,
@@ -42,27 +51,23 @@ OCIO::ConstCPUProcessorRcPtr cpu_processor(const OCIO::ConstConfigRcPtr& config,
 struct ColorConfig::Impl {
   std::string source;
   OCIO::ConstConfigRcPtr config;
-  std::string scene_linear, srgb_texture, display, view;
+  std::string linear, srgb_texture, display, view;
   OCIO::ConstCPUProcessorRcPtr srgb_to_linear, linear_to_srgb;
 
   Impl(std::string src, OCIO::ConstConfigRcPtr cfg) : source(std::move(src)), config(std::move(cfg)) {
     config->validate();
-    const auto linear = config->getColorSpace(OCIO::ROLE_SCENE_LINEAR);
-    if (!linear) throw input_error(source, "OCIO config has no scene_linear role");
-    scene_linear = linear->getName();
-    for (const char* name : kSrgbTextureNames) {
-      if (const auto cs = config->getColorSpace(name)) {
-        srgb_texture = cs->getName();
-        break;
-      }
-    }
+    linear = first_known(config, kLinearRec709Names);
+    if (linear.empty())
+      throw input_error(source, "OCIO config has no linear Rec.709 color space (looked for \"Linear Rec.709 (sRGB)\", "
+                                "\"lin_rec709\", \"Utility - Linear - sRGB\", \"Linear Rec.709\")");
+    srgb_texture = first_known(config, kSrgbTextureNames);
     if (srgb_texture.empty())
       throw input_error(source, "OCIO config has no sRGB texture color space (looked for \"sRGB - Texture\", "
                                 "\"srgb_tx\", \"Utility - sRGB - Texture\", \"sRGB\")");
     display = config->getDefaultDisplay();
     view = config->getDefaultView(display.c_str());
-    srgb_to_linear = cpu_processor(config, srgb_texture.c_str(), scene_linear.c_str());
-    linear_to_srgb = cpu_processor(config, scene_linear.c_str(), srgb_texture.c_str());
+    srgb_to_linear = cpu_processor(config, srgb_texture.c_str(), linear.c_str());
+    linear_to_srgb = cpu_processor(config, linear.c_str(), srgb_texture.c_str());
   }
 };
 
@@ -149,7 +154,7 @@ ColorConfig ColorConfig::resolve(const std::optional<std::filesystem::path>& exp
 }
 
 const std::string& ColorConfig::source() const { return impl_->source; }
-const std::string& ColorConfig::scene_linear_space() const { return impl_->scene_linear; }
+const std::string& ColorConfig::linear_space() const { return impl_->linear; }
 const std::string& ColorConfig::srgb_texture_space() const { return impl_->srgb_texture; }
 const std::string& ColorConfig::default_display() const { return impl_->display; }
 const std::string& ColorConfig::default_view() const { return impl_->view; }
@@ -169,7 +174,7 @@ void ColorConfig::linear_to_display(Image& image, const std::string& display, co
   }
   try {
     const auto cpu = impl_->config
-                         ->getProcessor(impl_->scene_linear.c_str(), d.c_str(), v.c_str(), OCIO::TRANSFORM_DIR_FORWARD)
+                         ->getProcessor(impl_->linear.c_str(), d.c_str(), v.c_str(), OCIO::TRANSFORM_DIR_FORWARD)
                          ->getOptimizedCPUProcessor(OCIO::BIT_DEPTH_F32, OCIO::BIT_DEPTH_F32, kOptimization);
     apply_processor(cpu, image);
   } catch (const OCIO::Exception& e) {

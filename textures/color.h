@@ -1,7 +1,10 @@
 #pragma once
 // Color through OpenColorIO (DESIGN.md, "Data through the house"): color textures (base color,
-// emissive) are sRGB-encoded and go sRGB → scene-linear; data textures (normal, metallic-roughness,
-// occlusion) stay raw; rendered output goes scene-linear → display. The project's own config
+// emissive) are sRGB-encoded and go sRGB → linear; data textures (normal, metallic-roughness,
+// occlusion) stay raw; rendered output goes linear → display. "Linear" is the project's working
+// space, linear Rec.709 (DESIGN.md, "Conventions"), whatever the config's scene_linear role is: an
+// ACES config renders in ACEScg, but our BRDFs, palettes and MaterialTexels are Rec.709, so the
+// config is asked for its linear Rec.709 space by name. The project's own config
 // (textures/ocio/config.ocio) is compiled into the library, so an installed binary needs no file;
 // $OCIO or an explicit path (the programs' --ocio-config) replaces it, e.g. with an ACES config.
 #include <filesystem>
@@ -19,7 +22,9 @@ class ColorConfig {
   // The config compiled into the library (textures/ocio/config.ocio).
   static const ColorConfig& builtin();
   // A config file; throws svbrdf::Error naming the file when it is missing or invalid, or when it
-  // has no scene-linear role or no sRGB texture color space.
+  // has no linear Rec.709 or no sRGB texture color space (under any of the names configs in the
+  // wild use: "Linear Rec.709 (sRGB)", "lin_rec709", "Utility - Linear - sRGB", "Linear Rec.709";
+  // "sRGB - Texture", "srgb_tx", "Utility - sRGB - Texture", "sRGB").
   static ColorConfig from_file(const std::filesystem::path& path);
   // The config a program should use: `explicit_path` if given, else $OCIO if set and non-empty,
   // else the built-in one.
@@ -27,8 +32,8 @@ class ColorConfig {
 
   // "built-in" or the file's path: for messages.
   const std::string& source() const;
-  // The color-space names this config uses for the three encodings the project needs.
-  const std::string& scene_linear_space() const;
+  // The color-space names this config uses for the encodings the project needs.
+  const std::string& linear_space() const;  // linear Rec.709, the working space
   const std::string& srgb_texture_space() const;
   const std::string& default_display() const;
   const std::string& default_view() const;
@@ -37,7 +42,7 @@ class ColorConfig {
   // channels) is first expanded to RGB(A), as glTF reads gray color textures.
   void srgb_texture_to_linear(Image& image) const;
   void linear_to_srgb_texture(Image& image) const;
-  // Scene-linear → a display/view of the config (empty: its defaults), for rendered output.
+  // Linear Rec.709 → a display/view of the config (empty: its defaults), for rendered output.
   void linear_to_display(Image& image, const std::string& display = {}, const std::string& view = {}) const;
   // Any two color spaces of the config (names or aliases); throws svbrdf::Error for an unknown name.
   void convert(Image& image, const std::string& from, const std::string& to) const;

@@ -118,26 +118,24 @@ TEST(Color, ConfigResolution) {
     EXPECT_NE(std::string(e.what()).find("broken.ocio"), std::string::npos) << e.what();
     EXPECT_EQ(e.exit_code(), 2);
   }
-  const auto no_srgb = write("no_srgb.ocio", R"(ocio_profile_version: 2
-roles:
-  default: lin
-  scene_linear: lin
-  data: lin
-displays:
-  d:
-    - !<View> {name: v, colorspace: lin}
-colorspaces:
-  - !<ColorSpace>
-    name: lin
-    isdata: false
-)");
-  try {
-    ColorConfig::from_file(no_srgb);
-    ADD_FAILURE() << "no error for a config without an sRGB texture space";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("no_srgb.ocio"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("sRGB"), std::string::npos) << e.what();
-  }
+  // A config with only the given color space (and roles pointing at it).
+  const auto minimal = [&](const std::string& file, const std::string& space) {
+    return write(file, "ocio_profile_version: 2\nroles:\n  default: " + space + "\n  scene_linear: " + space +
+                           "\n  data: " + space + "\ndisplays:\n  d:\n    - !<View> {name: v, colorspace: " + space +
+                           "}\ncolorspaces:\n  - !<ColorSpace>\n    name: " + space + "\n    isdata: false\n");
+  };
+  const auto expect_refused = [](const std::filesystem::path& file, const std::string& needle) {
+    try {
+      ColorConfig::from_file(file);
+      ADD_FAILURE() << "no error for " << file;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(file.filename().string()), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+      EXPECT_EQ(e.exit_code(), 2);
+    }
+  };
+  expect_refused(minimal("no_srgb.ocio", "lin_rec709"), "no sRGB texture color space");
+  expect_refused(minimal("no_linear.ocio", "sRGB - Texture"), "no linear Rec.709 color space");
   EXPECT_THROW(ColorConfig::from_file(dir / "absent.ocio"), Error);
 }
 
