@@ -6,8 +6,9 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
 
+# expect_bad COMMAND...: the command exits 2 with one line on stderr and writes nothing.
 expect_bad() {
-  "$bake" "$@" >"$tmp/out" 2>"$tmp/err"
+  "$@" >"$tmp/out" 2>"$tmp/err"
   rc=$?
   [ "$rc" -eq 2 ] || fail "exit $rc (want 2) for: $*; stderr: $(cat "$tmp/err")"
   [ "$(wc -l <"$tmp/err")" -eq 1 ] || fail "stderr is not one line for: $*: $(cat "$tmp/err")"
@@ -15,14 +16,14 @@ expect_bad() {
   echo "ok: $* -> $(cat "$tmp/err")"
 }
 
-expect_bad material marble --out "$tmp/a"
-expect_bad material granite --variant blue --out "$tmp/a"
-expect_bad material granite --size 100 --out "$tmp/a"
-expect_bad material granite --size 0 --out "$tmp/a"
-expect_bad material granite --size 1048576 --out "$tmp/a"
-expect_bad material granite --mm-per-texel -1 --out "$tmp/a"
-expect_bad material granite --ocio-config "$tmp/none.ocio" --out "$tmp/a"
-OCIO="$tmp/none.ocio" expect_bad material granite --out "$tmp/a"
+expect_bad "$bake" material marble --out "$tmp/a"
+expect_bad "$bake" material granite --variant blue --out "$tmp/a"
+expect_bad "$bake" material granite --size 100 --out "$tmp/a"
+expect_bad "$bake" material granite --size 0 --out "$tmp/a"
+expect_bad "$bake" material granite --size 1048576 --out "$tmp/a"
+expect_bad "$bake" material granite --mm-per-texel -1 --out "$tmp/a"
+expect_bad "$bake" material granite --ocio-config "$tmp/none.ocio" --out "$tmp/a"
+expect_bad env OCIO="$tmp/none.ocio" "$bake" material granite --out "$tmp/a"
 echo x >"$tmp/file"
 "$bake" material granite --size 8 --out "$tmp/file" >/dev/null 2>"$tmp/err"
 [ $? -eq 2 ] || fail "no exit 2 for an output path that is a file"
