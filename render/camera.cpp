@@ -26,6 +26,10 @@ Camera::Camera(const CameraDesc& d, int width, int height) : type_(d.type), widt
   }
   znear_ = d.znear;
   zfar_ = d.zfar;
+  // The image plane at distance 1 along forward (perspective) or through the eye (orthographic).
+  dx_ = right_ * (2.0f * half_w_ / float(width_));
+  dy_ = -up_ * (2.0f * half_h_ / float(height_));
+  corner_ = right_ * -half_w_ + up_ * half_h_ + (type_ == CameraDesc::Type::perspective ? forward_ : glm::vec3(0.0f));
 }
 
 CameraDesc Camera::framing(const glm::vec3& lo, const glm::vec3& hi) {
@@ -49,27 +53,18 @@ CameraDesc Camera::framing(const glm::vec3& lo, const glm::vec3& hi) {
   return d;
 }
 
-// Film (x, y) → camera-space point on the plane z = −1 (perspective) or z = 0 (orthographic),
-// expressed in the right/up units of that plane.
-glm::vec3 Camera::direction_camera(float x, float y) const {
-  const float sx = (2.0f * x / float(width_) - 1.0f) * half_w_;
-  const float sy = (1.0f - 2.0f * y / float(height_)) * half_h_;
-  return {sx, sy, -1.0f};
-}
-
 Ray Camera::ray_at(float x, float y) const {
-  const glm::vec3 c = direction_camera(x, y);
+  const glm::vec3 q = corner_ + x * dx_ + y * dy_;
   Ray r;
   if (type_ == CameraDesc::Type::perspective) {
-    const glm::vec3 d = right_ * c.x + up_ * c.y + forward_;
-    const float len = glm::length(d);
+    const float len = std::sqrt(glm::dot(q, q));
     r.origin = position_;
-    r.dir = d / len;
+    r.dir = q * (1.0f / len);
     // znear/zfar are distances along −Z; along this ray they scale by len.
     r.tnear = znear_ * len;
     r.tfar = zfar_ > 0.0f ? zfar_ * len : 3.4e38f;
   } else {
-    r.origin = position_ + right_ * c.x + up_ * c.y;
+    r.origin = position_ + q;
     r.dir = forward_;
     r.tnear = znear_;
     r.tfar = zfar_ > 0.0f ? zfar_ : 3.4e38f;

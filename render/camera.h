@@ -35,6 +35,8 @@ class Camera {
   // The ray through film position (x, y) in pixels from the top-left corner of the image
   // (x ∈ [0, width)), with its one-pixel differentials.
   CameraRay generate(float x, float y) const;
+  // The ray alone, for renders that need no footprint.
+  Ray ray(float x, float y) const { return ray_at(x, y); }
 
   // pbrt-v4's approximation for rays that did not come from the camera: the position differentials
   // that a camera ray reaching p would have on the plane through p with normal n.
@@ -46,13 +48,13 @@ class Camera {
   const glm::vec3& forward() const { return forward_; }
 
  private:
-  glm::vec3 direction_camera(float x, float y) const;
   Ray ray_at(float x, float y) const;
 
   CameraDesc::Type type_;
   int width_, height_;
   glm::vec3 position_, right_, up_, forward_;  // orthonormal (node scale removed)
   float half_w_ = 1.0f, half_h_ = 1.0f;        // tan(fov/2)·aspect and tan(fov/2), or ortho half extents
+  glm::vec3 dx_, dy_, corner_;                 // film (x, y) ↦ corner + x·dx + y·dy on the image plane
   float znear_ = 0.0f, zfar_ = 0.0f;
 };
 

@@ -41,7 +41,9 @@ float base_color_level(const RenderWorld& w, const SurfacePoint& sp, const Footp
 
 PathSample trace_path(const RenderWorld& w, const IntegratorSettings& s, float film_x, float film_y, Rng& rng) {
   PathSample out;
-  const CameraRay cr = w.camera->generate(film_x, film_y);
+  CameraRay cr;
+  if (s.footprints) cr = w.camera->generate(film_x, film_y);
+  else cr.ray = w.camera->ray(film_x, film_y);
   Ray ray = cr.ray;
   Rgb beta(1.0f);
   bool last_impulse = true;  // the camera ray counts as an impulse: nothing else could have found what it sees
@@ -50,8 +52,17 @@ PathSample trace_path(const RenderWorld& w, const IntegratorSettings& s, float f
   auto u1 = [&] { return rng.next_float(); };
   auto seed = [&] { return (std::uint64_t(rng.next_u32()) << 32) | rng.next_u32(); };
 
+  auto occluded = [&](const glm::vec3& o, const glm::vec3& d, float tmax) {
+    const std::uint64_t sd = seed();
+    ++out.rays;
+    if (w.ray_log) w.ray_log->record(o, d, 0.0f, tmax, sd, true);
+    return w.bvh->occluded(o, d, 0.0f, tmax, sd);
+  };
+
   for (int depth = 0;; ++depth) {
-    const RayHit hit = w.bvh->intersect(ray.origin, ray.dir, ray.tnear, ray.tfar, seed());
+    const std::uint64_t hit_seed = seed();
+    if (w.ray_log) w.ray_log->record(ray.origin, ray.dir, ray.tnear, ray.tfar, hit_seed, false);
+    const RayHit hit = w.bvh->intersect(ray.origin, ray.dir, ray.tnear, ray.tfar, hit_seed);
     ++out.rays;
     if (!hit.found()) {
       if (env_on) {
@@ -72,9 +83,11 @@ PathSample trace_path(const RenderWorld& w, const IntegratorSettings& s, float f
       out.albedo = sh.base_color;
       out.normal = sp.shading.n;
       out.depth = hit.t;
-      glm::vec3 dpdx, dpdy;
-      camera_dp(sp, cr, dpdx, dpdy);
-      out.mip_level = base_color_level(w, sp, footprint(sp, dpdx, dpdy));
+      if (s.footprints) {
+        glm::vec3 dpdx, dpdy;
+        camera_dp(sp, cr, dpdx, dpdy);
+        out.mip_level = base_color_level(w, sp, footprint(sp, dpdx, dpdy));
+      }
     }
     if (sh.unlit) {
       // KHR_materials_unlit: the base color is the radiance leaving toward the viewer; nothing scatters.
@@ -96,8 +109,7 @@ PathSample trace_path(const RenderWorld& w, const IntegratorSettings& s, float f
       if (max3(f) <= 0.0f) continue;
       const glm::vec3 o = offset_origin(sp.p, sp.ng, a.wi, w.scene_extent);
       const float tmax = std::isinf(a.distance) ? kInfinity : glm::length(light.position - o) * (1.0f - 1e-5f);
-      ++out.rays;
-      if (!w.bvh->occluded(o, a.wi, 0.0f, tmax, seed())) out.radiance += beta * f * a.irradiance * wi.z;
+      if (!occluded(o, a.wi, tmax)) out.radiance += beta * f * a.irradiance * wi.z;
     }
     // Next-event estimation: the environment.
     if (env_on && s.light_sampling != LightSampling::bsdf) {
@@ -107,8 +119,7 @@ PathSample trace_path(const RenderWorld& w, const IntegratorSettings& s, float f
         const glm::vec3 wi = sp.shading.to_local(dir);
         const Rgb f = bsdf.eval(wi, wo);
         if (max3(f) > 0.0f) {
-          ++out.rays;
-          if (!w.bvh->occluded(offset_origin(sp.p, sp.ng, dir, w.scene_extent), dir, 0.0f, kInfinity, seed())) {
+          if (!occluded(offset_origin(sp.p, sp.ng, dir, w.scene_extent), dir, kInfinity)) {
             const float weight =
                 s.light_sampling == LightSampling::mis ? power_heuristic(pdf_light, bsdf.pdf(wi, wo)) : 1.0f;
             out.radiance += beta * f * w.environment.radiance(dir) * (wi.z * weight / pdf_light);

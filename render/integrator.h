@@ -11,6 +11,7 @@
 #include "render/camera.h"
 #include "render/embree_scene.h"
 #include "render/lights.h"
+#include "render/ray_log.h"
 #include "render/texture_set.h"
 
 namespace svbrdf {
@@ -32,6 +33,7 @@ struct RenderWorld {
   std::vector<LightDesc> lights;  // punctual lights, world space
   Environment environment = Environment::uniform(Rgb(0.0f));
   float scene_extent = 1.0f;      // bounding-box diagonal, for ray offsets
+  RayLog* ray_log = nullptr;      // when set, every traced ray is recorded (benchmarks)
 };
 
 struct IntegratorSettings {
@@ -39,6 +41,9 @@ struct IntegratorSettings {
   int rr_depth = 3;     // Russian roulette from this depth on
   LightSampling light_sampling = LightSampling::mis;
   TextureFilter filter = TextureFilter::level0;
+  // Compute the first hit's texture footprint (the MIP-level AOV; MIP filters need footprints at
+  // every hit). Off, camera rays skip their differentials.
+  bool footprints = true;
 };
 
 // One camera sample's results: radiance and the first hit's auxiliary values.

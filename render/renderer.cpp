@@ -104,10 +104,12 @@ Film render(const RenderWorld& world, const RenderOptions& opt, RenderStats* sta
                     // A non-finite sample would poison the pixel; it counts as black (never seen in tests).
                     const Rgb L = std::isfinite(ps.radiance.x + ps.radiance.y + ps.radiance.z) ? ps.radiance : Rgb(0.0f);
                     film.radiance_sum[p] += glm::dvec3(L);
-                    film.albedo_sum[p] += ps.albedo;
-                    film.normal_sum[p] += ps.normal;
-                    film.depth_sum[p] += ps.depth;
-                    film.level_sum[p] += ps.mip_level;
+                    if (opt.aovs) {
+                      film.albedo_sum[p] += ps.albedo;
+                      film.normal_sum[p] += ps.normal;
+                      film.depth_sum[p] += ps.depth;
+                      film.level_sum[p] += ps.mip_level;
+                    }
                     ++film.samples[p];
                     ++tile_samples;
                   }

@@ -42,6 +42,7 @@ struct RenderOptions {
   int threads = 0;  // 0: all cores
   std::uint64_t seed = 0;
   IntegratorSettings integrator;
+  bool aovs = true;                         // accumulate albedo, normal, depth and MIP level
   double time_limit = 0.0;                  // seconds; 0 = none
   const std::atomic<bool>* cancel = nullptr;  // set by a signal handler (Ctrl-C)
   std::function<void(const ProgressInfo&)> progress;  // called about every 0.2 s from one thread

@@ -108,6 +108,8 @@ int main(int argc, char** argv) {
     options.seed = seed;
     options.time_limit = time_limit;
     options.integrator.max_depth = max_depth;
+    options.integrator.footprints = aovs;  // only the MIP-level AOV reads them while filters are level0
+    options.aovs = aovs;
     options.integrator.light_sampling = light_sampling == "nee"    ? svbrdf::LightSampling::nee
                                         : light_sampling == "bsdf" ? svbrdf::LightSampling::bsdf
                                                                    : svbrdf::LightSampling::mis;
