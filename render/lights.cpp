@@ -109,7 +109,7 @@ Environment Environment::from_image(Image im, const std::string& where) {
 Rgb Environment::radiance(const glm::vec3& d) const {
   if (image_.pixels.empty()) return uniform_;
   const float u = 0.5f + std::atan2(d.x, -d.z) / (2.0f * kPiF);
-  const float v = std::acos(std::clamp(d.y, -1.0f, 1.0f)) / kPiF;
+  const float v = std::atan2(std::sqrt(d.x * d.x + d.z * d.z), d.y) / kPiF;
   const int i = std::clamp(int(u * float(image_.width)), 0, image_.width - 1);
   const int j = std::clamp(int(v * float(image_.height)), 0, image_.height - 1);
   const float* px = &image_.pixels[(std::size_t(j) * image_.width + i) * 3];
@@ -143,11 +143,13 @@ glm::vec3 Environment::sample(glm::vec2 u, float& pdf) const {
 float Environment::pdf(const glm::vec3& d) const {
   if (image_.pixels.empty()) return 1.0f / (4.0f * kPiF);
   const int w = image_.width, h = image_.height;
+  // θ from atan2 and sinθ from the horizontal length: accurate near the poles, where acos(d.y)
+  // and 1 − d.y² lose every digit.
+  const float sin_theta = std::sqrt(d.x * d.x + d.z * d.z);
   const float u = 0.5f + std::atan2(d.x, -d.z) / (2.0f * kPiF);
-  const float v = std::acos(std::clamp(d.y, -1.0f, 1.0f)) / kPiF;
+  const float v = std::atan2(sin_theta, d.y) / kPiF;
   const int i = std::clamp(int(u * float(w)), 0, w - 1);
   const int j = std::clamp(int(v * float(h)), 0, h - 1);
-  const float sin_theta = std::sin(v * kPiF);
   if (sin_theta <= 0.0f) return 0.0f;
   // Density in (u, v) is f·w·h / total; the map (u, v) → direction has Jacobian 2π²·sinθ.
   const float p_uv = pixel_func_[std::size_t(j) * w + i] * float(w) * float(h) / total_;

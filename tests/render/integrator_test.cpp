@@ -424,3 +424,81 @@ TEST(SurfaceBsdf, EonWhiteFurnace) {
 
 }  // namespace
 }  // namespace svbrdf
+
+namespace svbrdf {
+namespace {
+
+// The equirectangular environment's sampler: E[L(ω)/p(ω)] is ∫ L dω, which for a piecewise-constant
+// image is exactly Σ L_ij·ΔΩ_ij with ΔΩ_ij = (2π/W)·(cos θ_j − cos θ_{j+1}); and p integrates to 1.
+TEST(Environment, ImportanceSamplingIsUnbiased) {
+  Image im(8, 4, 3);
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 8; ++i)
+      for (int c = 0; c < 3; ++c) im.at(i, j, c) = 0.1f + float((i * 7 + j * 3 + c) % 5) * (j == 1 && i == 2 ? 20.0f : 1.0f);
+  const Environment env = Environment::from_image(im, "test");
+  double exact = 0.0;
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 8; ++i)
+      exact += im.at(i, j, 1) * (2.0 * kPiF / 8.0) * (std::cos(kPiF * j / 4.0) - std::cos(kPiF * (j + 1) / 4.0));
+  Rng rng(5, 5);
+  const int n = 400000;
+  double est = 0.0, pdf_integral = 0.0;
+  for (int k = 0; k < n; ++k) {
+    float pdf = 0.0f;
+    const glm::vec3 d = env.sample({rng.next_float(), rng.next_float()}, pdf);
+    ASSERT_GT(pdf, 0.0f);
+    EXPECT_NEAR(pdf, env.pdf(d), 1e-3f * pdf);
+    est += env.radiance(d).y / pdf;
+    // ∫ p dω by uniform sphere sampling.
+    const float z = 1.0f - 2.0f * rng.next_float(), phi = 2.0f * kPiF * rng.next_float(), r = std::sqrt(1.0f - z * z);
+    pdf_integral += env.pdf({r * std::cos(phi), z, r * std::sin(phi)}) * 4.0 * kPiF;
+  }
+  EXPECT_NEAR(est / n, exact, 0.002 * exact);
+  EXPECT_NEAR(pdf_integral / n, 1.0, 0.02);
+}
+
+// Ray differentials: an orthographic camera of half height 1 over W pixels sees a 2-unit quad whose
+// uv spans [0, 1], so one pixel step moves uv by 1/W and a base color texture of N texels has a
+// footprint of N/W texels: the MIP-level AOV reads log2(N/W).
+TEST(Integrator, CameraFootprintGivesTheMipLevel) {
+  Scene s;
+  ImageDesc im;
+  im.pixels = Image(256, 256, 3);
+  s.images.push_back(std::move(im));
+  TextureDesc t;
+  t.image = 0;
+  s.textures.push_back(t);
+  MaterialDesc m = lambertian(Rgb(1.0f));
+  m.base_color_texture.texture = 0;
+  s.materials.push_back(m);
+  add_quad(s, 0, glm::dmat4(1.0), 2.0f);
+  s.cameras.push_back(ortho_camera({0, 0, 5}, {0, 0, 0}, 1.0f));
+  SceneSetup setup;
+  setup.width = setup.height = 16;
+  const Image level = render_scene(std::move(s), setup, 1).mip_level();
+  // 256 texels over 16 pixels: 16 texels per pixel, level 4.
+  EXPECT_NEAR(level.at(8, 8, 0), 4.0f, 1e-4f);
+  EXPECT_NEAR(level.at(2, 13, 0), 4.0f, 1e-4f);
+}
+
+// Perspective: at distance d along the axis, a pixel spans 2·d·tan(fov/2)/H; the approximation used
+// for secondary rays (pbrt-v4's, from the camera) agrees with the exact camera differential there.
+TEST(Camera, DifferentialsAtKnownDistance) {
+  const CameraDesc desc = test::perspective_camera({0, 0, 4}, {0, 0, 0}, 60.0f);
+  const Camera cam(desc, 200, 100);
+  const CameraRay cr = cam.generate(100.0f, 50.0f);
+  const glm::vec3 n(0, 0, 1);
+  auto on_plane = [&](const glm::vec3& o, const glm::vec3& d) { return o + d * (-o.z / d.z); };
+  const glm::vec3 p = on_plane(cr.ray.origin, cr.ray.dir);
+  const glm::vec3 dpdx = on_plane(cr.dx_origin, cr.dx_dir) - p, dpdy = on_plane(cr.dy_origin, cr.dy_dir) - p;
+  const float pixel = 2.0f * 4.0f * std::tan(glm::radians(30.0f)) / 100.0f;
+  EXPECT_NEAR(dpdx.x, pixel, 1e-3f * pixel);
+  EXPECT_NEAR(dpdy.y, -pixel, 1e-3f * pixel);
+  glm::vec3 ax, ay;
+  cam.approximate_dp(p, n, ax, ay);
+  EXPECT_NEAR(glm::length(ax - dpdx), 0.0f, 1e-3f * pixel);
+  EXPECT_NEAR(glm::length(ay - dpdy), 0.0f, 1e-3f * pixel);
+}
+
+}  // namespace
+}  // namespace svbrdf
