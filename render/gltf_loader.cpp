@@ -10,7 +10,6 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
-#include <tbb/parallel_for.h>
 #include <tiny_gltf.h>
 
 #include "base/error.h"
@@ -141,20 +140,18 @@ class Loader {
       if (!ib.loaded || ib.bytes.empty())
         fail(d.where, im.uri.empty() ? "has no image data" : "cannot read the image file '" + im.uri + "'");
     }
-    // Decoding is the slow part of loading a textured scene; images are independent.
-    std::vector<std::string> errors(n);
-    tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) {
+    // One image at a time: OpenImageIO 2.4.7 crashes (decode_icc_profile) when PNGs with ICC
+    // profiles are opened concurrently, e.g. TextureEncodingTest's *_icc.png.
+    for (std::size_t i = 0; i < n; ++i) {
       ImageDesc& d = scene_.images[i];
+      const auto& b = callback_.images[i].bytes;
       try {
-        const auto& b = callback_.images[i].bytes;
         d.pixels = read_image_from_memory(std::as_bytes(std::span(b.data(), b.size())), d.mime_type,
                                           d.uri.empty() ? d.where : d.where + " ('" + d.uri + "')");
       } catch (const Error& e) {
-        errors[i] = e.what();
+        throw input_error(path_.string(), e.what());
       }
-    });
-    for (std::size_t i = 0; i < n; ++i)
-      if (!errors[i].empty()) throw input_error(path_.string(), errors[i]);
+    }
     callback_.images.clear();
   }
 
