@@ -40,10 +40,10 @@ void surface_filter(const RTCFilterFunctionNArguments* args) {
     if (g->material->alpha_mode == AlphaMode::mask) {
       if (alpha < g->material->alpha_cutoff) args->valid[i] = 0;
     } else {
-      // Stochastic opacity: one uniform number per (ray, surface, triangle), so a path's decision
-      // never depends on traversal order or thread.
-      const std::uint64_t h =
-          mix64(ctx->seed ^ mix64((std::uint64_t(g->id) << 32) + tri + 1));
+      // Stochastic opacity: one uniform number per (ray, placed surface, triangle), so a path's
+      // decision never depends on traversal order or thread, and two instances of a mesh decide apart.
+      const std::uint64_t inst = RTCHitN_instID(args->hit, args->N, i, 0);
+      const std::uint64_t h = mix64(ctx->seed ^ mix64((std::uint64_t(g->id) << 32) + tri + 1) ^ mix64(inst + 7));
       const float xi = static_cast<float>(h >> 40) * 0x1p-24f;
       if (xi >= alpha) args->valid[i] = 0;
     }
