@@ -24,9 +24,12 @@ using gltf::AccessorShape;
 
 std::string idx(const char* array, int i) { return std::string(array) + "[" + std::to_string(i) + "]"; }
 
+// tinygltf's message, made one line and short (it can quote a whole data: URI).
 std::string first_line(const std::string& s) {
   std::string line = s.substr(0, s.find('\n'));
   while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+  constexpr std::size_t kMax = 200;
+  if (line.size() > kMax) line = line.substr(0, kMax) + "...";
   return line;
 }
 

@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <limits>
 #include <string>
@@ -29,6 +31,7 @@ void expect_error(const fs::path& file, const std::string& what) {
     ADD_FAILURE() << file << " loaded; expected an error naming " << what;
   } catch (const Error& e) {
     const std::string msg = e.what();
+    if (std::getenv("SVBRDF_PRINT_ERRORS")) std::printf("%s\n", msg.c_str());  // to read them all at once
     EXPECT_EQ(e.exit_code(), 2) << msg;
     EXPECT_NE(msg.find(what), std::string::npos) << "message: " << msg << "\nexpected it to name: " << what;
     EXPECT_EQ(msg.find('\n'), std::string::npos) << "one line: " << msg;
@@ -285,6 +288,20 @@ TEST(GltfLoader, GlbWithShortBinChunk) {
   std::vector<unsigned char> bin = q.bytes();
   bin.resize(16);
   expect_error(dir.write_bytes("short.glb", test::make_glb(json, bin)), "short.glb");
+}
+
+// An image in a buffer view that reaches past the buffer: tinygltf 2.7 would hand over bytes past
+// the end; the loader refuses before reading them.
+TEST(GltfLoader, ImageBufferViewPastTheBuffer) {
+  TempDir dir;
+  GltfQuad q;
+  std::string json = q.json();
+  const auto a = json.find("\"uri\": \""), b = json.find('"', a + 8);
+  json.erase(a, b - a + 3);
+  json.replace(json.find("], \"accessors\""), 1, ", {\"buffer\": 0, \"byteOffset\": 40, \"byteLength\": 5000}]");
+  json.pop_back();
+  json += R"(, "images": [{"bufferView": 2, "mimeType": "image/png"}]})";
+  expect_error(dir.write_bytes("img.glb", test::make_glb(json, q.bytes())), "bufferViews[2]");
 }
 
 TEST(GltfLoader, GlbRoundTrip) {
