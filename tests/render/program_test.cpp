@@ -84,9 +84,14 @@ TEST(Program, UnitsEndToEnd) {
   const Image im = read_image(out);
   ASSERT_EQ(im.width, 8);
   const float rho[3] = {0.25f, 0.5f, 0.75f};
+  // The PNG is the same radiance through the display transform: sRGB's IEC 61966-2-1 encoding
+  // (exposure 0), in 8 bits.
+  const Image png = read_image(dir.path() / "lit.png");
   for (int c = 0; c < 3; ++c) {
     const float expected = rho[c] / 3.14159265f * 2.5f * 0.5f;
     EXPECT_NEAR(im.at(3, 4, c), expected, 2e-6f * expected);
+    const float encoded = expected <= 0.0031308f ? 12.92f * expected : 1.055f * std::pow(expected, 1.0f / 2.4f) - 0.055f;
+    EXPECT_NEAR(png.at(3, 4, c), encoded, 0.6f / 255.0f);
   }
 }
 
