@@ -12,5 +12,7 @@ namespace svbrdf {
 void add_material_command(CLI::App& app);
 // `svbrdf-bake mip | eval | compare`: ../shared/spec/brdf-mip.md, "svbrdf-bake surface".
 void add_mip_commands(CLI::App& app);
+// `svbrdf-bake scene RECIPE --out DIR`: scene recipes (scenes/*.json) into glTF scenes.
+void add_scene_command(CLI::App& app);
 
 }  // namespace svbrdf

@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   svbrdf::add_material_command(app);
   svbrdf::add_mip_commands(app);
+  svbrdf::add_scene_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
