@@ -32,6 +32,11 @@ render: build
 bench: build
 	@for b in $(BUILD)/bench/*/bench_*; do echo "== $$b"; $$b --benchmark_repetitions=5 --benchmark_report_aggregates_only=true; done
 
+# The distance-LOD report (issue 7) at its full size (4096 samples per pixel; long: about an hour on
+# 2 cores): out/lod-report/index.html.
+lod-report: build
+	$(BUILD)/scenes/svbrdf-lod-report --full --out out/lod-report
+
 $(ASAN_BUILD)/build.ninja:
 	@$(MAKE) --no-print-directory deps
 	cmake -S . -B $(ASAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSVBRDF_SANITIZE=ON -DSVBRDF_BUILD_BENCH=OFF $(LAUNCHER)

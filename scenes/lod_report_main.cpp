@@ -1,0 +1,84 @@
+// svbrdf-lod-report: the distance-LOD comparison of issue 7 and its HTML report. Renders every LOD
+// scene of the manifest (the build's <build>/scenes/lod/manifest.json by default) under each
+// texture filter and the ground truth, and writes DIR/index.html (default out/lod-report).
+// --full is the report's size (4096 samples per pixel); the default size is what the tests run.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "base/error.h"
+#include "scenes/lod_comparison.h"
+#include "scenes/lod_report.h"
+#include "scenes/lod_scenes.h"
+#include "textures/color.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The LOD manifest the build bakes: <build>/scenes/lod/manifest.json, the program being <build>/scenes/.
+fs::path default_manifest(const char* argv0) {
+  std::error_code ec;
+  fs::path exe = fs::canonical("/proc/self/exe", ec);
+  if (ec) exe = fs::absolute(argv0);
+  return exe.parent_path() / "lod" / "manifest.json";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"svbrdf-lod-report: render the distance-LOD scenes under each texture filter and the ground truth, "
+               "and write an HTML report"};
+  std::string manifest, out = "out/lod-report", ocio;
+  bool full = false, quiet = false;
+  int spp = 0, threads = 0;
+  double min_distance = 0.0;
+  std::vector<std::string> cases, lights, views, filters;
+  app.add_option("--manifest", manifest, "LOD manifest (default: the one the build baked beside this program)");
+  app.add_option("-o,--out", out, "report directory (index.html and img/)");
+  app.add_flag("--full", full, "the report's size: 4096 samples per pixel (default: 256, the tests' size)");
+  app.add_option("--spp", spp, "samples per pixel of every render (overrides the size)")->check(CLI::PositiveNumber);
+  app.add_option("--threads", threads, "worker threads (0: all cores)")->check(CLI::NonNegativeNumber);
+  app.add_option("--min-distance", min_distance, "skip cameras nearer than this multiple of d1");
+  app.add_option("--case", cases, "only these cases (repeatable)");
+  app.add_option("--light", lights, "only these lights (repeatable)");
+  app.add_option("--view", views, "only these views: head-on, mirror (repeatable)");
+  app.add_option("--filter", filters, "filters to compare (default: param toksvig vmf brdf)");
+  app.add_option("--ocio-config", ocio, "OpenColorIO config for the report's PNGs (default: $OCIO, else the built-in one)");
+  app.add_flag("-q,--quiet", quiet, "no progress lines");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  try {
+    const svbrdf::ColorConfig color =
+        svbrdf::ColorConfig::resolve(ocio.empty() ? std::nullopt : std::optional<fs::path>(ocio));
+    const fs::path manifest_path = manifest.empty() ? default_manifest(argv[0]) : fs::path(manifest);
+    const svbrdf::LodManifest m = svbrdf::read_lod_manifest(manifest_path);
+    svbrdf::LodOptions o;
+    o.spp = spp > 0 ? spp : full ? 4096 : 256;
+    o.threads = threads;
+    o.min_distance = min_distance;
+    o.cases = cases, o.lights = lights, o.views = views;
+    if (!filters.empty()) o.filters = filters;
+    if (!quiet) o.progress = [](const std::string& s) { std::fprintf(stderr, "svbrdf-lod-report: %s\n", s.c_str()); };
+    const svbrdf::LodResults results = svbrdf::run_lod_comparison(m, o, color);
+    svbrdf::LodReportInfo info;
+    info.size_name = spp > 0 ? std::to_string(spp) + " spp" : full ? "full" : "default";
+    for (int i = 0; i < argc; ++i) info.command += (i ? " " : "") + std::string(i ? argv[i] : "svbrdf-lod-report");
+    const fs::path index = svbrdf::write_lod_report(results, m, out, info, color);
+    if (!quiet) std::fprintf(stderr, "svbrdf-lod-report: wrote %s (%.0f s)\n", index.c_str(), results.seconds);
+    return 0;
+  } catch (const svbrdf::Error& e) {
+    std::fprintf(stderr, "svbrdf-lod-report: %s\n", e.what());
+    return e.exit_code();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "svbrdf-lod-report: internal error: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,125 @@
+// The LOD report: its charts, and the whole page loaded in headless Chromium (Debian's `chromium`)
+// with no console message — the report carries no script, so any console output means something is
+// broken — and every image it shows present. Skipped with a message where Chromium is absent.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <regex>
+#include <string>
+
+#include "scenes/lod_comparison.h"
+#include "scenes/lod_report.h"
+#include "tests/lod/temp_dir.h"
+
+namespace svbrdf {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::run_command;
+using testing::slurp;
+using testing::TempDir;
+
+const fs::path kManifest = fs::path(SVBRDF_BINARY_DIR) / "scenes" / "lod" / "manifest.json";
+
+TEST(LodReport, ChartPointsLieInThePlot) {
+  const std::string svg = svg_chart("t <&>", "y", {{"a", "#000", false, {1, 4, 16, 1024}, {1e-3, 1e-2, 0.5, 2.0}},
+                                                   {"b", "#111", true, {1, 1024}, {0.0, 1e-4}}},
+                                    true, 320, 220);
+  EXPECT_EQ(svg.rfind("<svg", 0), 0u);
+  EXPECT_EQ(svg.substr(svg.size() - 6), "</svg>");
+  EXPECT_NE(svg.find("t &lt;&amp;&gt;"), std::string::npos);
+  // Every circle inside the plot rectangle [58, 310] × [22, 170]; the zero of the log series skipped.
+  const std::regex circle("<circle cx=\"([0-9.]+)\" cy=\"([0-9.]+)\"");
+  int n = 0;
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), circle); it != std::sregex_iterator(); ++it, ++n) {
+    const double x = std::stod((*it)[1]), y = std::stod((*it)[2]);
+    EXPECT_GE(x, 58.0 - 1e-6);
+    EXPECT_LE(x, 310.0 + 1e-6);
+    EXPECT_GE(y, 22.0 - 1e-6);
+    EXPECT_LE(y, 170.0 + 1e-6);
+  }
+  EXPECT_EQ(n, 5);
+  EXPECT_EQ(html_escape("a<b>&\"c\""), "a&lt;b&gt;&amp;&quot;c&quot;");
+}
+
+// Loads file:// `page` in headless Chromium; returns its stderr (console messages are logged there
+// as "…:CONSOLE:…" lines) and the DOM it rendered.
+struct Loaded {
+  int status = -1;
+  std::string log, dom;
+};
+Loaded load_in_chromium(const fs::path& page, const TempDir& dir) {
+  const std::string cmd = "timeout 120 chromium --headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
+                          "--disable-background-networking --disable-component-update --disable-sync "
+                          "--user-data-dir='" + (dir / "profile").string() + "' --enable-logging=stderr --v=0 "
+                          "--dump-dom 'file://" + page.string() + "'";
+  const auto r = run_command(cmd, dir.path());
+  return {r.status, r.err, r.out};
+}
+
+std::vector<std::string> console_lines(const std::string& log) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  for (std::size_t nl; (nl = log.find('\n', start)) != std::string::npos; start = nl + 1) {
+    const std::string line = log.substr(start, nl - start);
+    if (line.find(":CONSOLE") != std::string::npos) out.push_back(line);
+  }
+  return out;
+}
+
+bool have_chromium() { return std::system("command -v chromium >/dev/null 2>&1") == 0; }
+
+// The harness itself can fail: a page with a script error is caught.
+TEST(LodReport, ChromiumHarnessCatchesConsoleErrors) {
+  if (!have_chromium()) GTEST_SKIP() << "chromium is not installed (Debian package `chromium`): cannot load the report headless";
+  const TempDir dir;
+  {
+    std::ofstream f(dir / "bad.html");
+    f << "<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>bad</title></head><body>"
+         "<script>notDefinedAnywhere();</script></body></html>";
+  }
+  const Loaded l = load_in_chromium(dir / "bad.html", dir);
+  EXPECT_EQ(l.status, 0) << l.log;
+  const auto lines = console_lines(l.log);
+  ASSERT_EQ(lines.size(), 1u) << l.log;
+  EXPECT_NE(lines[0].find("notDefinedAnywhere"), std::string::npos) << lines[0];
+}
+
+TEST(LodReport, RendersInHeadlessChromiumWithoutConsoleErrors) {
+  if (!have_chromium()) GTEST_SKIP() << "chromium is not installed (Debian package `chromium`): cannot load the report headless";
+  const LodManifest m = read_lod_manifest(kManifest);
+  LodOptions o;
+  o.spp = 16;
+  o.cases = {"metal-tray-steel"};
+  o.lights = {"sun-45"};
+  o.min_distance = 256;
+  const LodResults r = run_lod_comparison(m, o);
+  ASSERT_EQ(r.shots.size(), 4u);  // head-on and mirror, 256× and 1024×
+  const TempDir dir;
+  LodReportInfo info;
+  info.size_name = "test";
+  const fs::path index = write_lod_report(r, m, dir / "report", info);
+  ASSERT_TRUE(fs::exists(index));
+
+  // Every image the page shows exists beside it.
+  const std::string html = slurp(index);
+  const std::regex src("<img src=\"([^\"]+)\"");
+  int images = 0;
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), src); it != std::sregex_iterator(); ++it, ++images)
+    EXPECT_TRUE(fs::exists(index.parent_path() / (*it)[1].str())) << (*it)[1];
+  EXPECT_EQ(images, int(r.shots.size() * (1 + 2 * r.filters.size())));
+
+  const Loaded l = load_in_chromium(index, dir);
+  EXPECT_EQ(l.status, 0) << l.log;
+  EXPECT_TRUE(console_lines(l.log).empty()) << console_lines(l.log).front();
+  // It rendered the document: three charts per scene, the tables and the images.
+  EXPECT_NE(l.dom.find("<title>svbrdf"), std::string::npos) << l.dom.substr(0, 300);
+  std::size_t svgs = 0;
+  for (std::size_t p = 0; (p = l.dom.find("<svg xmlns", p)) != std::string::npos; ++p) ++svgs;
+  EXPECT_EQ(svgs, 2u * 3u);  // two scenes (head-on and mirror)
+  EXPECT_NE(l.dom.find("<table class=\"strip\">"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace svbrdf
