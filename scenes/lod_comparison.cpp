@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <map>
 #include <memory>
 #include <optional>
@@ -9,6 +10,7 @@
 #include "base/error.h"
 #include "render/camera.h"
 #include "render/gltf_loader.h"
+#include "render/lights.h"
 #include "render/render_setup.h"
 #include "render/renderer.h"
 
@@ -33,18 +35,18 @@ std::optional<TextureFilter> renderer_filter(const std::string& name) {
   return std::nullopt;
 }
 
-// One glTF file under one light, prepared once and rendered from any of its cameras.
+// One glTF file, prepared once (textures, BVH and whatever the renderer builds per scene), then
+// rendered under any light from any of its cameras: the light and the environment are the world's
+// members, replaced per light as svbrdf-render's --sun and --env would set them.
 class ShotRenderer {
  public:
-  ShotRenderer(const fs::path& gltf, const LodLightSpec& light, int size, const ColorConfig& color) {
+  ShotRenderer(const fs::path& gltf, int size, const ColorConfig& color) : size_(size) {
     Scene scene = load_gltf(gltf);
-    for (const CameraDesc& d : scene.cameras) cameras_.push_back(d);
+    cameras_ = scene.cameras;
     SceneSetup setup;
     setup.width = size, setup.height = size;
-    setup.env = light.env;
-    setup.sun = light.sun;
+    setup.env = "0,0,0";
     prepared_ = std::make_unique<PreparedScene>(std::move(scene), setup, color);
-    size_ = size;
   }
 
   const CameraDesc& camera(const std::string& name) const {
@@ -53,11 +55,30 @@ class ShotRenderer {
     throw input_error(prepared_->scene().file.string(), "no camera named \"" + name + "\"");
   }
 
+  // The world under `light`: the scene's own punctual lights (none in the LOD scenes) plus the sun,
+  // and the environment.
+  RenderWorld world(const LodLightSpec& light) const {
+    RenderWorld w = prepared_->world();
+    if (!light.sun.empty()) {
+      float e = 0, a = 0, irradiance = 0;
+      char extra = 0;
+      if (std::sscanf(light.sun.c_str(), "%f,%f,%f%c", &e, &a, &irradiance, &extra) != 3)
+        throw input_error("LOD light " + light.name, "bad sun \"" + light.sun + "\"");
+      w.lights.push_back(sun_light(e, a, irradiance));
+    }
+    if (const auto c = parse_color(light.env)) {
+      w.environment = Environment::uniform(*c);
+    } else {
+      w.environment = Environment::from_image(read_image(light.env), light.env);
+    }
+    return w;
+  }
+
   // Radiance and depth of one render.
-  std::pair<Image, Image> render_image(const std::string& camera_name, TextureFilter filter, int spp,
-                                       std::uint64_t seed, int max_depth, int threads) const {
+  std::pair<Image, Image> render_image(const RenderWorld& lit, const std::string& camera_name, TextureFilter filter,
+                                       int spp, std::uint64_t seed, int max_depth, int threads) const {
     const Camera cam(camera(camera_name), size_, size_);
-    RenderWorld world = prepared_->world();
+    RenderWorld world = lit;
     world.camera = &cam;
     RenderOptions options;
     options.spp = spp;
@@ -71,9 +92,9 @@ class ShotRenderer {
   }
 
  private:
+  int size_ = 0;
   std::vector<CameraDesc> cameras_;
   std::unique_ptr<PreparedScene> prepared_;
-  int size_ = 0;
 };
 
 bool selected(const std::vector<std::string>& list, const std::string& name) {
@@ -127,11 +148,12 @@ LodResults run_lod_comparison(const LodManifest& m, const LodOptions& o, const C
   for (const LodCase& c : m.cases) {
     if (!selected(o.cases, c.name) || filters.empty()) continue;
     const LodView& v = c.views.front();
-    const ShotRenderer probe(c.gltf, m.light(v.lights.front()), m.image_size, color);
-    const auto level0 = probe.render_image(v.cameras.back(), TextureFilter::level0, 4, o.filter_seed, c.max_depth, o.threads);
+    const ShotRenderer probe(c.gltf, m.image_size, color);
+    const RenderWorld lit = probe.world(m.light(v.lights.front()));
+    const auto level0 = probe.render_image(lit, v.cameras.back(), TextureFilter::level0, 4, o.filter_seed, c.max_depth, o.threads);
     std::vector<std::pair<std::string, TextureFilter>> kept;
     for (const auto& [name, f] : filters) {
-      const auto img = probe.render_image(v.cameras.back(), f, 4, o.filter_seed, c.max_depth, o.threads);
+      const auto img = probe.render_image(lit, v.cameras.back(), f, 4, o.filter_seed, c.max_depth, o.threads);
       if (identical(img.first, level0.first)) {
         say("filter " + name + ": the renderer renders it exactly as level0 (not implemented): skipped");
         results.unavailable.push_back(name);
@@ -146,15 +168,23 @@ LodResults run_lod_comparison(const LodManifest& m, const LodOptions& o, const C
 
   for (const LodCase& c : m.cases) {
     if (!selected(o.cases, c.name)) continue;
+    // Prepared on first use: a case whose shots are all filtered out costs nothing.
+    std::unique_ptr<ShotRenderer> subject_owner, reference_owner;
     for (const LodView& v : c.views) {
       if (!selected(o.views, v.name)) continue;
       for (const std::string& light_name : v.lights) {
         if (!selected(o.lights, light_name)) continue;
-        const LodLightSpec& light = m.light(light_name);
-        const ShotRenderer subject(c.gltf, light, m.image_size, color);
-        std::unique_ptr<ShotRenderer> reference_owner;
-        if (c.reference != c.gltf) reference_owner = std::make_unique<ShotRenderer>(c.reference, light, m.image_size, color);
+        const bool any = std::any_of(m.distances.begin(), m.distances.end(), [&](double k) { return k >= o.min_distance; });
+        if (!any) continue;
+        if (!subject_owner) {
+          subject_owner = std::make_unique<ShotRenderer>(c.gltf, m.image_size, color);
+          if (c.reference != c.gltf) reference_owner = std::make_unique<ShotRenderer>(c.reference, m.image_size, color);
+        }
+        const ShotRenderer& subject = *subject_owner;
         const ShotRenderer& reference = reference_owner ? *reference_owner : subject;
+        const LodLightSpec& light = m.light(light_name);
+        const RenderWorld subject_world = subject.world(light);
+        const RenderWorld reference_world = reference_owner ? reference.world(light) : subject_world;
         for (std::size_t i = 0; i < v.cameras.size(); ++i) {
           const double k = m.distances[i];
           if (k < o.min_distance) continue;
@@ -166,14 +196,14 @@ LodResults run_lod_comparison(const LodManifest& m, const LodOptions& o, const C
           shot.camera = v.cameras[i];
           shot.multiple = k;
           const auto t0 = std::chrono::steady_clock::now();
-          auto [truth, depth] = reference.render_image(shot.camera, TextureFilter::level0, o.spp, o.seed, c.max_depth, o.threads);
-          auto truth2 = reference.render_image(shot.camera, TextureFilter::level0, o.spp, o.second_seed, c.max_depth, o.threads).first;
+          auto [truth, depth] = reference.render_image(reference_world, shot.camera, TextureFilter::level0, o.spp, o.seed, c.max_depth, o.threads);
+          auto truth2 = reference.render_image(reference_world, shot.camera, TextureFilter::level0, o.spp, o.second_seed, c.max_depth, o.threads).first;
           shot.mask = object_mask(depth);
           shot.floor = compare_images(truth2, truth, shot.mask);
           for (const auto& [name, f] : filters) {
             LodShot::FilterResult r;
             r.filter = name;
-            Image img = subject.render_image(shot.camera, f, o.spp, o.filter_seed, c.max_depth, o.threads).first;
+            Image img = subject.render_image(subject_world, shot.camera, f, o.spp, o.filter_seed, c.max_depth, o.threads).first;
             r.metrics = compare_images(img, truth, shot.mask);
             if (o.keep_images) r.image = std::move(img);
             shot.filters.push_back(std::move(r));
