@@ -6,7 +6,7 @@ JOBS       ?= $(shell nproc)
 CTEST_ARGS ?=
 LAUNCHER   := $(if $(shell command -v ccache),-DCMAKE_CXX_COMPILER_LAUNCHER=ccache,)
 
-.PHONY: all deps configure build test render bench asan format lod-report clean
+.PHONY: all deps configure build test test-long render bench asan format lod-report clean
 
 all: build
 
@@ -22,8 +22,12 @@ configure: deps $(BUILD)/build.ninja
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
+# Runs every test but the heavy ones labelled `long` (`make test-long` runs those).
 test: build
-	cd $(BUILD) && ctest -j $(JOBS) --output-on-failure --timeout 600 $(CTEST_ARGS)
+	cd $(BUILD) && ctest -j $(JOBS) --output-on-failure --timeout 600 -LE long $(CTEST_ARGS)
+
+test-long: build
+	cd $(BUILD) && ctest -j $(JOBS) --output-on-failure --timeout 1800 -L long $(CTEST_ARGS)
 
 render: build
 	@mkdir -p out
@@ -39,7 +43,7 @@ lod-report: build
 
 $(ASAN_BUILD)/build.ninja:
 	@$(MAKE) --no-print-directory deps
-	cmake -S . -B $(ASAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSVBRDF_SANITIZE=ON -DSVBRDF_BUILD_BENCH=OFF $(LAUNCHER)
+	cmake -S . -B $(ASAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O1 -g1" -DSVBRDF_SANITIZE=ON -DSVBRDF_BUILD_BENCH=OFF $(LAUNCHER)
 
 # Tests under AddressSanitizer + UndefinedBehaviorSanitizer.
 asan: deps $(ASAN_BUILD)/build.ninja
