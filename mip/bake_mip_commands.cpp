@@ -1,10 +1,181 @@
+// `svbrdf-bake mip | eval | compare` (../shared/spec/brdf-mip.md, "svbrdf-bake surface"):
+//   mip (--base-color IMG | --base-color-factor r,g,b) [--normal IMG [--normal-scale s]]
+//       [--metallic-roughness IMG] [--metallic-factor m] [--roughness-factor r] [--lobes K] --out FILE
+//   mip SCENE.gltf --material NAME|INDEX [--lobes K] --out FILE
+//   eval FILE --level L --texel I J --mode exact|param|toksvig|vmf|brdf   (pairs on stdin)
+//   compare FILE [--levels a..b] [--json] [--subset N]
 #include <CLI/CLI.hpp>
 
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "appearance/direction_text.h"
+#include "base/error.h"
 #include "mip/bake_commands.h"
+#include "mip/compare_report.h"
+#include "mip/gltf_material.h"
+#include "mip/mip_file.h"
+#include "textures/color.h"
+#include "textures/material_loader.h"
 
 namespace svbrdf {
 
-// The MIP commands land with issue 5; until then the subcommands do not exist.
-void add_mip_commands(CLI::App& /*app*/) {}
+namespace {
+
+struct MipOptions {
+  std::string scene, material, base_color, normal, metallic_roughness, out, ocio_config;
+  std::vector<float> base_color_factor;
+  float normal_scale = 1.0f, metallic_factor = 1.0f, roughness_factor = 1.0f;
+  int lobes = kDefaultLobes;
+  float tolerance = ReductionOptions{}.tolerance;
+  bool normal_scale_set = false;
+};
+
+void run_mip(const MipOptions& o) {
+  if (o.lobes < 1 || o.lobes > kMaxLobes)
+    throw input_error("--lobes", std::to_string(o.lobes) + " is out of range (1.." + std::to_string(kMaxLobes) + ")");
+  if (!(o.tolerance >= 0 && o.tolerance < 1)) throw input_error("--tolerance", "must be in [0, 1)");
+  if (std::filesystem::path(o.out).extension() != ".exr") throw input_error("--out", "'" + o.out + "' must end in .exr (an OpenEXR file)");
+  const ColorConfig color =
+      ColorConfig::resolve(o.ocio_config.empty() ? std::nullopt : std::optional<std::filesystem::path>(o.ocio_config));
+  MaterialTexels texels;
+  if (!o.scene.empty()) {
+    if (o.material.empty()) throw input_error("--material", "a glTF file needs --material NAME|INDEX");
+    if (!o.base_color.empty() || !o.normal.empty() || !o.metallic_roughness.empty() || !o.base_color_factor.empty())
+      throw input_error(o.scene, "give either a glTF file with --material or image options, not both");
+    texels = load_gltf_material_texels(o.scene, o.material, color);
+  } else {
+    if (!o.material.empty()) throw input_error("--material", "only goes with a glTF file");
+    if (o.base_color.empty() && o.base_color_factor.empty())
+      throw input_error("", "give --base-color IMG or --base-color-factor r,g,b (or a glTF file with --material)");
+    if (o.normal_scale_set && o.normal.empty()) throw input_error("--normal-scale", "only goes with --normal IMG");
+    MaterialFiles f;
+    if (!o.base_color.empty()) f.base_color = o.base_color;
+    if (!o.base_color_factor.empty()) f.base_color_factor = glm::vec4(o.base_color_factor[0], o.base_color_factor[1], o.base_color_factor[2], 1.0f);
+    if (!o.metallic_roughness.empty()) f.metallic_roughness = o.metallic_roughness;
+    f.metallic_factor = o.metallic_factor;
+    f.roughness_factor = o.roughness_factor;
+    if (!o.normal.empty()) f.normal = o.normal;
+    f.normal_scale = o.normal_scale;
+    texels = load_material_texels(f, color);
+  }
+  BrdfBuildOptions build;
+  build.reduction.max_lobes = o.lobes;
+  build.reduction.tolerance = o.tolerance;
+  const auto start = std::chrono::steady_clock::now();
+  const MipData mip = build_mip(std::move(texels), build);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  write_mip_file(o.out, mip);
+  std::printf("%s: %dx%d, %d levels, up to %d lobes per texel (built in %.2f s)\n", o.out.c_str(), mip.extent(0).width,
+              mip.extent(0).height, mip.levels(), o.lobes, seconds);
+}
+
+struct EvalOptions {
+  std::string file, mode;
+  int level = -1;
+  std::vector<int> texel;
+};
+
+void run_eval(const EvalOptions& o) {
+  const std::optional<MipMode> mode = parse_mode(o.mode);
+  if (!mode) throw input_error("--mode", "unknown mode '" + o.mode + "' (exact, param, toksvig, vmf, brdf)");
+  const MipData mip = read_mip_file(o.file);
+  check_texel(mip, o.level, o.texel[0], o.texel[1]);
+  std::string line;
+  long n = 0;
+  while (std::getline(std::cin, line)) {
+    ++n;
+    glm::vec3 wi, wo;
+    if (!parse_direction_line(line, n, wi, wo)) continue;
+    const glm::dvec3 f = mode_eval(mip, *mode, o.level, o.texel[0], o.texel[1], glm::dvec3(wi), glm::dvec3(wo));
+    std::printf("%.9g %.9g %.9g\n", f.r, f.g, f.b);
+  }
+}
+
+struct CompareOptions_ {
+  std::string file, levels;
+  bool json = false;
+  int subset = 256;
+};
+
+// "a..b" or "a".
+void parse_levels(const std::string& text, int& first, int& last) {
+  const auto dots = text.find("..");
+  try {
+    std::size_t used = 0;
+    if (dots == std::string::npos) {
+      first = last = std::stoi(text, &used);
+      if (used != text.size()) throw std::invalid_argument(text);
+    } else {
+      const std::string a = text.substr(0, dots), b = text.substr(dots + 2);
+      first = std::stoi(a, &used);
+      if (used != a.size()) throw std::invalid_argument(a);
+      last = std::stoi(b, &used);
+      if (used != b.size()) throw std::invalid_argument(b);
+    }
+  } catch (const std::exception&) {
+    throw input_error("--levels", "'" + text + "' is not a level range like 1..5");
+  }
+}
+
+void run_compare(const CompareOptions_& o) {
+  if (o.subset < 1) throw input_error("--subset", "must be at least 1");
+  const MipData mip = read_mip_file(o.file);
+  CompareOptions c;
+  c.subset = o.subset;
+  c.first_level = std::min(1, mip.levels() - 1);
+  c.last_level = mip.levels() - 1;
+  if (!o.levels.empty()) parse_levels(o.levels, c.first_level, c.last_level);
+  const std::vector<LevelComparison> rows = compare_levels(mip, c);
+  const std::string text = o.json ? comparison_json(rows, o.subset, o.file) : comparison_table(rows, o.subset);
+  std::fputs(text.c_str(), stdout);
+}
+
+}  // namespace
+
+void add_mip_commands(CLI::App& app) {
+  auto m = std::make_shared<MipOptions>();
+  CLI::App* mip = app.add_subcommand("mip", "Build the BRDF pyramid (and the parameter pyramid) of a material into an OpenEXR MIP file");
+  mip->add_option("SCENE", m->scene, "a glTF 2.0 file (.gltf or .glb) to take the material from (with --material)");
+  mip->add_option("--material", m->material, "the glTF material's name or index");
+  mip->add_option("--base-color", m->base_color, "base color image (sRGB-encoded; float images are taken as linear)");
+  mip->add_option("--base-color-factor", m->base_color_factor, "linear base color factor r,g,b (multiplies the image)")
+      ->delimiter(',')
+      ->expected(3);
+  mip->add_option("--normal", m->normal, "tangent-space normal map (+Y up, as glTF)");
+  mip->add_option_function<float>("--normal-scale", [m](float s) { m->normal_scale = s, m->normal_scale_set = true; },
+                                  "normal scale s: n = normalize((2·rgb − 1)·(s, s, 1)) (default 1)");
+  mip->add_option("--metallic-roughness", m->metallic_roughness, "metallic-roughness image (G roughness, B metallic)");
+  mip->add_option("--metallic-factor", m->metallic_factor, "metallic factor (default 1)");
+  mip->add_option("--roughness-factor", m->roughness_factor, "roughness factor (default 1)");
+  mip->add_option("--lobes", m->lobes, "most lobes per BRDF texel, 1.." + std::to_string(kMaxLobes) + " (default " +
+                                           std::to_string(kDefaultLobes) + ")");
+  mip->add_option("--tolerance", m->tolerance, "estimated relative error below which lobes merge even under --lobes (default 0.01)");
+  mip->add_option("--ocio-config", m->ocio_config, "OpenColorIO config to use instead of $OCIO or the built-in one");
+  mip->add_option("--out", m->out, "the MIP file to write (.exr)")->required();
+  mip->callback([m] { run_mip(*m); });
+
+  auto e = std::make_shared<EvalOptions>();
+  CLI::App* eval = app.add_subcommand("eval", "Evaluate one texel's BRDF from a MIP file for direction pairs read from stdin");
+  eval->add_option("FILE", e->file, "the MIP file")->required();
+  eval->add_option("--level", e->level, "the MIP level")->required();
+  eval->add_option("--texel", e->texel, "column I and row J (from the top)")->expected(2)->required();
+  eval->add_option("--mode", e->mode, "exact | param | toksvig | vmf | brdf")->required();
+  eval->footer("Input: lines 'wi.x wi.y wi.z wo.x wo.y wo.z' (geometric tangent frame); output: 'r g b' per line.");
+  eval->callback([e] { run_eval(*e); });
+
+  auto c = std::make_shared<CompareOptions_>();
+  CLI::App* cmp = app.add_subcommand("compare", "Per level, the error of param, the engine baselines and brdf against exact");
+  cmp->add_option("FILE", c->file, "the MIP file")->required();
+  cmp->add_option("--levels", c->levels, "levels a..b (default: 1 to the last)");
+  cmp->add_flag("--json", c->json, "print JSON instead of a table");
+  cmp->add_option("--subset", c->subset, "texels measured per level where a level has more (default 256, the spec's minimum)");
+  cmp->callback([c] { run_compare(*c); });
+}
 
 }  // namespace svbrdf

@@ -1,0 +1,171 @@
+#include "mip/brdf_pyramid.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+
+#include <glm/gtc/packing.hpp>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "appearance/rng.h"
+#include "base/error.h"
+#include "mip/direction_grid.h"
+#include "mip/exact_reference.h"
+
+namespace svbrdf {
+
+void round_colors_to_half(Lobe& lobe) {
+  for (int c = 0; c < 3; ++c) {
+    lobe.diffuse[c] = glm::unpackHalf1x16(glm::packHalf1x16(lobe.diffuse[c]));
+    lobe.f0[c] = glm::unpackHalf1x16(glm::packHalf1x16(lobe.f0[c]));
+  }
+}
+
+namespace {
+
+BrdfLevel level_zero(const MaterialTexels& m) {
+  BrdfLevel l;
+  l.extent = {m.width, m.height};
+  l.slots = 1;
+  l.lobes.resize(m.size());
+  l.counts.assign(m.size(), 1);
+  for (std::size_t k = 0; k < m.size(); ++k) l.lobes[k] = level0_lobe(m, k);
+  return l;
+}
+
+constexpr int kUnionCap = 9 * kMaxLobes;
+
+// The union of texel (i, j)'s children's lobes, weights scaled by the children's area shares.
+int gather_children(Extent level0, int level, int i, int j, const BrdfLevel& fine, std::array<Lobe, kUnionCap>& out) {
+  const Span cx = child_span(level0.width, level, i), cy = child_span(level0.height, level, j);
+  const double total = static_cast<double>(level0_span(level0.width, level, i).size()) *
+                       level0_span(level0.height, level, j).size();
+  int n = 0;
+  for (int y = cy.begin; y < cy.end; ++y)
+    for (int x = cx.begin; x < cx.end; ++x) {
+      const double share = static_cast<double>(level0_span(level0.width, level - 1, x).size()) *
+                           level0_span(level0.height, level - 1, y).size() / total;
+      const std::size_t t = static_cast<std::size_t>(y) * fine.extent.width + x;
+      for (int k = 0; k < fine.counts[t]; ++k) {
+        Lobe l = fine.lobes[t * fine.slots + static_cast<std::size_t>(k)];
+        l.weight = static_cast<float>(l.weight * share);
+        out[static_cast<std::size_t>(n++)] = l;
+      }
+    }
+  return n;
+}
+
+double table_erel(const BrdfTable& approx, const BrdfTable& ref) {
+  const DirectionGrid& g = DirectionGrid::get();
+  double num = 0, den = 0;
+  for (int p = 0; p < DirectionGrid::kPairs; ++p) {
+    const double cz = g.direction(DirectionGrid::wi_index(p)).z;
+    const glm::dvec3 d = (approx[static_cast<std::size_t>(p)] - ref[static_cast<std::size_t>(p)]) * cz;
+    const glm::dvec3 r = ref[static_cast<std::size_t>(p)] * cz;
+    num += glm::dot(d, d);
+    den += glm::dot(r, r);
+  }
+  return den > 0 ? std::sqrt(num / den) : 0.0;
+}
+
+BrdfLevel level_from_below(Extent level0, int level, const BrdfLevel& fine, const BrdfBuildOptions& options,
+                           BrdfLevelStats* stats) {
+  const Extent e = level_extent(level0, level);
+  const int max_lobes = std::clamp(options.reduction.max_lobes, 1, kMaxLobes);
+  BrdfLevel out;
+  out.extent = e;
+  const std::size_t texels = static_cast<std::size_t>(e.width) * e.height;
+  std::vector<Lobe> wide(texels * static_cast<std::size_t>(max_lobes));
+  out.counts.assign(texels, 0);
+  tbb::parallel_for(tbb::blocked_range<int>(0, e.height), [&](const tbb::blocked_range<int>& r) {
+    std::array<Lobe, kUnionCap> buf;
+    for (int j = r.begin(); j < r.end(); ++j)
+      for (int i = 0; i < e.width; ++i) {
+        const int n = gather_children(level0, level, i, j, fine, buf);
+        const int kept = reduce_lobes(buf, n, options.reduction);
+        const std::size_t t = static_cast<std::size_t>(j) * e.width + i;
+        for (int k = 0; k < kept; ++k) {
+          Lobe l = buf[static_cast<std::size_t>(k)];
+          round_colors_to_half(l);
+          wide[t * max_lobes + static_cast<std::size_t>(k)] = l;
+        }
+        out.counts[t] = static_cast<std::uint8_t>(kept);
+      }
+  });
+  int slots = 1;
+  double sum = 0;
+  for (std::uint8_t c : out.counts) slots = std::max<int>(slots, c), sum += c;
+  out.slots = slots;
+  out.lobes.assign(texels * static_cast<std::size_t>(slots), Lobe{0.0f, glm::vec3(0), glm::vec3(0), glm::vec3(0, 0, 1), 1.0f});
+  for (std::size_t t = 0; t < texels; ++t)
+    for (int k = 0; k < out.counts[t]; ++k)
+      out.lobes[t * slots + static_cast<std::size_t>(k)] = wide[t * max_lobes + static_cast<std::size_t>(k)];
+  if (stats) {
+    stats->mean_lobes = sum / static_cast<double>(texels);
+    stats->max_lobes = slots;
+    // The reduction error measured against the exact union, on a fixed random sample of texels.
+    const int samples = std::min<long long>(options.stats_samples, static_cast<long long>(texels));
+    if (samples > 0) {
+      std::vector<double> errs(static_cast<std::size_t>(samples));
+      tbb::parallel_for(0, samples, [&](int s) {
+        Rng rng(mix64(static_cast<std::uint64_t>(level) * 7919 + static_cast<std::uint64_t>(s)), 5);
+        const std::size_t t = std::min<std::size_t>(texels - 1, static_cast<std::size_t>(rng.next_double() * texels));
+        const int i = static_cast<int>(t % e.width), j = static_cast<int>(t / e.width);
+        std::array<Lobe, kUnionCap> buf;
+        const int n = gather_children(level0, level, i, j, fine, buf);
+        BrdfTable ref = make_table(), approx = make_table();
+        for (int k = 0; k < n; ++k) accumulate_lobe_double(buf[static_cast<std::size_t>(k)], 1.0, ref);
+        for (int k = 0; k < out.counts[t]; ++k) accumulate_lobe_double(out.lobes[t * slots + static_cast<std::size_t>(k)], 1.0, approx);
+        errs[static_cast<std::size_t>(s)] = table_erel(approx, ref);
+      });
+      double m = 0, mx = 0;
+      for (double x : errs) m += x, mx = std::max(mx, x);
+      stats->reduction_erel_mean = m / samples;
+      stats->reduction_erel_max = mx;
+      stats->sampled = samples;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+BrdfPyramid BrdfPyramid::build(const MaterialTexels& m, const BrdfBuildOptions& options,
+                               std::vector<BrdfLevelStats>* stats) {
+  BrdfPyramid p;
+  p.level0_ = {m.width, m.height};
+  p.max_lobes_ = std::clamp(options.reduction.max_lobes, 1, kMaxLobes);
+  const int n = level_count(p.level0_);
+  if (n == 0) return p;
+  if (stats) stats->assign(static_cast<std::size_t>(n), BrdfLevelStats{1.0, 1, 0.0, 0.0, 0});
+  p.levels_.push_back(level_zero(m));
+  for (int level = 1; level < n; ++level)
+    p.levels_.push_back(level_from_below(p.level0_, level, p.levels_.back(), options,
+                                         stats ? &(*stats)[static_cast<std::size_t>(level)] : nullptr));
+  return p;
+}
+
+BrdfPyramid BrdfPyramid::from_levels(const MaterialTexels& m, int max_lobes, std::vector<BrdfLevel> coarse) {
+  BrdfPyramid p;
+  p.level0_ = {m.width, m.height};
+  p.max_lobes_ = max_lobes;
+  const int n = level_count(p.level0_);
+  if (static_cast<int>(coarse.size()) + 1 != n)
+    throw Error("BRDF pyramid: " + std::to_string(coarse.size() + 1) + " levels for a " + std::to_string(m.width) +
+                "x" + std::to_string(m.height) + " level 0 (expected " + std::to_string(n) + ")");
+  p.levels_.push_back(level_zero(m));
+  for (std::size_t l = 0; l < coarse.size(); ++l) {
+    const Extent e = level_extent(p.level0_, static_cast<int>(l + 1));
+    const std::size_t texels = static_cast<std::size_t>(e.width) * e.height;
+    BrdfLevel& c = coarse[l];
+    if (!(c.extent == e) || c.slots < 1 || c.slots > kMaxLobes || c.lobes.size() != texels * c.slots ||
+        c.counts.size() != texels)
+      throw Error("BRDF pyramid: level " + std::to_string(l + 1) + " has the wrong shape");
+    p.levels_.push_back(std::move(c));
+  }
+  return p;
+}
+
+}  // namespace svbrdf

@@ -1,0 +1,84 @@
+#pragma once
+// The BRDF pyramid (../shared/spec/brdf-mip.md, `brdf`): every texel of every level a small mixture of
+// lobes (lobe.h) whose BRDF approximates F_L,ij, the mean of the covered level-0 texels' f_eff.
+//
+// Level 0 is one lobe per texel, exactly f_eff. Level L is built from level L − 1 only: a texel's
+// children's lobes, their weights scaled by the children's shares of its area, form the exact union
+// (the mean of the children's mixtures), which lobe_reduction.h reduces to at most `max_lobes` lobes.
+// The build is O(texels) and parallel over rows (oneTBB).
+//
+// Storage: per level a fixed number of slots per texel (the most lobes any texel of that level kept),
+// lobes packed to the front, empty slots of weight 0. The colors (ρ, F0) are rounded to half floats
+// when a level is made (they are means of values in [0, 1], where half's 11 bits suffice and the
+// MIP file stores them as half); weights, normals and α² stay 32-bit (moments cancel in half).
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "mip/lobe.h"
+#include "mip/lobe_reduction.h"
+#include "mip/pyramid_shape.h"
+#include "textures/material_texels.h"
+
+namespace svbrdf {
+
+struct BrdfLevel {
+  Extent extent{};
+  int slots = 1;
+  std::vector<Lobe> lobes;            // extent.width · extent.height · slots
+  std::vector<std::uint8_t> counts;   // lobes used per texel
+};
+
+// What the build measured, per level: the mean and max lobe count, and the reduction error (e_rel of
+// the reduced mixture against the exact union of its children's lobes, on the metric's 4225 pairs)
+// over a sample of texels.
+struct BrdfLevelStats {
+  double mean_lobes = 0;
+  int max_lobes = 0;
+  double reduction_erel_mean = 0;
+  double reduction_erel_max = 0;
+  int sampled = 0;
+};
+
+struct BrdfBuildOptions {
+  ReductionOptions reduction{};
+  int stats_samples = 0;  // texels per level whose reduction error is measured (0: none)
+};
+
+// Rounds a lobe's colors to what a half float holds (what the MIP file stores).
+void round_colors_to_half(Lobe& lobe);
+
+// Bytes a stored lobe takes: weight, normal (3) and α² as 32-bit floats, ρ and F0 as half floats.
+inline constexpr int kBytesPerLobe = 5 * 4 + 6 * 2;
+
+class BrdfPyramid {
+ public:
+  BrdfPyramid() = default;
+  static BrdfPyramid build(const MaterialTexels& level0, const BrdfBuildOptions& options = {},
+                           std::vector<BrdfLevelStats>* stats = nullptr);
+  // From stored levels ≥ 1 (the MIP file) and the level-0 texels; throws svbrdf::Error when the
+  // shapes do not form a pyramid.
+  static BrdfPyramid from_levels(const MaterialTexels& level0, int max_lobes, std::vector<BrdfLevel> coarse);
+
+  int levels() const { return static_cast<int>(levels_.size()); }
+  Extent level0() const { return level0_; }
+  Extent extent(int level) const { return levels_[static_cast<std::size_t>(level)].extent; }
+  int max_lobes() const { return max_lobes_; }
+  const BrdfLevel& level(int level) const { return levels_[static_cast<std::size_t>(level)]; }
+
+  // The lobes of texel (i, j) of `level`: a view into the pyramid, valid while it lives.
+  std::span<const Lobe> texel(int level, int i, int j) const {
+    const BrdfLevel& l = levels_[static_cast<std::size_t>(level)];
+    const std::size_t t = static_cast<std::size_t>(j) * l.extent.width + i;
+    return {l.lobes.data() + t * l.slots, l.counts[t]};
+  }
+  // Bytes per texel of a level as stored (fixed slots).
+  int bytes_per_texel(int level) const { return this->level(level).slots * kBytesPerLobe; }
+
+ private:
+  Extent level0_{};
+  int max_lobes_ = 1;
+  std::vector<BrdfLevel> levels_;
+};
+
+}  // namespace svbrdf

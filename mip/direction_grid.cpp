@@ -1,0 +1,114 @@
+#include "mip/direction_grid.h"
+
+#include <cmath>
+
+namespace svbrdf {
+
+DirectionGrid::DirectionGrid() {
+  constexpr double kDeg = 3.14159265358979323846 / 180.0;
+  dirs_[0] = glm::dvec3(0, 0, 1);
+  int d = 1;
+  for (int t = 1; t <= 8; ++t)
+    for (int k = 0; k < 8; ++k) {
+      const double theta = 10.0 * t * kDeg, phi = 45.0 * k * kDeg;
+      dirs_[static_cast<std::size_t>(d++)] =
+          glm::dvec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+    }
+  pairs_d_.resize(kPairs);
+  pairs_f_.resize(kPairs);
+  for (int p = 0; p < kPairs; ++p) {
+    const glm::dvec3 wi = dirs_[static_cast<std::size_t>(wi_index(p))];
+    const glm::dvec3 wo = dirs_[static_cast<std::size_t>(wo_index(p))];
+    pairs_d_[static_cast<std::size_t>(p)] = pair_terms<double>(wi, wo);
+    pairs_f_[static_cast<std::size_t>(p)] = pair_terms<float>(glm::vec3(wi), glm::vec3(wo));
+  }
+  auto fill = [&](auto& cols, const auto& pairs) {
+    for (const auto& pt : pairs) {
+      cols.hx.push_back(pt.h.x), cols.hy.push_back(pt.h.y), cols.hz.push_back(pt.h.z);
+      cols.w.push_back(pt.fresnel_w);
+    }
+  };
+  fill(cols_d_, pairs_d_);
+  fill(cols_f_, pairs_f_);
+}
+
+const DirectionGrid& DirectionGrid::get() {
+  static const DirectionGrid grid;
+  return grid;
+}
+
+namespace {
+
+// lobe_eval over every pair, with everything that depends on one direction only hoisted out of the
+// pair loop: the sides, and the visibility's sqrt(α² + (1 − α²)·cos²) per direction. The same
+// formulas as lobe.h term by term (the tests hold the two to rounding).
+template <class T>
+void accumulate(const Lobe& lobe, double scale, std::span<glm::dvec3> table) {
+  using V3 = glm::vec<3, T>;
+  const DirectionGrid& grid = DirectionGrid::get();
+  const LobeShape<T> shape = lobe_shape<T>(lobe);
+  if (!shape.valid) return;
+  constexpr int nd = DirectionGrid::kDirections;
+  const T a2 = shape.alpha2;
+  std::array<T, nd> wi_factor{}, wo_factor{}, cosine{}, root{};
+  for (int d = 0; d < nd; ++d) {
+    const V3 w(grid.direction(d));
+    const T c = glm::dot(shape.n, w);
+    const LobeSide<T> si = lobe_wi_side(shape, c), so = lobe_wo_side(shape, c);
+    const auto k = static_cast<std::size_t>(d);
+    wi_factor[k] = si.factor * T(lobe.weight) / w.z;
+    wo_factor[k] = so.factor;
+    cosine[k] = si.c;  // the clamped cosine (the same for both sides)
+    root[k] = std::sqrt(a2 + (T(1) - a2) * si.c * si.c);
+  }
+  constexpr T kInvPi = T(0.318309886183790671537767526745);
+  const T nx = shape.n.x, ny = shape.n.y, nz = shape.n.z, a2_pi = a2 * kInvPi;
+  const T rho_r = T(0.96) * kInvPi * T(lobe.diffuse.r), rho_g = T(0.96) * kInvPi * T(lobe.diffuse.g),
+          rho_b = T(0.96) * kInvPi * T(lobe.diffuse.b);
+  const T f0r = lobe.f0.r, f0g = lobe.f0.g, f0b = lobe.f0.b;
+  const DirectionGrid::Columns<T>* cols;
+  if constexpr (std::is_same_v<T, double>)
+    cols = &grid.columns_d();
+  else
+    cols = &grid.columns_f();
+  std::array<T, nd> out_r{}, out_g{}, out_b{};
+  for (int i = 0; i < nd; ++i) {
+    const auto ki = static_cast<std::size_t>(i);
+    if (!(wi_factor[ki] > 0)) continue;
+    const T ci = cosine[ki], gi = root[ki], fi = wi_factor[ki];
+    const T* hx = cols->hx.data() + i * nd;
+    const T* hy = cols->hy.data() + i * nd;
+    const T* hz = cols->hz.data() + i * nd;
+    const T* fw = cols->w.data() + i * nd;
+    // Branch-free over wo, so it vectorizes; a wo with factor 0 contributes 0 (its cosine is
+    // clamped positive, so nothing divides by 0).
+    for (int o = 0; o < nd; ++o) {
+      const T ch = nx * hx[o] + ny * hy[o] + nz * hz[o];
+      const T cx = ny * hz[o] - nz * hy[o], cy = nz * hx[o] - nx * hz[o], cz = nx * hy[o] - ny * hx[o];
+      const T denom = cx * cx + cy * cy + cz * cz + ch * ch * a2;
+      // denom ≥ α²·(n·h)² + |n×h|² > 0 for α² ≥ 1e-6, so the division is always safe to execute.
+      const T d = (ch > 0 ? T(1) : T(0)) * (a2_pi / (denom * denom));
+      const T vis = T(0.5) / (cosine[static_cast<std::size_t>(o)] * gi + ci * root[static_cast<std::size_t>(o)]);
+      const T w = fw[o], s = vis * d, k = fi * wo_factor[static_cast<std::size_t>(o)];
+      out_r[static_cast<std::size_t>(o)] = k * ((T(1) - w) * rho_r + s * (f0r + (T(1) - f0r) * w));
+      out_g[static_cast<std::size_t>(o)] = k * ((T(1) - w) * rho_g + s * (f0g + (T(1) - f0g) * w));
+      out_b[static_cast<std::size_t>(o)] = k * ((T(1) - w) * rho_b + s * (f0b + (T(1) - f0b) * w));
+    }
+    glm::dvec3* row = table.data() + i * nd;
+    for (int o = 0; o < nd; ++o) {
+      const auto ko = static_cast<std::size_t>(o);
+      row[o] += scale * glm::dvec3(out_r[ko], out_g[ko], out_b[ko]);
+    }
+  }
+}
+
+}  // namespace
+
+void accumulate_lobe_double(const Lobe& lobe, double scale, std::span<glm::dvec3> table) {
+  accumulate<double>(lobe, scale, table);
+}
+void accumulate_lobe_float(const Lobe& lobe, double scale, std::span<glm::dvec3> table) {
+  accumulate<float>(lobe, scale, table);
+}
+
+}  // namespace svbrdf

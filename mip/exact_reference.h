@@ -1,0 +1,46 @@
+#pragma once
+// The exact reference F_L,ij of ../shared/spec/brdf-mip.md ("The ground truth at a coarse level"): the
+// mean of f_eff over the level-0 texels that texel (i, j) of level L covers, by brute force, in double
+// precision, parallel over the covered rows (oneTBB). Usable at any level; slow at coarse levels by
+// nature (every covered texel is evaluated).
+#include <glm/glm.hpp>
+
+#include "mip/direction_grid.h"
+#include "mip/lobe.h"
+#include "mip/pyramid_shape.h"
+#include "textures/material_texels.h"
+
+namespace svbrdf {
+
+// The level-0 lobe of texel k of a material (exactly f_eff of that texel).
+inline Lobe level0_lobe(const MaterialTexels& m, std::size_t k) {
+  return lobe_from_texel(m.base_color[k], m.metallic[k], m.roughness[k], m.normal[k]);
+}
+
+// The level-0 texels a texel of any level covers (power-of-two or not; pyramid_shape.h).
+struct Coverage {
+  Span columns, rows;
+  long long count() const { return static_cast<long long>(columns.size()) * rows.size(); }
+};
+inline Coverage coverage(Extent level0, int level, int i, int j) {
+  return {level0_span(level0.width, level, i), level0_span(level0.height, level, j)};
+}
+
+class ExactReference {
+ public:
+  // Keeps a reference: `texels` must outlive this object.
+  explicit ExactReference(const MaterialTexels& texels) : texels_(texels) {}
+
+  Extent level0() const { return {texels_.width, texels_.height}; }
+  const MaterialTexels& texels() const { return texels_; }
+
+  // F_L,ij(wi, wo), directions in the geometric tangent frame.
+  glm::dvec3 eval(int level, int i, int j, const glm::dvec3& wi, const glm::dvec3& wo) const;
+  // F_L,ij over the metric's 4225 pairs (direction_grid.h).
+  BrdfTable table(int level, int i, int j) const;
+
+ private:
+  const MaterialTexels& texels_;
+};
+
+}  // namespace svbrdf

@@ -1,0 +1,172 @@
+#pragma once
+// One lobe of a BRDF-averaged MIP texel, and the effective BRDF f_eff of ../shared/spec/brdf-mip.md
+// evaluated for it.
+//
+// The glTF model of brdf-models.md splits into a part that is linear in the texel's colors and a
+// part that is not. With F0 = mix(0.04, c, m) and ρ = (1 − m)·c,
+//   f = 0.96·(1 − w)·ρ/π + D·V·(F0 + (1 − F0)·w),       w = (1 − |wo·h|)^5,
+// (dielectric = mix(c/π, s, 0.04 + 0.96·w) and metal = s·(c + (1 − c)·w) give exactly this). w and
+// h depend on the direction pair only, never on the normal, so ρ and F0 average linearly; only the
+// normal and the roughness α enter nonlinearly. A lobe therefore carries
+//   weight  — the fraction of the texel's area it stands for, times the factor by which a merge
+//             rescaled its specular part to keep the flux of the lobes it replaced (lobe_reduction.h;
+//             ρ is divided by the same factor, so weight·ρ stays the exact diffuse amplitude),
+//   diffuse — the mean ρ, f0 — the mean F0 (linear, exact under averaging),
+//   normal  — the mean of the unit shading normals, unnormalized: its length says how much they spread,
+//   alpha2  — the GGX α² of the lobe around normalize(normal), widened by the normals' spread.
+// and reflects, in the geometric tangent frame,
+//   weight · [0.96·(1 − w)·ρ/π + D·V·(F0 + (1 − F0)·w)] · (normal·wi) / wi.z,
+// with D and V the glTF GGX terms about n̂ = normalize(normal) with α², and 0 when n̂·wi ≤ 0,
+// n̂·wo ≤ 0, wi.z ≤ 0 or wo.z ≤ 0. A level-0 texel is one lobe of weight 1 with a unit normal and
+// this is then exactly f_eff,x = f_x · max(0, n_x·wi)/wi.z. For a merged lobe, (normal·wi) =
+// E[n_x]·wi is the exact mean of the texels' cosine factors while no normal is below the light's
+// horizon (the diffuse term is then exact, the design notes' E[ρ·n]); the specular part keeps the
+// same factor so the lobe reflects the same flux as its texels.
+#include <cmath>
+
+#include <glm/glm.hpp>
+
+namespace svbrdf {
+
+struct Lobe {
+  float weight = 0.0f;
+  glm::vec3 diffuse{0.0f};
+  glm::vec3 f0{0.0f};
+  glm::vec3 normal{0.0f, 0.0f, 1.0f};
+  float alpha2 = 1e-6f;
+};
+
+// The level-0 lobe of a texel with glTF parameters (linear base color, metallic, perceptual
+// roughness) and a unit shading normal: α = max(roughness², 1e-3) as brdf-models.md defines.
+inline Lobe lobe_from_texel(const glm::vec3& base_color, float metallic, float roughness,
+                            const glm::vec3& normal, float weight = 1.0f) {
+  const float alpha = std::max(roughness * roughness, 1e-3f);
+  Lobe l;
+  l.weight = weight;
+  l.diffuse = (1.0f - metallic) * base_color;
+  l.f0 = glm::mix(glm::vec3(0.04f), base_color, metallic);
+  l.normal = normal;
+  l.alpha2 = alpha * alpha;
+  return l;
+}
+
+// What a direction pair contributes independently of any lobe: h and the Schlick weight w.
+template <class T>
+struct PairTerms {
+  glm::vec<3, T> wi{0, 0, 1}, wo{0, 0, 1}, h{0, 0, 1};
+  T fresnel_w = 0;     // (1 − |wo·h|)^5
+  bool valid = false;  // both above the geometric horizon
+};
+
+template <class T>
+PairTerms<T> pair_terms(const glm::vec<3, T>& wi, const glm::vec<3, T>& wo) {
+  PairTerms<T> p;
+  p.wi = wi;
+  p.wo = wo;
+  if (!(wi.z > 0) || !(wo.z > 0)) return p;
+  p.h = glm::normalize(wi + wo);
+  const T x = T(1) - std::abs(glm::dot(wo, p.h));
+  p.fresnel_w = (x * x) * (x * x) * x;
+  p.valid = true;
+  return p;
+}
+
+// The horizons of a lobe whose texels' normals spread about n̂. A texel contributes only while its
+// own normal faces both directions, and its cosine factor is max(0, n_x·wi). With the normals' slopes
+// modelled as an isotropic Gaussian of per-axis variance σ² about n̂, n_x·w is about normal with
+// mean n̂·w and standard deviation s = σ·sin θ (θ the angle of w to n̂), so
+//   E[max(0, n_x·wi)] = len·(μ·Φ(μ/s) + s·φ(μ/s)) with μ = n̂·wi   (the mean of a clipped normal),
+//   P(n_x·wo > 0)     = Φ(μ/s)                       with μ = n̂·wo,
+// which replace the hard cut-offs of one texel. σ² comes from the mean normal's length as in
+// Toksvig 2005: σ² = (1 − len)/len. For len = 1 (one texel, or texels sharing their normal) they are
+// exactly max(0, n·wi) and [n·wo > 0].
+template <class T>
+struct LobeShape {
+  glm::vec<3, T> n{0, 0, 1};  // n̂
+  T len = 1;                  // |mean normal|
+  T sigma = 0;                // spread of the normals' slopes (0: a hard horizon)
+  T alpha2 = 1;
+  bool valid = false;
+};
+
+template <class T>
+LobeShape<T> lobe_shape(const Lobe& lobe) {
+  LobeShape<T> s;
+  const glm::vec<3, T> nbar(lobe.normal);
+  const T len2 = glm::dot(nbar, nbar);
+  if (!(lobe.weight > 0) || !(len2 > 0)) return s;
+  s.len = std::sqrt(len2);
+  s.n = nbar / s.len;
+  const T var = s.len < T(1) ? (T(1) - s.len) / s.len : T(0);
+  s.sigma = var > T(1e-7) ? std::sqrt(var) : T(0);
+  s.alpha2 = T(lobe.alpha2);
+  s.valid = true;
+  return s;
+}
+
+// One side of a lobe for a direction with cos θ = c to n̂: the factor it contributes (the expected
+// clipped cosine for wi, the facing probability for wo) and the cosine the GGX terms use (clamped
+// away from 0 where a spread lobe still reflects past its mean horizon). factor = 0: no contribution.
+template <class T>
+struct LobeSide {
+  T factor = 0;
+  T c = 0;
+};
+
+template <class T>
+inline T standard_normal_cdf(T x) {
+  return T(0.5) * std::erfc(-x * T(0.70710678118654752440));
+}
+
+template <class T>
+LobeSide<T> lobe_wi_side(const LobeShape<T>& s, T c) {
+  if (s.sigma == 0) return c > 0 ? LobeSide<T>{c * s.len, c} : LobeSide<T>{};
+  const T sd = s.sigma * std::sqrt(std::max(T(0), T(1) - c * c)) + T(1e-12);
+  const T x = c / sd;
+  const T factor = s.len * (c * standard_normal_cdf(x) + sd * T(0.39894228040143267794) * std::exp(T(-0.5) * x * x));
+  return {factor, std::max(c, T(1e-4))};
+}
+
+template <class T>
+LobeSide<T> lobe_wo_side(const LobeShape<T>& s, T c) {
+  if (s.sigma == 0) return c > 0 ? LobeSide<T>{T(1), c} : LobeSide<T>{};
+  const T sd = s.sigma * std::sqrt(std::max(T(0), T(1) - c * c)) + T(1e-12);
+  return {standard_normal_cdf(c / sd), std::max(c, T(1e-4))};
+}
+
+// The glTF terms of a lobe for one pair, given its two sides: 0.96·(1 − w)·ρ/π + D·V·(F0 + (1 − F0)·w).
+template <class T>
+glm::vec<3, T> lobe_brdf(const Lobe& lobe, const LobeShape<T>& s, const PairTerms<T>& p, T ci, T co) {
+  using V3 = glm::vec<3, T>;
+  constexpr T kInvPi = T(0.318309886183790671537767526745);
+  const T a2 = s.alpha2;
+  // GGX D with 1 − (n·h)² written as |n×h|², which keeps its precision at the peak of sharp lobes.
+  const T ch = glm::dot(s.n, p.h);
+  const V3 nxh = glm::cross(s.n, p.h);
+  const T denom = glm::dot(nxh, nxh) + ch * ch * a2;
+  const T d = ch > 0 ? a2 * kInvPi / (denom * denom) : T(0);
+  // Height-correlated Smith visibility of glTF (brdf-models.md, `gltf`).
+  const T vis = T(0.5) / (co * std::sqrt(a2 + (T(1) - a2) * ci * ci) + ci * std::sqrt(a2 + (T(1) - a2) * co * co));
+  const T w = p.fresnel_w;
+  const V3 f0(lobe.f0), rho(lobe.diffuse);
+  return (T(0.96) * (T(1) - w) * kInvPi) * rho + (vis * d) * (f0 + (V3(1) - f0) * w);
+}
+
+// weight · f_eff of one lobe for one pair (see the top of this file), in precision T.
+template <class T>
+glm::vec<3, T> lobe_eval(const Lobe& lobe, const LobeShape<T>& s, const PairTerms<T>& p) {
+  using V3 = glm::vec<3, T>;
+  if (!p.valid || !s.valid) return V3(0);
+  const LobeSide<T> i = lobe_wi_side(s, glm::dot(s.n, p.wi));
+  if (!(i.factor > 0)) return V3(0);
+  const LobeSide<T> o = lobe_wo_side(s, glm::dot(s.n, p.wo));
+  if (!(o.factor > 0)) return V3(0);
+  return (T(lobe.weight) * i.factor * o.factor / p.wi.z) * lobe_brdf(lobe, s, p, i.c, o.c);
+}
+
+template <class T>
+glm::vec<3, T> lobe_eval(const Lobe& lobe, const PairTerms<T>& p) {
+  return lobe_eval(lobe, lobe_shape<T>(lobe), p);
+}
+
+}  // namespace svbrdf

@@ -1,0 +1,56 @@
+#pragma once
+// A texel's mixture of lobes (lobe.h) as a Bsdf the integrator can evaluate and sample: what the
+// BRDF pyramid's lookup returns (mip_lookup.h). Directions are in the geometric tangent frame (z =
+// the surface's interpolated normal, before any normal map): the lobes carry their own normals.
+//
+// A value type: it copies the texel's lobes (at most kMaxLobes) and their shapes in, so it allocates
+// nothing, outlives the lookup freely and is safe to use from any thread.
+//
+// Sampling (a "weak" sampler in the sense of brdf-models.md, exact through its weights): with
+// probability kDefensive a cosine-weighted direction about the geometric normal, which covers every
+// direction where f may be non-zero (including where a spread lobe reflects past its mean horizon);
+// otherwise a lobe chosen in proportion to an estimate of its albedo, then its diffuse part
+// (cosine-weighted about the lobe's normal) or its specular part (GGX visible normals about the
+// lobe's normal, Heitz 2018 via appearance/microfacet_distribution.h) in proportion to theirs. pdf()
+// is the density of that whole mixture; weight = f·wi.z/pdf with the whole f.
+#include <array>
+#include <span>
+
+#include "appearance/bsdf.h"
+#include "appearance/frame.h"
+#include "mip/lobe.h"
+#include "mip/lobe_reduction.h"
+
+namespace svbrdf {
+
+class LobeMixtureBsdf final : public Bsdf {
+ public:
+  static constexpr float kDefensive = 0.1f;
+
+  LobeMixtureBsdf() = default;
+  // Copies the first kMaxLobes lobes.
+  explicit LobeMixtureBsdf(std::span<const Lobe> lobes);
+
+  int size() const { return count_; }
+  const Lobe& lobe(int k) const { return lobes_[static_cast<std::size_t>(k)]; }
+
+  Rgb eval(const glm::vec3& wi, const glm::vec3& wo) const override;
+  BsdfSample sample(const glm::vec3& wo, const SampleU& u) const override;
+  float pdf(const glm::vec3& wi, const glm::vec3& wo) const override;
+
+ private:
+  struct Choice {
+    std::array<float, kMaxLobes> lobe{};     // probability of lobe k (sums to 1 − kDefensive)
+    std::array<float, kMaxLobes> diffuse{};  // within lobe k, probability of its diffuse part
+  };
+  Choice choice(const glm::vec3& wo) const;
+  float pdf_with(const Choice& c, const glm::vec3& wi, const glm::vec3& wo) const;
+
+  std::array<Lobe, kMaxLobes> lobes_{};
+  std::array<LobeShape<float>, kMaxLobes> shapes_{};
+  std::array<Frame, kMaxLobes> frames_{};
+  std::array<float, kMaxLobes> diffuse_albedo_{}, spec_albedo_{};
+  int count_ = 0;
+};
+
+}  // namespace svbrdf

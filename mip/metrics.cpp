@@ -1,0 +1,243 @@
+#include "mip/metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <string>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+#include "appearance/frame.h"
+#include "appearance/rng.h"
+#include "base/error.h"
+#include "mip/exact_reference.h"
+
+namespace svbrdf {
+
+double e_rel(const BrdfTable& approx, const BrdfTable& exact) {
+  const DirectionGrid& g = DirectionGrid::get();
+  double num = 0, den = 0;
+  for (int p = 0; p < DirectionGrid::kPairs; ++p) {
+    const double cz = g.direction(DirectionGrid::wi_index(p)).z;
+    const glm::dvec3 l = exact[static_cast<std::size_t>(p)] * cz;
+    const glm::dvec3 d = approx[static_cast<std::size_t>(p)] * cz - l;
+    num += glm::dot(d, d);
+    den += glm::dot(l, l);
+  }
+  if (den == 0) return num == 0 ? 0.0 : INFINITY;
+  return std::sqrt(num) / std::sqrt(den);
+}
+
+double e_log(const BrdfTable& approx, const BrdfTable& exact) {
+  const DirectionGrid& g = DirectionGrid::get();
+  double sum = 0;
+  for (int p = 0; p < DirectionGrid::kPairs; ++p) {
+    const double cz = g.direction(DirectionGrid::wi_index(p)).z;
+    for (int c = 0; c < 3; ++c) {
+      const double d = std::log1p(approx[static_cast<std::size_t>(p)][c] * cz) - std::log1p(exact[static_cast<std::size_t>(p)][c] * cz);
+      sum += d * d;
+    }
+  }
+  return std::sqrt(sum / (3.0 * DirectionGrid::kPairs));
+}
+
+std::vector<int> measured_texels(Extent e, int subset, std::uint64_t seed, int level) {
+  const int n = e.width * e.height;
+  std::vector<int> all(static_cast<std::size_t>(n));
+  std::iota(all.begin(), all.end(), 0);
+  if (subset <= 0 || n <= subset) return all;
+  // A partial Fisher–Yates shuffle: the first `subset` entries are a uniform draw without replacement.
+  Rng rng(mix64(seed), static_cast<std::uint64_t>(level) + 1);
+  for (int k = 0; k < subset; ++k) {
+    const int r = k + static_cast<int>(rng.next_double() * (n - k));
+    std::swap(all[static_cast<std::size_t>(k)], all[static_cast<std::size_t>(std::min(r, n - 1))]);
+  }
+  all.resize(static_cast<std::size_t>(subset));
+  std::sort(all.begin(), all.end());
+  return all;
+}
+
+namespace {
+
+double texel_area(Extent e0, int level, int i, int j) {
+  return static_cast<double>(level0_span(e0.width, level, i).size()) * level0_span(e0.height, level, j).size();
+}
+
+// The area-weighted mean F of a whole level under a mode (not exact).
+BrdfTable level_mean(const MipData& mip, MipMode mode, int level) {
+  const Extent e = mip.extent(level), e0 = mip.extent(0);
+  const double total = static_cast<double>(e0.width) * e0.height;
+  BrdfTable sum = tbb::parallel_deterministic_reduce(
+      tbb::blocked_range<int>(0, e.width * e.height, 64), BrdfTable{},
+      [&](const tbb::blocked_range<int>& r, BrdfTable acc) {
+        if (acc.empty()) acc = make_table();
+        for (int t = r.begin(); t < r.end(); ++t) {
+          const int i = t % e.width, j = t / e.width;
+          const double w = texel_area(e0, level, i, j) / total;
+          if (mode == MipMode::brdf) {
+            for (const Lobe& l : mip.brdf.texel(level, i, j)) accumulate_lobe_float(l, w, acc);
+          } else {
+            const ParamBaseline b = mode == MipMode::toksvig ? ParamBaseline::toksvig
+                                    : mode == MipMode::vmf   ? ParamBaseline::vmf
+                                                             : ParamBaseline::param;
+            accumulate_lobe_float(param_lobe(mip.param.texel(level, i, j), b), w, acc);
+          }
+        }
+        return acc;
+      },
+      [](BrdfTable a, const BrdfTable& b) {
+        if (a.empty()) return b;
+        if (b.empty()) return a;
+        for (std::size_t k = 0; k < a.size(); ++k) a[k] += b[k];
+        return a;
+      });
+  return sum;
+}
+
+}  // namespace
+
+std::vector<LevelComparison> compare_levels(const MipData& mip, const CompareOptions& o) {
+  const int n = mip.levels();
+  const int first = o.first_level, last = o.last_level < 0 ? n - 1 : o.last_level;
+  if (first < 0 || last >= n || first > last)
+    throw input_error("--levels", std::to_string(first) + ".." + std::to_string(last) +
+                                      " is not a range of the file's levels 0.." + std::to_string(n - 1));
+  const Extent e0 = mip.extent(0);
+  const ExactReference exact(mip.level0);
+  auto count = [&](int level) { return mip.extent(level).width * mip.extent(level).height; };
+  // The first level measured in full; the exact tables of it and of every coarser level.
+  int full = 0;
+  while (count(full) > std::max(1, o.subset)) ++full;
+  std::vector<std::vector<BrdfTable>> full_tables(static_cast<std::size_t>(n));
+  {
+    const Extent e = mip.extent(full);
+    auto& tabs = full_tables[static_cast<std::size_t>(full)];
+    tabs.resize(static_cast<std::size_t>(count(full)));
+    tbb::parallel_for(0, count(full), [&](int t) {
+      tabs[static_cast<std::size_t>(t)] = exact.table(full, t % e.width, t / e.width);
+    });
+    for (int level = full + 1; level < n; ++level) {
+      const Extent c = mip.extent(level), f = mip.extent(level - 1);
+      auto& out = full_tables[static_cast<std::size_t>(level)];
+      out.assign(static_cast<std::size_t>(count(level)), make_table());
+      for (int j = 0; j < c.height; ++j)
+        for (int i = 0; i < c.width; ++i) {
+          const Span cx = child_span(e0.width, level, i), cy = child_span(e0.height, level, j);
+          const double area = texel_area(e0, level, i, j);
+          BrdfTable& t = out[static_cast<std::size_t>(j * c.width + i)];
+          for (int y = cy.begin; y < cy.end; ++y)
+            for (int x = cx.begin; x < cx.end; ++x) {
+              const double w = texel_area(e0, level - 1, x, y) / area;
+              const BrdfTable& child = full_tables[static_cast<std::size_t>(level - 1)][static_cast<std::size_t>(y * f.width + x)];
+              for (std::size_t k = 0; k < t.size(); ++k) t[k] += w * child[k];
+            }
+        }
+    }
+  }
+  const BrdfTable& texture_mean = full_tables[static_cast<std::size_t>(n - 1)][0];
+
+  std::vector<LevelComparison> out;
+  for (int level = first; level <= last; ++level) {
+    LevelComparison lc;
+    lc.level = level;
+    lc.extent = mip.extent(level);
+    const std::vector<int> texels = measured_texels(lc.extent, level >= full ? 0 : o.subset, o.seed, level);
+    lc.measured = static_cast<int>(texels.size());
+    lc.subset = lc.measured < count(level);
+    std::vector<BrdfTable> ref(texels.size());
+    tbb::parallel_for(std::size_t(0), texels.size(), [&](std::size_t k) {
+      const int t = texels[k];
+      ref[k] = level >= full ? full_tables[static_cast<std::size_t>(level)][static_cast<std::size_t>(t)]
+                             : exact.table(level, t % lc.extent.width, t / lc.extent.width);
+    });
+    for (MipMode mode : o.modes) {
+      ModeLevelStats s;
+      s.mode = mode;
+      s.bytes_per_texel = mode_bytes_per_texel(mip, mode, level);
+      std::vector<double> er(texels.size()), el(texels.size());
+      tbb::parallel_for(std::size_t(0), texels.size(), [&](std::size_t k) {
+        const int t = texels[k];
+        const BrdfTable approx = mode == MipMode::exact ? ref[k] : mode_table(mip, mode, level, t % lc.extent.width, t / lc.extent.width);
+        er[k] = e_rel(approx, ref[k]);
+        el[k] = e_log(approx, ref[k]);
+      });
+      for (std::size_t k = 0; k < texels.size(); ++k) {
+        s.erel_mean += er[k];
+        s.erel_max = std::max(s.erel_max, er[k]);
+        s.elog_mean += el[k];
+      }
+      s.erel_mean /= static_cast<double>(texels.size());
+      s.elog_mean /= static_cast<double>(texels.size());
+      if (mode == MipMode::exact) {
+        // The exact level mean is the texture mean (up to rounding), by construction.
+        s.emean = 0;
+      } else {
+        s.emean = e_rel(level_mean(mip, mode, level), texture_mean);
+      }
+      lc.modes.push_back(s);
+    }
+    out.push_back(std::move(lc));
+  }
+  return out;
+}
+
+namespace {
+
+// GGX D (brdf-models.md) about z for α².
+double ggx_d(double cos_h, double a2) {
+  const double c2 = cos_h * cos_h;
+  const double d = c2 * (a2 - 1) + 1;
+  return a2 / (3.14159265358979323846 * d * d);
+}
+
+}  // namespace
+
+glm::dvec3 directional_albedo(std::span<const Lobe> lobes, const glm::dvec3& wi, int strata) {
+  constexpr double kPi = 3.14159265358979323846;
+  glm::dvec3 total(0);
+  for (const Lobe& l : lobes) {
+    if (!(l.weight > 0)) continue;
+    const glm::dvec3 n = glm::normalize(glm::dvec3(l.normal));
+    const Frame fr = Frame::from_normal(glm::vec3(n));
+    const glm::dvec3 s(fr.s), t(fr.t);
+    const double a2 = l.alpha2;
+    // Densities over wo: cosine about the geometric normal, and wo = reflect(wi) about h ~ D(h)·(n·h).
+    auto pdf_cos = [&](const glm::dvec3& wo) { return wo.z > 0 ? wo.z / kPi : 0.0; };
+    auto pdf_spec = [&](const glm::dvec3& wo) {
+      const glm::dvec3 h = glm::normalize(wi + wo);
+      const double ch = glm::dot(n, h), oh = glm::dot(wo, h);
+      if (ch <= 0 || oh <= 0) return 0.0;
+      return ggx_d(ch, a2) * ch / (4 * oh);
+    };
+    const int m = strata * strata;
+    glm::dvec3 sum(0);
+    for (int technique = 0; technique < 2; ++technique)
+      for (int k = 0; k < m; ++k) {
+        // A fixed jittered grid (Rng with a fixed seed), so the quadrature is deterministic.
+        Rng rng(mix64(static_cast<std::uint64_t>(k) * 2 + technique), 11);
+        const double u1 = ((k % strata) + rng.next_double()) / strata, u2 = ((k / strata) + rng.next_double()) / strata;
+        glm::dvec3 wo;
+        if (technique == 0) {
+          const double r = std::sqrt(u1), phi = 2 * kPi * u2;
+          wo = glm::dvec3(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1 - u1)));
+        } else {
+          // tan²θh = α²·u/(1 − u) samples D(h)·cosθh (Walter et al. 2007, eq. 35/36).
+          const double tan2 = a2 * u1 / std::max(1e-300, 1 - u1);
+          const double ch = 1 / std::sqrt(1 + tan2), sh = std::sqrt(std::max(0.0, 1 - ch * ch)), phi = 2 * kPi * u2;
+          const glm::dvec3 h = sh * std::cos(phi) * s + sh * std::sin(phi) * t + ch * n;
+          wo = 2 * glm::dot(wi, h) * h - wi;
+        }
+        if (!(wo.z > 0)) continue;
+        const double q = m * pdf_cos(wo) + m * pdf_spec(wo);
+        if (!(q > 0)) continue;
+        const glm::dvec3 f = lobe_eval<double>(l, pair_terms<double>(wi, wo));
+        sum += f * wo.z / q;
+      }
+    total += sum;
+  }
+  return total;
+}
+
+}  // namespace svbrdf

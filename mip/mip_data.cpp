@@ -1,0 +1,87 @@
+#include "mip/mip_data.h"
+
+#include <string>
+
+#include "base/error.h"
+#include "mip/exact_reference.h"
+
+namespace svbrdf {
+
+MipData build_mip(MaterialTexels level0, const BrdfBuildOptions& options, std::vector<BrdfLevelStats>* stats) {
+  MipData d;
+  d.level0 = std::move(level0);
+  d.param = ParamPyramid::build(d.level0);
+  d.brdf = BrdfPyramid::build(d.level0, options, stats);
+  return d;
+}
+
+std::string_view mode_name(MipMode m) {
+  switch (m) {
+    case MipMode::exact: return "exact";
+    case MipMode::param: return "param";
+    case MipMode::toksvig: return "toksvig";
+    case MipMode::vmf: return "vmf";
+    case MipMode::brdf: return "brdf";
+  }
+  return "?";
+}
+
+std::optional<MipMode> parse_mode(std::string_view name) {
+  for (MipMode m : {MipMode::exact, MipMode::param, MipMode::toksvig, MipMode::vmf, MipMode::brdf})
+    if (name == mode_name(m)) return m;
+  return std::nullopt;
+}
+
+void check_texel(const MipData& mip, int level, int i, int j) {
+  if (level < 0 || level >= mip.levels())
+    throw input_error("--level", "level " + std::to_string(level) + " is out of range (the file has levels 0.." +
+                                     std::to_string(mip.levels() - 1) + ")");
+  const Extent e = mip.extent(level);
+  if (i < 0 || i >= e.width || j < 0 || j >= e.height)
+    throw input_error("--texel", "texel (" + std::to_string(i) + ", " + std::to_string(j) + ") is out of range (level " +
+                                     std::to_string(level) + " is " + std::to_string(e.width) + "x" +
+                                     std::to_string(e.height) + ")");
+}
+
+namespace {
+ParamBaseline baseline_of(MipMode m) {
+  return m == MipMode::toksvig ? ParamBaseline::toksvig : m == MipMode::vmf ? ParamBaseline::vmf : ParamBaseline::param;
+}
+}  // namespace
+
+glm::dvec3 mode_eval(const MipData& mip, MipMode mode, int level, int i, int j, const glm::dvec3& wi,
+                     const glm::dvec3& wo) {
+  if (mode == MipMode::exact) return ExactReference(mip.level0).eval(level, i, j, wi, wo);
+  const PairTerms<float> p = pair_terms<float>(glm::vec3(wi), glm::vec3(wo));
+  if (mode == MipMode::brdf) {
+    glm::dvec3 sum(0);
+    for (const Lobe& l : mip.brdf.texel(level, i, j)) sum += glm::dvec3(lobe_eval<float>(l, p));
+    return sum;
+  }
+  return glm::dvec3(lobe_eval<float>(param_lobe(mip.param.texel(level, i, j), baseline_of(mode)), p));
+}
+
+BrdfTable mode_table(const MipData& mip, MipMode mode, int level, int i, int j) {
+  if (mode == MipMode::exact) return ExactReference(mip.level0).table(level, i, j);
+  BrdfTable t = make_table();
+  if (mode == MipMode::brdf) {
+    for (const Lobe& l : mip.brdf.texel(level, i, j)) accumulate_lobe_float(l, 1.0, t);
+  } else {
+    accumulate_lobe_float(param_lobe(mip.param.texel(level, i, j), baseline_of(mode)), 1.0, t);
+  }
+  return t;
+}
+
+int mode_bytes_per_texel(const MipData& mip, MipMode mode, int level) {
+  switch (mode) {
+    case MipMode::brdf: return level == 0 ? ParamPyramid::kBytesPerTexel : mip.brdf.bytes_per_texel(level);
+    case MipMode::exact: {
+      const Extent e0 = mip.extent(0), e = mip.extent(level);
+      return static_cast<int>(static_cast<long long>(ParamPyramid::kBytesPerTexel) * e0.width * e0.height /
+                              (static_cast<long long>(e.width) * e.height));
+    }
+    default: return ParamPyramid::kBytesPerTexel;
+  }
+}
+
+}  // namespace svbrdf

@@ -1,0 +1,51 @@
+#pragma once
+// Everything a MIP file holds for one material: the level-0 parameters (so `exact` can be computed),
+// the parameter pyramid (`param` and the engine baselines) and the BRDF pyramid (`brdf`), and the
+// ways ../shared/spec/brdf-mip.md names to answer for a texel.
+#include <optional>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "mip/brdf_pyramid.h"
+#include "mip/direction_grid.h"
+#include "mip/param_pyramid.h"
+#include "textures/material_texels.h"
+
+namespace svbrdf {
+
+struct MipData {
+  MaterialTexels level0;
+  ParamPyramid param;
+  BrdfPyramid brdf;
+
+  int levels() const { return param.levels(); }
+  Extent extent(int level) const { return param.extent(level); }
+};
+
+// Builds both pyramids over `level0` (moved in).
+MipData build_mip(MaterialTexels level0, const BrdfBuildOptions& options = {},
+                  std::vector<BrdfLevelStats>* stats = nullptr);
+
+// The ways to answer for a texel: the reference, the parameter pyramid and its engine baselines,
+// the BRDF pyramid.
+enum class MipMode { exact, param, toksvig, vmf, brdf };
+std::string_view mode_name(MipMode m);
+std::optional<MipMode> parse_mode(std::string_view name);
+
+// Throws svbrdf::Error (bad input) naming the level or texel when it is out of range.
+void check_texel(const MipData& mip, int level, int i, int j);
+
+// F of texel (i, j) of `level` under a mode, directions in the geometric tangent frame. `exact` is
+// double precision; the others evaluate their lobes in float, as the renderer does.
+glm::dvec3 mode_eval(const MipData& mip, MipMode mode, int level, int i, int j, const glm::dvec3& wi,
+                     const glm::dvec3& wo);
+// The same over the metric's 4225 pairs.
+BrdfTable mode_table(const MipData& mip, MipMode mode, int level, int i, int j);
+
+// Bytes per texel a mode stores at a level (exact: the level-0 parameters it reads, per covered texel).
+int mode_bytes_per_texel(const MipData& mip, MipMode mode, int level);
+
+}  // namespace svbrdf

@@ -1,0 +1,39 @@
+#pragma once
+// The MIP file: one material's level-0 parameters, parameter pyramid and BRDF pyramid in one
+// OpenEXR file with one subimage (part) per level, so OpenImageIO's tools list it
+// (`oiiotool --info -v FILE`, `iinfo -v FILE`). Written atomically; read back bit-identically.
+//
+// Subimage L (0 ≤ L < levels) has level L's resolution, the part name "levelL", and channels
+//   param.R, param.G, param.B   mean linear base color                                   float
+//   param.metallic              mean metallic                                            float
+//   param.roughness             mean perceptual roughness (α = roughness², per texel)    float
+//   param.N.X, param.N.Y, param.N.Z  mean of the unit shading normals in the tangent frame,
+//                               unnormalized (its length < 1 says how much they spread); at
+//                               level 0 the texel's unit normal                          float
+// and, for L ≥ 1, for each lobe slot k = 0 .. S_L − 1 (lobe.h for the meaning):
+//   lobeK.weight                fraction of the texel's area (0: empty slot; slots are packed
+//                               from 0)                                                  float
+//   lobeK.diffuse.R/G/B         mean diffuse albedo ρ = (1 − metallic)·base color        half
+//   lobeK.F0.R/G/B              mean specular reflectance at normal incidence            half
+//   lobeK.N.X/Y/Z               mean unit normal of the lobe, unnormalized               float
+//   lobeK.alpha2                GGX α² of the lobe about normalize(N)                    float
+// Level 0's BRDF pyramid is its parameters (one lobe per texel) and is not stored twice.
+// Attributes on every subimage: svbrdf:mip_version (int, kMipFileVersion), svbrdf:level (int),
+// svbrdf:max_lobes (int, the --lobes the file was built with), svbrdf:slots (int, S_L).
+// A file whose version is newer than kMipFileVersion is refused: its layout may mean other things.
+#include <filesystem>
+
+#include "mip/mip_data.h"
+
+namespace svbrdf {
+
+inline constexpr int kMipFileVersion = 1;
+
+// Throws svbrdf::Error naming the file when it cannot be written.
+void write_mip_file(const std::filesystem::path& path, const MipData& mip);
+
+// Throws svbrdf::Error naming the file when it is missing, unreadable, not a MIP file, from a newer
+// version, or inconsistent (levels of the wrong size, missing channels).
+MipData read_mip_file(const std::filesystem::path& path);
+
+}  // namespace svbrdf

@@ -1,0 +1,66 @@
+#pragma once
+// Lookups for the renderer: from a texture coordinate and its footprint (the derivatives of uv
+// along the pixel's two screen axes, from ray differentials) to a BSDF.
+//
+// The filter: trilinear MIP mapping, anisotropic with up to `max_probes` probes along the
+// footprint's major axis (the GPU scheme: the level comes from the minor axis, or from major /
+// max_probes when the footprint is more elongated than that). Each probe is bilinear on two
+// adjacent levels; wrap mode repeat (glTF's default); texel centres at (i + 0.5)/width as glTF
+// samples. At most 8 probes × 2 levels × 4 texels = 64 taps, their weights summing to 1.
+//
+//  (1) lookup_brdf — filtering after shading (Pharr et al. 2024, "Filtering After Shading with
+//      Stochastic Texture Filtering"): one tap is chosen with probability equal to its weight and
+//      that texel's whole mixture is returned. Exact in expectation for any per-texel mixture: the
+//      mean over u of the returned BSDF is the filter-weighted mean of the texels' BSDFs.
+//  (2) lookup_param — deterministic trilinear filtering of the parameter pyramid (linear base
+//      color, metallic, roughness and the unnormalized normal, normalized once), what ordinary MIP
+//      mapping does; with a baseline's α widening.
+// Both allocate nothing and only read the pyramids, so any number of threads may call them.
+#include <array>
+
+#include <glm/glm.hpp>
+
+#include "mip/brdf_pyramid.h"
+#include "mip/lobe_mixture_bsdf.h"
+#include "mip/param_pyramid.h"
+
+namespace svbrdf {
+
+struct Footprint {
+  glm::vec2 uv{0.0f};
+  glm::vec2 duv_dx{0.0f};  // d(uv)/d(screen x)
+  glm::vec2 duv_dy{0.0f};  // d(uv)/d(screen y)
+};
+
+inline constexpr int kMaxProbes = 8;
+
+struct FilterTap {
+  int level = 0;
+  int i = 0;  // column
+  int j = 0;  // row from the top
+  float weight = 0.0f;
+};
+
+struct FilterTaps {
+  std::array<FilterTap, kMaxProbes * 8> taps{};
+  int count = 0;
+  float level = 0.0f;  // the continuous level λ chosen
+  int probes = 1;
+};
+
+// The filter's taps over a pyramid of `levels` levels on a level-0 image of `level0` texels.
+FilterTaps filter_taps(Extent level0, int levels, const Footprint& footprint, int max_probes = kMaxProbes);
+
+// The tap whose cumulative weight interval contains u ∈ [0, 1).
+FilterTap select_tap(const FilterTaps& taps, float u);
+
+// (1) One texel's mixture, chosen with probability equal to its filter weight.
+LobeMixtureBsdf lookup_brdf(const BrdfPyramid& pyramid, const Footprint& footprint, float u,
+                            int max_probes = kMaxProbes);
+
+// (2) The trilinear-filtered parameters as one lobe (wrap it in LobeMixtureBsdf to shade).
+ParamTexel filter_params(const ParamPyramid& pyramid, const Footprint& footprint, int max_probes = kMaxProbes);
+Lobe lookup_param(const ParamPyramid& pyramid, const Footprint& footprint, ParamBaseline baseline = ParamBaseline::param,
+                  int max_probes = kMaxProbes);
+
+}  // namespace svbrdf

@@ -1,0 +1,105 @@
+#include "mip/param_pyramid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "base/error.h"
+
+namespace svbrdf {
+
+std::string_view baseline_name(ParamBaseline b) {
+  switch (b) {
+    case ParamBaseline::param: return "param";
+    case ParamBaseline::toksvig: return "toksvig";
+    case ParamBaseline::vmf: return "vmf";
+  }
+  return "?";
+}
+
+Lobe param_lobe(const ParamTexel& t, ParamBaseline baseline) {
+  const float r = std::min(1.0f, glm::length(t.normal));
+  const glm::vec3 n = r > 0 ? t.normal / glm::length(t.normal) : glm::vec3(0, 0, 1);
+  Lobe l = lobe_from_texel(t.base_color, t.metallic, t.roughness, n);
+  // r == 1 (flat) widens nothing; r → 0 (normals cancel) widens to the roughest lobe.
+  float widen = 0.0f;
+  if (baseline == ParamBaseline::toksvig) {
+    widen = r > 0 ? 2.0f * (1.0f - r) / r : 1.0f;
+  } else if (baseline == ParamBaseline::vmf) {
+    const float kappa = r < 1.0f ? (3.0f * r - r * r * r) / (1.0f - r * r) : INFINITY;
+    widen = kappa > 0 ? 2.0f / kappa : 1.0f;
+  }
+  l.alpha2 = std::min(1.0f, l.alpha2 + widen);
+  return l;
+}
+
+namespace {
+
+std::vector<ParamTexel> level_from_below(Extent level0, int level, const std::vector<ParamTexel>& fine) {
+  const Extent e = level_extent(level0, level), fe = level_extent(level0, level - 1);
+  std::vector<ParamTexel> out(static_cast<std::size_t>(e.width) * e.height);
+  tbb::parallel_for(tbb::blocked_range<int>(0, e.height), [&](const tbb::blocked_range<int>& r) {
+    for (int j = r.begin(); j < r.end(); ++j)
+      for (int i = 0; i < e.width; ++i) {
+        const Span cx = child_span(level0.width, level, i), cy = child_span(level0.height, level, j);
+        double total = 0;
+        glm::dvec3 c(0), n(0);
+        double m = 0, rough = 0;
+        for (int y = cy.begin; y < cy.end; ++y)
+          for (int x = cx.begin; x < cx.end; ++x) {
+            // The child's weight: the level-0 texels it covers.
+            const double w = static_cast<double>(level0_span(level0.width, level - 1, x).size()) *
+                             level0_span(level0.height, level - 1, y).size();
+            const ParamTexel& t = fine[static_cast<std::size_t>(y) * fe.width + x];
+            total += w;
+            c += w * glm::dvec3(t.base_color);
+            m += w * t.metallic;
+            rough += w * t.roughness;
+            n += w * glm::dvec3(t.normal);
+          }
+        ParamTexel& o = out[static_cast<std::size_t>(j) * e.width + i];
+        o.base_color = glm::vec3(c / total);
+        o.metallic = static_cast<float>(m / total);
+        o.roughness = static_cast<float>(rough / total);
+        o.normal = glm::vec3(n / total);
+      }
+  });
+  return out;
+}
+
+}  // namespace
+
+ParamPyramid ParamPyramid::build(const MaterialTexels& m) {
+  ParamPyramid p;
+  p.level0_ = {m.width, m.height};
+  const int n = level_count(p.level0_);
+  if (n == 0) return p;
+  std::vector<ParamTexel> base(m.size());
+  for (std::size_t k = 0; k < m.size(); ++k)
+    base[k] = {m.base_color[k], m.metallic[k], m.roughness[k], m.normal[k]};
+  p.levels_.push_back(std::move(base));
+  for (int level = 1; level < n; ++level)
+    p.levels_.push_back(level_from_below(p.level0_, level, p.levels_.back()));
+  return p;
+}
+
+ParamPyramid ParamPyramid::from_levels(Extent level0, std::vector<std::vector<ParamTexel>> levels) {
+  if (static_cast<int>(levels.size()) != level_count(level0))
+    throw Error("parameter pyramid: " + std::to_string(levels.size()) + " levels for a " +
+                std::to_string(level0.width) + "x" + std::to_string(level0.height) + " level 0 (expected " +
+                std::to_string(level_count(level0)) + ")");
+  for (std::size_t l = 0; l < levels.size(); ++l) {
+    const Extent e = level_extent(level0, static_cast<int>(l));
+    if (levels[l].size() != static_cast<std::size_t>(e.width) * e.height)
+      throw Error("parameter pyramid: level " + std::to_string(l) + " has the wrong size");
+  }
+  ParamPyramid p;
+  p.level0_ = level0;
+  p.levels_ = std::move(levels);
+  return p;
+}
+
+}  // namespace svbrdf

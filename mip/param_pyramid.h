@@ -1,0 +1,64 @@
+#pragma once
+// The parameter pyramid, the baseline of ../shared/spec/brdf-mip.md (`param`): each coarse texel holds
+// the means of the covered level-0 texels' linear base color, metallic and perceptual roughness, and
+// the mean of their unit normals kept unnormalized, so that the normal is normalized once, when used.
+// This is what ordinary MIP mapping of parameter textures (OpenImageIO's maketx, pbrt-v4's box
+// pyramid) produces. Built level by level from the one below with weights equal to the covered
+// level-0 counts, so every level holds exact means of level 0 (pyramid_shape.h for other sizes).
+//
+// The same storage serves the engine baselines, which widen α from the shortened mean normal:
+//   `toksvig` — Toksvig 2005, "Mipmapping Normal Maps": for a mean normal of length r the Blinn–Phong
+//     exponent s becomes s·r/(r + s(1 − r)), i.e. 1/s grows by (1 − r)/r; with 1/s ≈ α²/2 (Beckmann)
+//     that is α² += 2(1 − r)/r.
+//   `vmf` — the von Mises–Fisher fit that Filament ships: κ = (3r − r³)/(1 − r²) (Banerjee et al.
+//     2005), α² += 2/κ.
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "mip/lobe.h"
+#include "mip/pyramid_shape.h"
+#include "textures/material_texels.h"
+
+namespace svbrdf {
+
+struct ParamTexel {
+  glm::vec3 base_color{0.0f};  // mean, linear
+  float metallic = 0.0f;       // mean
+  float roughness = 0.0f;      // mean perceptual roughness
+  glm::vec3 normal{0, 0, 1};   // mean of unit normals, unnormalized (length ≤ 1)
+};
+
+enum class ParamBaseline { param, toksvig, vmf };
+// "param", "toksvig", "vmf".
+std::string_view baseline_name(ParamBaseline b);
+
+// The single lobe a parameter texel stands for under a baseline: f_eff of one glTF texel with the
+// mean parameters and normal = normalize(mean normal) (weight 1, unit normal), α widened for the
+// engine baselines.
+Lobe param_lobe(const ParamTexel& t, ParamBaseline baseline);
+
+class ParamPyramid {
+ public:
+  ParamPyramid() = default;
+  static ParamPyramid build(const MaterialTexels& level0);
+  // From stored levels (the MIP file); throws svbrdf::Error when the shapes do not form a pyramid.
+  static ParamPyramid from_levels(Extent level0, std::vector<std::vector<ParamTexel>> levels);
+
+  int levels() const { return static_cast<int>(levels_.size()); }
+  Extent level0() const { return level0_; }
+  Extent extent(int level) const { return level_extent(level0_, level); }
+  std::span<const ParamTexel> level(int level) const { return levels_[static_cast<std::size_t>(level)]; }
+  const ParamTexel& texel(int level, int i, int j) const {
+    return levels_[static_cast<std::size_t>(level)][static_cast<std::size_t>(j) * extent(level).width + i];
+  }
+  static constexpr int kBytesPerTexel = 8 * 4;  // 8 floats
+
+ private:
+  Extent level0_{};
+  std::vector<std::vector<ParamTexel>> levels_;
+};
+
+}  // namespace svbrdf

@@ -1,0 +1,236 @@
+// The level-0 lobe, the exact reference at level 0, and the merge of lobes, against the glTF model of
+// the appearance module (appearance/gltf.h) composed with the texel's normal as the spec writes f_eff.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+
+#include "appearance/frame.h"
+#include "appearance/gltf.h"
+#include "appearance/rng.h"
+#include "mip/exact_reference.h"
+#include "mip/lobe.h"
+#include "mip/lobe_mixture_bsdf.h"
+#include "mip/direction_grid.h"
+#include "mip/lobe_reduction.h"
+#include "mip/metrics.h"
+
+namespace svbrdf {
+namespace {
+
+glm::vec3 random_direction_above(Rng& rng, float min_z = 0.05f) {
+  for (;;) {
+    const glm::vec3 v(2 * rng.next_float() - 1, 2 * rng.next_float() - 1, rng.next_float());
+    const float l = glm::length(v);
+    if (l > 0.1f && l <= 1.0f && v.z / l > min_z) return v / l;
+  }
+}
+
+// f_eff,x(wi, wo) = f_x(wi, wo)·max(0, n·wi)/wi.z, 0 below either horizon (spec, "The effective BRDF"),
+// with f_x the appearance module's glTF model (float).
+glm::dvec3 f_eff_reference(const GltfParams& p, const glm::vec3& n, const glm::vec3& wi, const glm::vec3& wo) {
+  if (wi.z <= 0 || wo.z <= 0 || glm::dot(n, wi) <= 0 || glm::dot(n, wo) <= 0) return glm::dvec3(0);
+  const Frame f = Frame::from_normal(n);
+  return glm::dvec3(gltf_eval(p, f.to_local(wi), f.to_local(wo))) * double(glm::dot(n, wi)) / double(wi.z);
+}
+
+// The same in double precision, transcribed from brdf-models.md (`gltf`) term by term, with the
+// shading frame's cosines taken as dot products with n (the model is isotropic).
+glm::dvec3 f_eff_spec_double(const GltfParams& p, const glm::dvec3& n, const glm::dvec3& wi, const glm::dvec3& wo) {
+  const double ci = glm::dot(n, wi), co = glm::dot(n, wo);
+  if (wi.z <= 0 || wo.z <= 0 || ci <= 0 || co <= 0) return glm::dvec3(0);
+  const double pi = 3.14159265358979323846;
+  const glm::dvec3 h = glm::normalize(wi + wo);
+  const double a = std::max(double(p.roughness) * p.roughness, 1e-3), a2 = a * a;
+  const double ch = glm::dot(n, h);
+  const double d = a2 / (pi * std::pow(ch * ch * (a2 - 1) + 1, 2));
+  const double v = 1.0 / (2 * (co * std::sqrt(a2 + (1 - a2) * ci * ci) + ci * std::sqrt(a2 + (1 - a2) * co * co)));
+  const double s = v * d, w = std::pow(1 - std::abs(glm::dot(wo, h)), 5);
+  const glm::dvec3 c(p.base_color);
+  const glm::dvec3 dielectric = glm::mix(c / pi, glm::dvec3(s), 0.04 + 0.96 * w);
+  const glm::dvec3 metal = s * (c + (1.0 - c) * w);
+  return glm::mix(dielectric, metal, double(p.metallic)) * ci / wi.z;
+}
+
+// exact at level 0 equals f_eff: to 1e-9 relative against the spec's formula in double, and to the
+// float model's own precision (2e-5 relative: its ~10 roundings) against appearance's gltf_eval.
+TEST(ExactReference, Level0EqualsGltfComposedWithTheNormal) {
+  Rng rng(1, 1);
+  MaterialTexels m(4, 4);
+  for (std::size_t k = 0; k < m.size(); ++k) {
+    m.base_color[k] = glm::vec3(rng.next_float(), rng.next_float(), rng.next_float());
+    m.metallic[k] = k % 3 == 0 ? 1.0f : rng.next_float();
+    m.roughness[k] = 0.3f + 0.7f * rng.next_float();
+    const float tilt = 0.6f * rng.next_float(), phi = 6.2831853f * rng.next_float();
+    m.normal[k] = glm::vec3(std::sin(tilt) * std::cos(phi), std::sin(tilt) * std::sin(phi), std::cos(tilt));
+  }
+  const ExactReference exact(m);
+  int compared = 0, zeros = 0;
+  double worst_float = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    const int i = trial % 4, j = (trial / 4) % 4;
+    const std::size_t k = m.index(i, j);
+    const glm::vec3 wi = random_direction_above(rng), wo = random_direction_above(rng);
+    const GltfParams p{m.base_color[k], m.metallic[k], m.roughness[k]};
+    const glm::dvec3 spec = f_eff_spec_double(p, glm::normalize(glm::dvec3(m.normal[k])), glm::dvec3(wi), glm::dvec3(wo));
+    const glm::dvec3 model = f_eff_reference(p, m.normal[k], wi, wo);
+    const glm::dvec3 got = exact.eval(0, i, j, glm::dvec3(wi), glm::dvec3(wo));
+    for (int c = 0; c < 3; ++c) {
+      if (model[c] == 0) {
+        EXPECT_EQ(got[c], 0.0);
+        EXPECT_EQ(spec[c], 0.0);
+        ++zeros;
+        continue;
+      }
+      EXPECT_NEAR(got[c], spec[c], 1e-6 * spec[c]) << "texel " << i << "," << j;
+      EXPECT_NEAR(got[c], model[c], 2e-5 * model[c]) << "texel " << i << "," << j;
+      worst_float = std::max(worst_float, std::abs(got[c] / model[c] - 1));
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 5000);
+  EXPECT_GT(zeros, 100);  // back-facing normals were exercised
+  RecordProperty("worst_relative_difference_to_gltf_eval", std::to_string(worst_float));
+}
+
+// Sharp lobes: both are evaluated in float somewhere, so compare near the peak with float's bound.
+TEST(ExactReference, GlossyLevel0AgreesWithGltfToFloatPrecision) {
+  Rng rng(2, 1);
+  for (float roughness : {0.05f, 0.1f, 0.2f, 0.3f}) {
+    const GltfParams p{glm::vec3(0.9f, 0.7f, 0.4f), 1.0f, roughness};
+    const glm::vec3 n = glm::normalize(glm::vec3(0.1f, -0.2f, 1.0f));
+    const Lobe l = lobe_from_texel(p.base_color, p.metallic, p.roughness, n);
+    for (int t = 0; t < 500; ++t) {
+      const glm::vec3 wo = random_direction_above(rng, 0.2f);
+      // Near the mirror direction about n, where the lobe peaks.
+      glm::vec3 wi = glm::normalize(2.0f * glm::dot(wo, n) * n - wo + 0.05f * random_direction_above(rng));
+      if (wi.z <= 0.05f) continue;
+      const glm::dvec3 want = f_eff_reference(p, n, wi, wo);
+      const glm::dvec3 got = lobe_eval<double>(l, pair_terms<double>(glm::dvec3(wi), glm::dvec3(wo)));
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], want[c], 2e-3 * want[c] + 1e-6);
+    }
+  }
+}
+
+// The lobe's split into ρ = (1 − m)·c and F0 = mix(0.04, c, m) is the glTF model for every metallic.
+TEST(Lobe, LinearSplitReproducesTheGltfMix) {
+  Rng rng(3, 1);
+  for (int t = 0; t < 2000; ++t) {
+    const GltfParams p{glm::vec3(rng.next_float(), rng.next_float(), rng.next_float()), rng.next_float(),
+                       0.3f + 0.7f * rng.next_float()};
+    const glm::vec3 wi = random_direction_above(rng), wo = random_direction_above(rng);
+    const Lobe l = lobe_from_texel(p.base_color, p.metallic, p.roughness, glm::vec3(0, 0, 1));
+    const glm::vec3 got = lobe_eval<float>(l, pair_terms<float>(wi, wo));
+    const glm::vec3 want = gltf_eval(p, wi, wo);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], want[c], 2e-5f * want[c] + 1e-7f);
+  }
+}
+
+// A level-0 texel through the renderer's BSDF is f_eff too.
+TEST(LobeMixtureBsdf, OneLevel0LobeIsFEff) {
+  Rng rng(4, 1);
+  const GltfParams p{glm::vec3(0.3f, 0.5f, 0.7f), 0.25f, 0.55f};
+  const glm::vec3 n = glm::normalize(glm::vec3(-0.3f, 0.2f, 1.0f));
+  const Lobe l = lobe_from_texel(p.base_color, p.metallic, p.roughness, n);
+  const LobeMixtureBsdf bsdf(std::span<const Lobe>(&l, 1));
+  for (int t = 0; t < 1000; ++t) {
+    const glm::vec3 wi = random_direction_above(rng), wo = random_direction_above(rng);
+    const glm::dvec3 want = f_eff_reference(p, n, wi, wo);
+    const glm::vec3 got = bsdf.eval(wi, wo);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], want[c], 1e-5 * want[c] + 1e-7);
+  }
+}
+
+// Merging keeps exactly what averages linearly — the diffuse amplitude weight·ρ, the weighted means of
+// F0 and of the normal — and rescales the specular part so that the pair's specular flux at
+// θi = 0°, 45°, 75° is kept (weight carries that factor; ρ is divided by it).
+TEST(LobeReduction, MergeKeepsDiffuseExactlyAndSpecularFlux) {
+  const Lobe a = lobe_from_texel(glm::vec3(0.8f, 0.1f, 0.1f), 0.0f, 0.5f, glm::normalize(glm::vec3(0.2f, 0, 1)), 0.3f);
+  const Lobe b = lobe_from_texel(glm::vec3(0.1f, 0.2f, 0.9f), 1.0f, 0.6f, glm::normalize(glm::vec3(-0.1f, 0.3f, 1)), 0.5f);
+  const Lobe m = merge_lobes(a, b);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(m.weight * m.diffuse[c], a.weight * a.diffuse[c] + b.weight * b.diffuse[c], 1e-6f);
+    EXPECT_NEAR(m.f0[c], (0.3f * a.f0[c] + 0.5f * b.f0[c]) / 0.8f, 1e-6f);
+    EXPECT_NEAR(m.normal[c], (0.3f * a.normal[c] + 0.5f * b.normal[c]) / 0.8f, 1e-6f);
+  }
+  EXPECT_NEAR(m.weight, 0.8f, 0.1f);  // the compensation is a few percent
+  // Different normals: the spread widens the lobe beyond both.
+  EXPECT_GT(m.alpha2, std::min(a.alpha2, b.alpha2));
+  // Flat metal lobes of different roughness: α² between theirs, and the specular flux kept, measured
+  // by an independent quadrature (metrics.h directional_albedo).
+  const Lobe c = lobe_from_texel(glm::vec3(0.9f), 1.0f, 0.3f, glm::vec3(0, 0, 1), 0.5f);
+  const Lobe d = lobe_from_texel(glm::vec3(0.9f), 1.0f, 0.7f, glm::vec3(0, 0, 1), 0.5f);
+  const Lobe cd = merge_lobes(c, d);
+  EXPECT_GE(cd.alpha2, c.alpha2);
+  EXPECT_LE(cd.alpha2, d.alpha2);
+  double before = 0, after = 0;
+  for (double theta : {0.0, 45.0, 75.0}) {
+    const glm::dvec3 wi(std::sin(theta * 3.14159265358979 / 180), 0, std::cos(theta * 3.14159265358979 / 180));
+    const std::array<Lobe, 2> pair{c, d};
+    before += directional_albedo(pair, wi, 48).g;
+    after += directional_albedo(std::span<const Lobe>(&cd, 1), wi, 48).g;
+  }
+  EXPECT_NEAR(after, before, 0.005 * before);
+}
+
+// Identical lobes reduce to one whatever the budget; never more than max_lobes remain; the result is
+// sorted by weight and keeps the diffuse amplitude.
+TEST(LobeReduction, BoundsCountAndKeepsWeight) {
+  std::array<Lobe, 72> buf;
+  for (int k = 0; k < 8; ++k) buf[static_cast<std::size_t>(k)] = lobe_from_texel(glm::vec3(0.5f), 0.0f, 0.5f, glm::vec3(0, 0, 1), 0.125f);
+  ReductionOptions o;
+  o.max_lobes = 4;
+  o.tolerance = 0.0f;
+  EXPECT_EQ(reduce_lobes(buf, 8, o), 1);
+  EXPECT_NEAR(buf[0].weight, 1.0f, 1e-6f);
+  Rng rng(5, 1);
+  for (int n : {3, 9, 16, 36}) {
+    double total = 0;  // the diffuse amplitude Σ weight·ρ, which merges keep exactly
+    for (int k = 0; k < n; ++k) {
+      const glm::vec3 nrm = glm::normalize(glm::vec3(rng.next_float() - 0.5f, rng.next_float() - 0.5f, 1.0f));
+      buf[static_cast<std::size_t>(k)] = lobe_from_texel(glm::vec3(rng.next_float()), rng.next_float() < 0.5f ? 1.0f : 0.0f,
+                                                         0.05f + 0.9f * rng.next_float(), nrm, 1.0f / n);
+      total += buf[static_cast<std::size_t>(k)].weight * buf[static_cast<std::size_t>(k)].diffuse.g;
+    }
+    const int kept = reduce_lobes(buf, n, o);
+    EXPECT_LE(kept, 4);
+    EXPECT_GE(kept, 1);
+    double after = 0;
+    for (int k = 0; k < kept; ++k) {
+      after += buf[static_cast<std::size_t>(k)].weight * buf[static_cast<std::size_t>(k)].diffuse.g;
+      if (k) {
+        EXPECT_GE(buf[static_cast<std::size_t>(k - 1)].weight, buf[static_cast<std::size_t>(k)].weight);
+      }
+    }
+    EXPECT_NEAR(after, total, 1e-5);
+  }
+}
+
+}  // namespace
+}  // namespace svbrdf
+
+namespace svbrdf {
+namespace {
+
+// The metric's table of a lobe (direction_grid.cpp's hoisted loops) is lobe_eval pair by pair, for
+// texel lobes and for merged lobes with spread normals.
+TEST(DirectionGrid, TableIsLobeEvalPairByPair) {
+  const Lobe a = lobe_from_texel(glm::vec3(0.7f, 0.4f, 0.2f), 0.3f, 0.35f, glm::normalize(glm::vec3(0.3f, -0.1f, 1.0f)));
+  Lobe spread = merge_lobes(a, lobe_from_texel(glm::vec3(0.2f), 1.0f, 0.1f, glm::normalize(glm::vec3(-0.4f, 0.2f, 1.0f))));
+  for (const Lobe& l : {a, spread}) {
+    BrdfTable d = make_table(), f = make_table();
+    accumulate_lobe_double(l, 1.0, d);
+    accumulate_lobe_float(l, 1.0, f);
+    const DirectionGrid& g = DirectionGrid::get();
+    for (int p = 0; p < DirectionGrid::kPairs; ++p) {
+      const glm::dvec3 want = lobe_eval<double>(l, g.pair_d(p));
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(d[static_cast<std::size_t>(p)][c], want[c], 1e-12 * (1 + want[c]));
+        EXPECT_NEAR(f[static_cast<std::size_t>(p)][c], want[c], 2e-5 * want[c] + 1e-7);
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace svbrdf
