@@ -121,5 +121,24 @@ TEST(LodReport, RendersInHeadlessChromiumWithoutConsoleErrors) {
   EXPECT_NE(l.dom.find("<table class=\"strip\">"), std::string::npos);
 }
 
+// svbrdf-lod-report: bad input is one line on stderr and exit 2, and writes nothing; a small run
+// writes the report.
+TEST(LodReport, ProgramBadInputAndASmallRun) {
+  const TempDir dir;
+  const std::string exe = SVBRDF_LOD_REPORT;
+  const std::string out = " --out '" + (dir / "r").string() + "'";
+  for (const std::string& args : {std::string("--bogus"), std::string("--case nope"), std::string("--light dusk"),
+                                  std::string("--manifest /nonexistent/manifest.json"), std::string("--spp 0")}) {
+    const auto r = run_command(exe + " " + args + out, dir.path());
+    EXPECT_EQ(r.status, 2) << args << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
+    EXPECT_FALSE(fs::exists(dir / "r")) << args;
+  }
+  const auto ok = run_command(exe + " --spp 4 --case printed-paper-text --light sun-0 --min-distance 1024 -q" + out, dir.path());
+  EXPECT_EQ(ok.status, 0) << ok.err;
+  EXPECT_EQ(ok.err, "");
+  EXPECT_TRUE(fs::exists(dir / "r" / "index.html"));
+}
+
 }  // namespace
 }  // namespace svbrdf
