@@ -16,7 +16,10 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
+    // --help and --version print through CLI11; a usage error is one line, as every bad input is.
+    if (e.get_exit_code() == 0) return app.exit(e);
+    std::fprintf(stderr, "svbrdf-bake: %s\n", e.what());
+    return 2;
   } catch (const svbrdf::Error& e) {
     std::fprintf(stderr, "svbrdf-bake: %s\n", e.what());
     return e.exit_code();

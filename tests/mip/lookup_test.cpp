@@ -1,0 +1,175 @@
+// The renderer's lookups: the trilinear/anisotropic filter, the stochastic selection of one texel
+// (unbiased: its mean is the filter-weighted mean of the texels' BRDFs), the mixture's sampling, and
+// the deterministic trilinear parameter lookup.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "appearance/rng.h"
+#include "mip/mip_data.h"
+#include "mip/mip_lookup.h"
+#include "tests/mip/synthetic_materials.h"
+
+namespace svbrdf {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+float total_weight(const FilterTaps& t) {
+  float s = 0;
+  for (int k = 0; k < t.count; ++k) s += t.taps[static_cast<std::size_t>(k)].weight;
+  return s;
+}
+
+TEST(FilterTaps, LevelsProbesAndWeights) {
+  const Extent e{64, 64};
+  const int levels = level_count(e);
+  // A footprint one level-0 texel wide: level 0, bilinear (≤ 4 taps).
+  FilterTaps t = filter_taps(e, levels, {{0.3f, 0.7f}, {1.0f / 64, 0}, {0, 1.0f / 64}});
+  EXPECT_FLOAT_EQ(t.level, 0.0f);
+  EXPECT_LE(t.count, 4);
+  EXPECT_NEAR(total_weight(t), 1.0f, 1e-6f);
+  // Four texels wide: level 2 exactly; 6 wide: between 2 and 3 (trilinear, ≤ 8 taps).
+  t = filter_taps(e, levels, {{0.3f, 0.7f}, {4.0f / 64, 0}, {0, 4.0f / 64}});
+  EXPECT_NEAR(t.level, 2.0f, 1e-5f);
+  t = filter_taps(e, levels, {{0.3f, 0.7f}, {6.0f / 64, 0}, {0, 6.0f / 64}});
+  EXPECT_NEAR(t.level, std::log2(6.0f), 1e-5f);
+  EXPECT_LE(t.count, 8);
+  EXPECT_NEAR(total_weight(t), 1.0f, 1e-6f);
+  // Anisotropic 4:1 → 4 probes at the minor axis's level; 20:1 → 8 probes at major/8.
+  t = filter_taps(e, levels, {{0.5f, 0.5f}, {8.0f / 64, 0}, {0, 2.0f / 64}});
+  EXPECT_EQ(t.probes, 4);
+  EXPECT_NEAR(t.level, 1.0f, 1e-5f);
+  t = filter_taps(e, levels, {{0.5f, 0.5f}, {0, 40.0f / 64}, {2.0f / 64, 0}});
+  EXPECT_EQ(t.probes, 8);
+  EXPECT_NEAR(t.level, std::log2(5.0f), 1e-5f);
+  EXPECT_NEAR(total_weight(t), 1.0f, 1e-5f);
+  // Huge footprints clamp to the last level; wrap-around uvs and NaN stay in range.
+  for (const Footprint& f : {Footprint{{-3.2f, 7.9f}, {100, 0}, {0, 100}}, Footprint{{1e6f, -1e6f}, {0.01f, 0}, {0, 0.01f}},
+                             Footprint{{NAN, 0.5f}, {INFINITY, 0}, {0, NAN}}}) {
+    t = filter_taps(e, levels, f);
+    EXPECT_NEAR(total_weight(t), 1.0f, 1e-5f);
+    for (int k = 0; k < t.count; ++k) {
+      const FilterTap& tap = t.taps[static_cast<std::size_t>(k)];
+      const Extent le = level_extent(e, tap.level);
+      EXPECT_TRUE(tap.level >= 0 && tap.level < levels && tap.i >= 0 && tap.i < le.width && tap.j >= 0 && tap.j < le.height);
+    }
+  }
+}
+
+// Filtering after shading is unbiased: the mean of 10^5 selected texels' BRDFs equals the
+// filter-weighted mean of the texels' BRDFs within 3 standard errors, per channel and direction pair.
+TEST(LookupBrdf, StochasticSelectionIsUnbiased) {
+  const MipData mip = build_mip(synthetic::tray(32));
+  const Footprint f{{0.43f, 0.61f}, {3.1f / 32, 1.0f / 32}, {-0.4f / 32, 0.9f / 32}};  // anisotropic, between levels
+  const FilterTaps taps = filter_taps(mip.brdf.level0(), mip.brdf.levels(), f);
+  ASSERT_GT(taps.count, 8);
+  const std::array<std::pair<glm::vec3, glm::vec3>, 3> pairs{{
+      {glm::normalize(glm::vec3(0.3f, 0.1f, 1)), glm::normalize(glm::vec3(-0.3f, -0.1f, 1))},  // near the highlight
+      {glm::normalize(glm::vec3(0.5f, 0.0f, 1)), glm::normalize(glm::vec3(-0.2f, 0.3f, 1))},
+      {glm::normalize(glm::vec3(0.9f, 0.2f, 0.3f)), glm::normalize(glm::vec3(0.1f, -0.8f, 0.5f))},
+  }};
+  for (const auto& [wi, wo] : pairs) {
+    glm::dvec3 expected(0);
+    for (int k = 0; k < taps.count; ++k) {
+      const FilterTap& t = taps.taps[static_cast<std::size_t>(k)];
+      expected += double(t.weight) * glm::dvec3(LobeMixtureBsdf(mip.brdf.texel(t.level, t.i, t.j)).eval(wi, wo));
+    }
+    Rng rng(17, 3);
+    constexpr int n = 100000;
+    glm::dvec3 sum(0), sum2(0);
+    for (int s = 0; s < n; ++s) {
+      const glm::dvec3 v(lookup_brdf(mip.brdf, f, rng.next_float()).eval(wi, wo));
+      sum += v;
+      sum2 += v * v;
+    }
+    const glm::dvec3 mean = sum / double(n);
+    for (int c = 0; c < 3; ++c) {
+      const double se = std::sqrt(std::max(0.0, sum2[c] / n - mean[c] * mean[c]) / n);
+      EXPECT_NEAR(mean[c], expected[c], 3 * se + 1e-9 * expected[c]) << "channel " << c;
+    }
+  }
+}
+
+// The mixture's sampler: pdf() is the density sample() draws from (χ² over 64 bins of the
+// hemisphere), the weights are f·cosθ/pdf, and their mean is ∫ f·cosθ dωi by dense quadrature.
+TEST(LobeMixtureBsdf, SamplingMatchesItsPdfAndIntegral) {
+  // A coarse texel of the bumpy wall and one of the tray: spread lobes and a sharp one.
+  const MipData wall = build_mip(synthetic::painted_wall(16));
+  const MipData tray = build_mip(synthetic::tray(16));
+  for (const LobeMixtureBsdf& bsdf : {LobeMixtureBsdf(wall.brdf.texel(2, 1, 2)), LobeMixtureBsdf(tray.brdf.texel(3, 0, 1))}) {
+    ASSERT_GT(bsdf.size(), 0);
+    const glm::vec3 wo = glm::normalize(glm::vec3(0.4f, -0.2f, 0.8f));
+    // Bins: 8 in cos²θ (equal cosine-weighted mass) × 8 in φ; expected mass by midpoint quadrature.
+    constexpr int nb = 8, sub = 48;
+    std::array<double, nb * nb> expected{};
+    double integral = 0;
+    for (int a = 0; a < nb * sub; ++a)
+      for (int b = 0; b < nb * sub; ++b) {
+        const double u = (a + 0.5) / (nb * sub), v = (b + 0.5) / (nb * sub);
+        const double ct = std::sqrt(1 - u), st = std::sqrt(u), phi = 2 * kPi * v;
+        const glm::vec3 wi(float(st * std::cos(phi)), float(st * std::sin(phi)), float(ct));
+        const double dw = kPi / ((nb * sub) * (nb * sub)) / ct;  // solid angle of the cell (dω = π du dv / cosθ)
+        expected[static_cast<std::size_t>((a / sub) * nb + b / sub)] += bsdf.pdf(wi, wo) * dw;
+        integral += double(bsdf.eval(wi, wo).g) * ct * dw;
+      }
+    Rng rng(23, 5);
+    constexpr int n = 200000;
+    std::array<double, nb * nb> observed{};
+    double weight_sum = 0;
+    int absorbed = 0;
+    for (int s = 0; s < n; ++s) {
+      const BsdfSample smp = bsdf.sample(wo, {rng.next_float(), rng.next_float(), rng.next_float()});
+      if (smp.kind != SampleKind::finite) {
+        ++absorbed;
+        continue;
+      }
+      ASSERT_GT(smp.wi.z, 0.0f);
+      EXPECT_NEAR(smp.pdf, bsdf.pdf(smp.wi, wo), 1e-4f * smp.pdf);
+      const glm::vec3 f = bsdf.eval(smp.wi, wo);
+      EXPECT_NEAR(smp.weight.g, f.g * smp.wi.z / smp.pdf, 1e-4f * (smp.weight.g + 1e-6f));
+      weight_sum += smp.weight.g;
+      const double u = 1 - double(smp.wi.z) * smp.wi.z;
+      const double v = std::fmod(std::atan2(double(smp.wi.y), double(smp.wi.x)) / (2 * kPi) + 1.0, 1.0);
+      const int a = std::min(nb - 1, static_cast<int>(u * nb)), b = std::min(nb - 1, static_cast<int>(v * nb));
+      observed[static_cast<std::size_t>(a * nb + b)] += 1;
+    }
+    double chi2 = 0, mass = 0;
+    for (int k = 0; k < nb * nb; ++k) {
+      const double e = expected[static_cast<std::size_t>(k)] * n;
+      mass += expected[static_cast<std::size_t>(k)];
+      if (e > 5) chi2 += std::pow(observed[static_cast<std::size_t>(k)] - e, 2) / e;
+    }
+    EXPECT_LT(chi2, 120.0);  // 63 degrees of freedom: p ≈ 1e-5
+    EXPECT_NEAR(mass + double(absorbed) / n, 1.0, 0.01);  // what is not above the horizon was absorbed
+    EXPECT_NEAR(weight_sum / n, integral, 0.02 * integral);
+  }
+}
+
+// The parameter lookup is deterministic trilinear filtering of the parameters, the normal summed
+// unnormalized and normalized once.
+TEST(LookupParam, TrilinearMeansOfTheParameters) {
+  MaterialTexels m(2, 1);
+  m.base_color = {glm::vec3(1, 0, 0), glm::vec3(0, 0, 1)};
+  m.metallic = {0.0f, 1.0f};
+  m.roughness = {0.2f, 0.6f};
+  m.normal = {glm::normalize(glm::vec3(0.5f, 0, 1)), glm::normalize(glm::vec3(-0.5f, 0, 1))};
+  const ParamPyramid p = ParamPyramid::build(m);
+  // Halfway between the two texel centres at level 0 (tiny footprint): the plain average.
+  const ParamTexel t = filter_params(p, {{0.5f, 0.5f}, {1e-4f, 0}, {0, 1e-4f}});
+  EXPECT_NEAR(t.base_color.r, 0.5f, 1e-5f);
+  EXPECT_NEAR(t.base_color.b, 0.5f, 1e-5f);
+  EXPECT_NEAR(t.metallic, 0.5f, 1e-5f);
+  EXPECT_NEAR(t.roughness, 0.4f, 1e-5f);
+  EXPECT_NEAR(t.normal.x, 0.0f, 1e-6f);
+  EXPECT_NEAR(t.normal.z, 1.0f / std::sqrt(1.25f), 1e-5f);  // unnormalized: the mean of two unit vectors
+  const Lobe l = lookup_param(p, {{0.5f, 0.5f}, {1e-4f, 0}, {0, 1e-4f}});
+  EXPECT_NEAR(glm::length(l.normal), 1.0f, 1e-6f);  // normalized once, for shading
+  // Toksvig widens α from the shortened mean normal: α'² = α² + 2(1 − r)/r.
+  const float r = 1.0f / std::sqrt(1.25f);
+  const Lobe tk = lookup_param(p, {{0.5f, 0.5f}, {1e-4f, 0}, {0, 1e-4f}}, ParamBaseline::toksvig);
+  EXPECT_NEAR(tk.alpha2, std::pow(0.4f * 0.4f, 2.0f) + 2 * (1 - r) / r, 1e-5f);
+}
+
+}  // namespace
+}  // namespace svbrdf

@@ -1,0 +1,127 @@
+// The MIP file: a bit-identical round trip, OpenImageIO's tools list it, a newer version and foreign
+// files are refused with a clear message.
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <string>
+
+#include "base/error.h"
+#include "mip/mip_file.h"
+#include "tests/mip/synthetic_materials.h"
+#include "tests/mip/temp_dir.h"
+
+namespace svbrdf {
+namespace {
+
+template <class T>
+bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
+
+MaterialTexels mixed_material(int w, int h) {
+  MaterialTexels m = synthetic::painted_wall(std::max(w, h));
+  MaterialTexels out(w, h);
+  const MaterialTexels tray = synthetic::tray(std::max(w, h));
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) {
+      const bool metal = (i / 3 + j / 2) % 2 == 0;
+      const MaterialTexels& src = metal ? tray : m;
+      out.base_color[out.index(i, j)] = src.base_color[src.index(i, j)];
+      out.metallic[out.index(i, j)] = src.metallic[src.index(i, j)];
+      out.roughness[out.index(i, j)] = src.roughness[src.index(i, j)];
+      out.normal[out.index(i, j)] = m.normal[m.index(i, j)];
+    }
+  return out;
+}
+
+TEST(MipFile, RoundTripIsBitIdentical) {
+  testing::TempDir dir;
+  for (auto [w, h] : {std::pair{16, 16}, std::pair{12, 5}}) {
+    BrdfBuildOptions o;
+    o.reduction.max_lobes = 3;
+    const MipData a = build_mip(mixed_material(w, h), o);
+    std::string name = "m";  // appended, not concatenated: GCC 12 -O3 warns falsely otherwise (PR 105651)
+    name += std::to_string(w);
+    name += ".exr";
+    const auto path = dir / name;
+    write_mip_file(path, a);
+    const MipData b = read_mip_file(path);
+    ASSERT_EQ(b.levels(), a.levels());
+    EXPECT_TRUE(same_bits(a.level0.base_color, b.level0.base_color));
+    EXPECT_TRUE(same_bits(a.level0.metallic, b.level0.metallic));
+    EXPECT_TRUE(same_bits(a.level0.roughness, b.level0.roughness));
+    EXPECT_TRUE(same_bits(a.level0.normal, b.level0.normal));
+    EXPECT_EQ(b.brdf.max_lobes(), 3);
+    for (int l = 0; l < a.levels(); ++l) {
+      const auto pa = a.param.level(l), pb = b.param.level(l);
+      ASSERT_EQ(pa.size(), pb.size());
+      EXPECT_EQ(std::memcmp(pa.data(), pb.data(), pa.size_bytes()), 0) << "param level " << l;
+      const BrdfLevel &la = a.brdf.level(l), &lb = b.brdf.level(l);
+      EXPECT_EQ(la.slots, lb.slots);
+      EXPECT_TRUE(same_bits(la.counts, lb.counts)) << "level " << l;
+      EXPECT_TRUE(same_bits(la.lobes, lb.lobes)) << "level " << l;
+    }
+  }
+}
+
+TEST(MipFile, OpenImageIOToolsListIt) {
+  testing::TempDir dir;
+  const auto path = dir / "tray.exr";
+  write_mip_file(path, build_mip(synthetic::tray(8)));
+  const std::string cmd = "oiiotool --info -v '" + path.string() + "' 2>&1";
+  FILE* p = ::popen(cmd.c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  std::string out;
+  char buf[4096];
+  while (std::fgets(buf, sizeof buf, p)) out += buf;
+  const int rc = ::pclose(p);
+  if (out.find("not found") != std::string::npos) GTEST_SKIP() << "oiiotool is not installed";
+  EXPECT_EQ(rc, 0) << out;
+  EXPECT_NE(out.find("4 subimages"), std::string::npos) << out;
+  EXPECT_NE(out.find("param.roughness"), std::string::npos) << out;
+  EXPECT_NE(out.find("svbrdf:mip_version: 1"), std::string::npos) << out;
+}
+
+void write_exr_with_version(const std::filesystem::path& path, int version) {
+  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(path.string());
+  ASSERT_TRUE(out);
+  OIIO::ImageSpec spec(1, 1, 3, OIIO::TypeDesc::FLOAT);
+  if (version > 0) spec.attribute("svbrdf:mip_version", version);
+  ASSERT_TRUE(out->open(path.string(), spec));
+  const float px[3] = {0.5f, 0.5f, 0.5f};
+  ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, px));
+  out->close();
+}
+
+std::string read_error(const std::filesystem::path& path) {
+  try {
+    read_mip_file(path);
+  } catch (const Error& e) {
+    EXPECT_EQ(e.exit_code(), 2);
+    return e.what();
+  }
+  return "";
+}
+
+TEST(MipFile, RefusesNewerVersionsForeignAndMissingFiles) {
+  testing::TempDir dir;
+  write_exr_with_version(dir / "newer.exr", kMipFileVersion + 1);
+  std::string msg = read_error(dir / "newer.exr");
+  EXPECT_NE(msg.find("newer.exr"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("version " + std::to_string(kMipFileVersion + 1) + " is newer"), std::string::npos) << msg;
+  write_exr_with_version(dir / "plain.exr", 0);
+  msg = read_error(dir / "plain.exr");
+  EXPECT_NE(msg.find("not an svbrdf MIP file"), std::string::npos) << msg;
+  msg = read_error(dir / "missing.exr");
+  EXPECT_NE(msg.find("missing.exr"), std::string::npos) << msg;
+  // A MIP file with a level cut away is inconsistent, not silently short.
+  write_exr_with_version(dir / "short.exr", kMipFileVersion);
+  EXPECT_NE(read_error(dir / "short.exr").find("short.exr"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace svbrdf
