@@ -22,6 +22,7 @@
 // E[n_x]·wi is the exact mean of the texels' cosine factors while no normal is below the light's
 // horizon (the diffuse term is then exact, the design notes' E[ρ·n]); the specular part keeps the
 // same factor so the lobe reflects the same flux as its texels.
+#include <algorithm>
 #include <cmath>
 
 #include <glm/glm.hpp>

@@ -19,7 +19,6 @@ LobeMixtureBsdf::LobeMixtureBsdf(std::span<const Lobe> lobes) {
     lobes_[k] = l;
     shapes_[k] = lobe_shape<float>(l);
     if (!shapes_[k].valid) continue;
-    frames_[k] = Frame::from_normal(shapes_[k].n);
     // Albedo estimates for the choice: the diffuse term 0.96·ρ, the specular F0 plus Fresnel's rise.
     const float scale = l.weight * shapes_[k].len;
     diffuse_albedo_[k] = scale * 0.96f * mean3(l.diffuse);
@@ -67,7 +66,8 @@ float LobeMixtureBsdf::pdf_with(const Choice& c, const glm::vec3& wi, const glm:
     const glm::vec3 n = shapes_[i].n;
     float p = c.diffuse[i] * cosine_hemisphere_pdf(glm::dot(n, wi));
     if (c.diffuse[i] < 1.0f) {
-      const glm::vec3 wo_l = frames_[i].to_local(wo), wi_l = frames_[i].to_local(wi);
+      const Frame fr = Frame::from_normal(n);
+      const glm::vec3 wo_l = fr.to_local(wo), wi_l = fr.to_local(wi);
       const glm::vec3 hsum = wi_l + wo_l;
       const float len = glm::length(hsum);
       if (len > 0) {
@@ -105,12 +105,13 @@ BsdfSample LobeMixtureBsdf::sample(const glm::vec3& wo, const SampleU& u) const 
     wi = sample_cosine_hemisphere(uv);
   } else {
     const std::size_t i = static_cast<std::size_t>(picked);
+    const Frame fr = Frame::from_normal(shapes_[i].n);
     if (ux < c.diffuse[i]) {
-      wi = frames_[i].to_world(sample_cosine_hemisphere(uv));
+      wi = fr.to_world(sample_cosine_hemisphere(uv));
     } else {
-      const glm::vec3 wo_l = frames_[i].to_local(wo);
+      const glm::vec3 wo_l = fr.to_local(wo);
       const glm::vec3 h = sample_ggx_visible(std::sqrt(shapes_[i].alpha2), wo_l, uv);
-      wi = frames_[i].to_world(2.0f * glm::dot(wo_l, h) * h - wo_l);
+      wi = fr.to_world(2.0f * glm::dot(wo_l, h) * h - wo_l);
     }
   }
   s.wi = wi;

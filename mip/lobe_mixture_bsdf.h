@@ -48,7 +48,6 @@ class LobeMixtureBsdf final : public Bsdf {
 
   std::array<Lobe, kMaxLobes> lobes_{};
   std::array<LobeShape<float>, kMaxLobes> shapes_{};
-  std::array<Frame, kMaxLobes> frames_{};
   std::array<float, kMaxLobes> diffuse_albedo_{}, spec_albedo_{};
   int count_ = 0;
 };

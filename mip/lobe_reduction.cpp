@@ -146,10 +146,11 @@ double shape_cost(const Summary& a, const Summary& b, const Summary& m) {
 // the metric has h = z, and a polished surface seen from afar shows its highlight there, so a merge
 // that lowers or raises the mixture's peak at h = z is charged for it (the blurred L2 above cannot
 // see the height of narrow peaks).
-double full_cost(const Summary& a, const Summary& b, const Summary& m) {
+double peak_cost(const Summary& a, const Summary& b, const Summary& m) {
   const double peak = a.amp * a.d_z + b.amp * b.d_z - (a.amp + b.amp) * m.d_z;
-  return shape_cost(a, b, m) + kPeakWeight * peak * peak;
+  return kPeakWeight * peak * peak;
 }
+double full_cost(const Summary& a, const Summary& b, const Summary& m) { return shape_cost(a, b, m) + peak_cost(a, b, m); }
 
 // The merged lobe but for its α²: the linear parts (weight, ρ, F0, mean normal) and the spread of the
 // two normals about the merged one in slope space (α² = 2σ², LEAN), weighted by the lobes' specular
@@ -164,17 +165,19 @@ MergeBase merge_base(const Lobe& a, const Summary& sa, const Lobe& b, const Summ
   MergeBase mb;
   Lobe& m = mb.lobe;
   const double wa = a.weight, wb = b.weight, w = wa + wb;
+  // Shares instead of divisions: this runs for every candidate pair of every texel.
+  const double ta_ = wa / w, tb_ = wb / w;
   m.weight = static_cast<float>(w);
-  m.diffuse = glm::vec3((wa * glm::dvec3(a.diffuse) + wb * glm::dvec3(b.diffuse)) / w);
-  m.f0 = glm::vec3((wa * glm::dvec3(a.f0) + wb * glm::dvec3(b.f0)) / w);
-  const glm::dvec3 nbar = (wa * glm::dvec3(a.normal) + wb * glm::dvec3(b.normal)) / w;
+  m.diffuse = glm::vec3(ta_ * glm::dvec3(a.diffuse) + tb_ * glm::dvec3(b.diffuse));
+  m.f0 = glm::vec3(ta_ * glm::dvec3(a.f0) + tb_ * glm::dvec3(b.f0));
+  const glm::dvec3 nbar = ta_ * glm::dvec3(a.normal) + tb_ * glm::dvec3(b.normal);
   m.normal = glm::vec3(nbar);
   const double len = glm::length(nbar);
   Summary& s = mb.summary;
-  s.n = len > 0 ? nbar / len : glm::dvec3(0, 0, 1);
+  s.n = len > 0 ? nbar * (1.0 / len) : glm::dvec3(0, 0, 1);
   s.weight = w;
-  s.rho = (wa * sa.rho + wb * sb.rho) / w;
-  s.f0 = (wa * sa.f0 + wb * sb.f0) / w;
+  s.rho = ta_ * sa.rho + tb_ * sb.rho;
+  s.f0 = ta_ * sa.f0 + tb_ * sb.f0;
   s.amp = w * len * (s.f0 + 0.05 * (1.0 - s.f0));
   double ka = sa.amp, kb = sb.amp;
   if (!(ka + kb > 0)) ka = wa, kb = wb;
@@ -213,8 +216,8 @@ Merged merge_pair(const Lobe& a, const Summary& sa, const Lobe& b, const Summary
   // moments) and the dominant lobe's α², the one with the lowest shape cost wins.
   Merged best{mb.lobe, mb.summary, 0};
   set_alpha2(best.lobe, best.summary, (ka + kb) / (ka / xa + kb / xb) + mb.spread);
+  double best_shape = shape_cost(sa, sb, best.summary);
   if (std::max(xa, xb) > 4.0 * std::min(xa, xb)) {
-    double best_shape = shape_cost(sa, sb, best.summary);
     for (double base : {(ka * xa + kb * xb) / (ka + kb), ka >= kb ? xa : xb}) {
       Merged c{mb.lobe, mb.summary, 0};
       set_alpha2(c.lobe, c.summary, base + mb.spread);
@@ -222,21 +225,44 @@ Merged merge_pair(const Lobe& a, const Summary& sa, const Lobe& b, const Summary
       if (sc < best_shape) best_shape = sc, best = c;
     }
   }
-  // Keep the pair's specular albedo: scale the merged lobe's weight (which scales its specular part)
-  // and divide its ρ by the same factor (which leaves its diffuse part as it was).
-  {
-    const SpecAlbedoTable& t = SpecAlbedoTable::get();
-    auto albedo = [&](const Lobe& l) { return double(l.weight) * glm::length(glm::dvec3(l.normal)) * t.albedo(l.alpha2, mean3(l.f0)); };
-    const double want = albedo(a) + albedo(b), have = albedo(best.lobe);
-    if (have > 0 && want > 0) {
-      const double scale = want / have;
-      best.lobe.weight = static_cast<float>(best.lobe.weight * scale);
-      best.lobe.diffuse = glm::vec3(glm::dvec3(best.lobe.diffuse) / scale);
-      best.summary = summarize(best.lobe);
-    }
-  }
-  best.cost = full_cost(sa, sb, best.summary);
+  best.cost = best_shape + peak_cost(sa, sb, best.summary);
   return best;
+}
+
+// Keeps the pair's specular albedo: scales the merged lobe's weight (which scales its specular part)
+// and divides its ρ by the same factor (which leaves its diffuse part as it was). Applied when a merge
+// is made, not while costs are estimated (it changes them by a few percent of the amplitude only).
+void keep_specular_flux(const Lobe& a, const Lobe& b, Merged& m) {
+  const SpecAlbedoTable& t = SpecAlbedoTable::get();
+  auto albedo = [&](const Lobe& l) { return double(l.weight) * glm::length(glm::dvec3(l.normal)) * t.albedo(l.alpha2, mean3(l.f0)); };
+  const double want = albedo(a) + albedo(b), have = albedo(m.lobe);
+  if (have > 0 && want > 0) {
+    const double scale = want / have;
+    m.lobe.weight = static_cast<float>(m.lobe.weight * scale);
+    m.lobe.diffuse = glm::vec3(glm::dvec3(m.lobe.diffuse) / scale);
+    m.summary = summarize(m.lobe);
+  }
+}
+
+// For unions of rough lobes only (α² at or above the resolution, where shapes are smooth and no peak
+// needs keeping): a cheap stand-in for full_cost that orders the merges down to max_lobes the same
+// way on the presets (bench/results/mip.md) at a tenth of the cost — Ward's criterion (the product of
+// the weights over their sum) times the squared distance of the shapes (log-roughness, the normals'
+// offset relative to the lobes' widths) scaled by the specular amplitude's L2 norm, plus the horizon
+// term of shape_cost.
+double rough_distance(const Summary& a, const Summary& b) {
+  const double w = a.weight + b.weight;
+  const double ab = a.weight * b.weight / w;
+  const double width = a.alpha2 + b.alpha2 + 2.0 * kResolutionAlpha2;
+  const double amp = (a.amp + b.amp) / w;
+  const glm::dvec3 dn = a.n - b.n;
+  const double dn2 = glm::dot(dn, dn);
+  const double dl = std::log(a.alpha2 / b.alpha2);
+  const double rho = 0.5 * (a.rho + b.rho), f0 = 0.5 * (a.f0 + b.f0);
+  const double horizon_amp = rho + f0 + 0.2 * (1.0 - f0);
+  const double drho = a.rho - b.rho;
+  return ab * (amp * amp / (2.0 * width) * (0.25 * dl * dl + dn2 / width) + 0.4 * horizon_amp * horizon_amp * std::sqrt(dn2)) +
+         (4.0 / 3.0) * ab * ab * drho * drho * dn2;
 }
 
 // Lobes whose merge changes nothing measurable: the same normal, length and roughness.
@@ -249,7 +275,9 @@ bool near_duplicates(const Lobe& a, const Lobe& b) {
 
 Lobe merge_lobes(const Lobe& a, const Lobe& b, float spread_scale) {
   if (!(double(a.weight) + b.weight > 0)) return a;
-  return merge_pair(a, summarize(a), b, summarize(b), spread_scale).lobe;
+  Merged m = merge_pair(a, summarize(a), b, summarize(b), spread_scale);
+  keep_specular_flux(a, b, m);
+  return m.lobe;
 }
 
 double merge_cost(const Lobe& a, const Lobe& b, const Lobe& merged) {
@@ -290,6 +318,36 @@ int reduce_lobes(std::span<Lobe> lobes, int n, const ReductionOptions& options) 
     norm2 += (4.0 / 3.0) * diffuse_amp * diffuse_amp;
     const double budget = double(options.tolerance) * options.tolerance * norm2;
     double spent = 0;
+    // Rough lobes only: the cheap distance takes the union down to max_lobes.
+    bool all_rough = n > max_lobes;
+    for (int i = 0; i < n && all_rough; ++i) all_rough = S(i).alpha2 >= kResolutionAlpha2;
+    if (all_rough) {
+      static thread_local std::array<double, kCap * kCap> dist;
+      auto D = [&](int i, int j) -> double& { return dist[static_cast<std::size_t>(std::min(i, j) * kCap + std::max(i, j))]; };
+      for (int i = 0; i < n; ++i)
+        for (int j = i + 1; j < n; ++j) D(i, j) = rough_distance(S(i), S(j));
+      while (n > max_lobes) {
+        int bi = 0, bj = 1;
+        double best = INFINITY;
+        for (int i = 0; i < n; ++i)
+          for (int j = i + 1; j < n; ++j)
+            if (D(i, j) < best) best = D(i, j), bi = i, bj = j;
+        Merged m = merge_pair(L(bi), S(bi), L(bj), S(bj), options.spread_scale);
+        keep_specular_flux(L(bi), L(bj), m);
+        L(bi) = m.lobe;
+        sum[static_cast<std::size_t>(bi)] = m.summary;
+        const int last = n - 1;
+        if (bj != last) {
+          L(bj) = L(last);
+          sum[static_cast<std::size_t>(bj)] = sum[static_cast<std::size_t>(last)];
+          for (int i = 0; i < last; ++i)
+            if (i != bj) D(i, bj) = D(i, last);
+        }
+        --n;
+        for (int i = 0; i < n; ++i)
+          if (i != bi) D(i, bi) = rough_distance(S(i), S(bi));
+      }
+    }
     // Pairwise merge costs, upper triangle; after a merge only the merged lobe's row changes.
     static thread_local std::array<double, kCap * kCap> cost;
     auto C = [&](int i, int j) -> double& { return cost[static_cast<std::size_t>(std::min(i, j) * kCap + std::max(i, j))]; };
@@ -306,7 +364,8 @@ int reduce_lobes(std::span<Lobe> lobes, int n, const ReductionOptions& options) 
         if (spent + best > budget) break;
         spent += best;
       }
-      const Merged m = merge_pair(L(bi), S(bi), L(bj), S(bj), options.spread_scale);
+      Merged m = merge_pair(L(bi), S(bi), L(bj), S(bj), options.spread_scale);
+      keep_specular_flux(L(bi), L(bj), m);
       L(bi) = m.lobe;
       sum[static_cast<std::size_t>(bi)] = m.summary;
       // The last lobe takes bj's place, with its costs.

@@ -12,54 +12,114 @@ int wrap(int i, int n) {
   return r < 0 ? r + n : r;
 }
 
-// Bilinear taps of one level at uv (wrap: repeat).
-void add_bilinear(FilterTaps& out, Extent e, int level, glm::vec2 uv, float weight) {
-  if (!(weight > 0)) return;
+// The footprint's filter: the continuous level, the number of probes and where they sit.
+struct FilterShape {
+  glm::vec2 uv{0.0f};
+  glm::vec2 major_uv{0.0f};  // the footprint's major axis in uv (the probes span it)
+  int probes = 1;
+  int level = 0;     // lower level of the trilinear pair
+  float t = 0.0f;    // weight of level + 1
+  float lambda = 0.0f;
+};
+
+FilterShape filter_shape(Extent level0, int levels, const Footprint& f, int max_probes) {
+  FilterShape s;
+  max_probes = std::clamp(max_probes, 1, kMaxProbes);
+  s.uv = f.uv;
+  if (!std::isfinite(s.uv.x) || !std::isfinite(s.uv.y)) s.uv = glm::vec2(0.0f);
+  // The footprint's axes in level-0 texels.
+  const glm::vec2 scale(static_cast<float>(level0.width), static_cast<float>(level0.height));
+  glm::vec2 ax = f.duv_dx * scale, ay = f.duv_dy * scale;
+  glm::vec2 mx = f.duv_dx, my = f.duv_dy;
+  if (!std::isfinite(ax.x) || !std::isfinite(ax.y)) ax = glm::vec2(0.0f), mx = glm::vec2(0.0f);
+  if (!std::isfinite(ay.x) || !std::isfinite(ay.y)) ay = glm::vec2(0.0f), my = glm::vec2(0.0f);
+  float la = glm::length(ax), lb = glm::length(ay);
+  s.major_uv = mx;
+  if (lb > la) std::swap(la, lb), s.major_uv = my;
+  const float minor = std::max(lb, la / static_cast<float>(max_probes));
+  s.probes = minor > 0 ? std::clamp(static_cast<int>(std::ceil(la / minor - 1e-3f)), 1, max_probes) : 1;
+  s.lambda = minor > 0 ? std::clamp(std::log2(minor), 0.0f, static_cast<float>(levels - 1)) : 0.0f;
+  s.level = static_cast<int>(std::floor(s.lambda));
+  s.t = s.lambda - static_cast<float>(s.level);
+  if (s.level >= levels - 1) s.level = levels - 1, s.t = 0.0f;
+  return s;
+}
+
+glm::vec2 probe_uv(const FilterShape& s, int p) {
+  if (s.probes == 1) return s.uv;
+  return s.uv + ((static_cast<float>(p) + 0.5f) / static_cast<float>(s.probes) - 0.5f) * s.major_uv;
+}
+
+// Bilinear weights of one level at uv (wrap: repeat): columns x0, x1 with fx, rows y0, y1 with fy.
+struct Bilinear {
+  int x0, x1, y0, y1;
+  float fx, fy;
+};
+Bilinear bilinear(Extent e, glm::vec2 uv) {
   const float x = uv.x * static_cast<float>(e.width) - 0.5f, y = uv.y * static_cast<float>(e.height) - 0.5f;
   const float fx0 = std::floor(x), fy0 = std::floor(y);
-  const float fx = x - fx0, fy = y - fy0;
-  // Reduce the integer part modulo the size first so huge coordinates stay exact.
-  const int x0 = wrap(static_cast<int>(std::fmod(fx0, static_cast<float>(e.width))), e.width);
-  const int y0 = wrap(static_cast<int>(std::fmod(fy0, static_cast<float>(e.height))), e.height);
-  const int x1 = wrap(x0 + 1, e.width), y1 = wrap(y0 + 1, e.height);
-  const float w[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
-  const int xs[4] = {x0, x1, x0, x1}, ys[4] = {y0, y0, y1, y1};
+  Bilinear b;
+  b.fx = x - fx0;
+  b.fy = y - fy0;
+  // Integer texel coordinates; far from the texture (|x| ≥ 2^24) reduce modulo the size in float first.
+  auto texel = [](float v, int n) {
+    return wrap(std::abs(v) < 16777216.0f ? static_cast<int>(v) : static_cast<int>(std::fmod(v, static_cast<float>(n))), n);
+  };
+  b.x0 = texel(fx0, e.width);
+  b.y0 = texel(fy0, e.height);
+  b.x1 = wrap(b.x0 + 1, e.width);
+  b.y1 = wrap(b.y0 + 1, e.height);
+  return b;
+}
+
+void add_bilinear(FilterTaps& out, Extent e, int level, glm::vec2 uv, float weight) {
+  if (!(weight > 0)) return;
+  const Bilinear b = bilinear(e, uv);
+  const float w[4] = {(1 - b.fx) * (1 - b.fy), b.fx * (1 - b.fy), (1 - b.fx) * b.fy, b.fx * b.fy};
+  const int xs[4] = {b.x0, b.x1, b.x0, b.x1}, ys[4] = {b.y0, b.y0, b.y1, b.y1};
   for (int k = 0; k < 4; ++k)
     if (w[k] > 0) out.taps[static_cast<std::size_t>(out.count++)] = {level, xs[k], ys[k], weight * w[k]};
+}
+
+// Splits u ∈ [0, 1) at p: which side, and u rescaled to [0, 1) within it.
+bool split(float& u, float p) {
+  if (u < p) {
+    u = p > 0 ? u / p : 0.0f;
+    return false;
+  }
+  u = p < 1 ? (u - p) / (1 - p) : 0.0f;
+  u = std::min(u, 0.99999994f);
+  return true;
 }
 
 }  // namespace
 
 FilterTaps filter_taps(Extent level0, int levels, const Footprint& f, int max_probes) {
   FilterTaps out;
-  max_probes = std::clamp(max_probes, 1, kMaxProbes);
-  glm::vec2 uv = f.uv;
-  if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) uv = glm::vec2(0.0f);
-  // The footprint's axes in level-0 texels.
-  const glm::vec2 scale(static_cast<float>(level0.width), static_cast<float>(level0.height));
-  glm::vec2 ax = f.duv_dx * scale, ay = f.duv_dy * scale;
-  if (!std::isfinite(ax.x) || !std::isfinite(ax.y)) ax = glm::vec2(0.0f);
-  if (!std::isfinite(ay.x) || !std::isfinite(ay.y)) ay = glm::vec2(0.0f);
-  float la = glm::length(ax), lb = glm::length(ay);
-  glm::vec2 major_uv = f.duv_dx;
-  if (lb > la) std::swap(la, lb), major_uv = f.duv_dy;
-  if (!(la > 0)) major_uv = glm::vec2(0.0f);
-  float minor = std::max(lb, la / static_cast<float>(max_probes));
-  const int probes = minor > 0 ? std::clamp(static_cast<int>(std::ceil(la / minor - 1e-3f)), 1, max_probes) : 1;
-  const float lambda = minor > 0 ? std::clamp(std::log2(minor), 0.0f, static_cast<float>(levels - 1)) : 0.0f;
-  out.level = lambda;
-  out.probes = probes;
-  int l0 = static_cast<int>(std::floor(lambda));
-  float t = lambda - static_cast<float>(l0);
-  if (l0 >= levels - 1) l0 = levels - 1, t = 0.0f;
-  for (int p = 0; p < probes; ++p) {
-    const float s = (static_cast<float>(p) + 0.5f) / static_cast<float>(probes) - 0.5f;
-    const glm::vec2 at = probes > 1 ? uv + s * major_uv : uv;
-    const float w = 1.0f / static_cast<float>(probes);
-    add_bilinear(out, level_extent(level0, l0), l0, at, w * (1.0f - t));
-    if (t > 0) add_bilinear(out, level_extent(level0, l0 + 1), l0 + 1, at, w * t);
+  const FilterShape s = filter_shape(level0, levels, f, max_probes);
+  out.level = s.lambda;
+  out.probes = s.probes;
+  const float w = 1.0f / static_cast<float>(s.probes);
+  for (int p = 0; p < s.probes; ++p) {
+    const glm::vec2 at = probe_uv(s, p);
+    add_bilinear(out, level_extent(level0, s.level), s.level, at, w * (1.0f - s.t));
+    if (s.t > 0) add_bilinear(out, level_extent(level0, s.level + 1), s.level + 1, at, w * s.t);
   }
   return out;
+}
+
+FilterTap select_tap(Extent level0, int levels, const Footprint& f, float u, int max_probes) {
+  const FilterShape s = filter_shape(level0, levels, f, max_probes);
+  u = std::clamp(std::isfinite(u) ? u : 0.0f, 0.0f, 0.99999994f);
+  // One choice per stage, each with the probability of its weight: probe (uniform), level (1 − t, t),
+  // column (1 − fx, fx), row (1 − fy, fy); the product is the tap's weight in filter_taps.
+  const int p = std::min(s.probes - 1, static_cast<int>(u * static_cast<float>(s.probes)));
+  u = std::min(u * static_cast<float>(s.probes) - static_cast<float>(p), 0.99999994f);
+  const int level = split(u, 1.0f - s.t) ? s.level + 1 : s.level;
+  const Bilinear b = bilinear(level_extent(level0, level), probe_uv(s, p));
+  const int x = split(u, 1.0f - b.fx) ? b.x1 : b.x0;
+  const int y = split(u, 1.0f - b.fy) ? b.y1 : b.y0;
+  return {level, x, y, 1.0f};
 }
 
 FilterTap select_tap(const FilterTaps& taps, float u) {
@@ -76,8 +136,7 @@ FilterTap select_tap(const FilterTaps& taps, float u) {
 
 LobeMixtureBsdf lookup_brdf(const BrdfPyramid& pyramid, const Footprint& footprint, float u, int max_probes) {
   if (pyramid.levels() == 0) return {};
-  const FilterTaps taps = filter_taps(pyramid.level0(), pyramid.levels(), footprint, max_probes);
-  const FilterTap t = select_tap(taps, u);
+  const FilterTap t = select_tap(pyramid.level0(), pyramid.levels(), footprint, u, max_probes);
   return LobeMixtureBsdf(pyramid.texel(t.level, t.i, t.j));
 }
 

@@ -53,6 +53,9 @@ FilterTaps filter_taps(Extent level0, int levels, const Footprint& footprint, in
 
 // The tap whose cumulative weight interval contains u ∈ [0, 1).
 FilterTap select_tap(const FilterTaps& taps, float u);
+// One tap with probability equal to its weight in filter_taps, chosen in O(1) from u ∈ [0, 1) stage by
+// stage (probe, level, column, row) without listing the taps: what lookup_brdf uses.
+FilterTap select_tap(Extent level0, int levels, const Footprint& footprint, float u, int max_probes = kMaxProbes);
 
 // (1) One texel's mixture, chosen with probability equal to its filter weight.
 LobeMixtureBsdf lookup_brdf(const BrdfPyramid& pyramid, const Footprint& footprint, float u,

@@ -1,0 +1,144 @@
+// MIP benchmarks (bench/results/mip.md): BRDF and parameter pyramid builds of the procedural
+// presets, and the renderer's per-hit cost — a lookup plus an eval of a `brdf` texel against a
+// level-0 `gltf` eval (the texel's frame, the model, the f_eff factor).
+#include <benchmark/benchmark.h>
+
+#include <map>
+#include <memory>
+#include <string>
+
+#include "appearance/frame.h"
+#include "appearance/gltf.h"
+#include "appearance/rng.h"
+#include "mip/mip_data.h"
+#include "mip/mip_lookup.h"
+#include "textures/material_family.h"
+
+namespace svbrdf {
+namespace {
+
+const char* const kPresets[] = {"metal-tray", "painted-wall", "printed-paper", "sandstone", "granite"};
+
+const MaterialTexels& material(int preset, int size) {
+  static std::map<std::pair<int, int>, MaterialTexels> cache;
+  auto it = cache.find({preset, size});
+  if (it == cache.end()) {
+    MaterialRecipe r;
+    r.preset = kPresets[preset];
+    r.size = size;
+    it = cache.emplace(std::pair{preset, size}, generate_material(r).texels).first;
+  }
+  return it->second;
+}
+
+// The BRDF pyramid build (levels 1.., from the decoded level 0), per preset, size and --lobes.
+void BM_BrdfPyramidBuild(benchmark::State& state) {
+  const MaterialTexels& m = material(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  BrdfBuildOptions o;
+  o.reduction.max_lobes = static_cast<int>(state.range(2));
+  for (auto _ : state) {
+    BrdfPyramid p = BrdfPyramid::build(m, o);
+    benchmark::DoNotOptimize(p);
+  }
+  state.SetLabel(kPresets[state.range(0)]);
+  state.counters["texels/s"] = benchmark::Counter(double(m.size()) * 4 / 3, benchmark::Counter::kIsIterationInvariantRate);
+}
+BENCHMARK(BM_BrdfPyramidBuild)
+    ->ArgsProduct({{0, 1, 2, 3, 4}, {1024}, {4}})
+    ->Args({0, 1024, 1})->Args({0, 1024, 2})->Args({0, 1024, 8})
+    ->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_ParamPyramidBuild(benchmark::State& state) {
+  const MaterialTexels& m = material(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  for (auto _ : state) {
+    ParamPyramid p = ParamPyramid::build(m);
+    benchmark::DoNotOptimize(p);
+  }
+}
+BENCHMARK(BM_ParamPyramidBuild)->Args({0, 1024})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Random hits: uv, a footprint of 1–64 texels (so every level gets used), directions above the horizon.
+struct Hit {
+  Footprint f;
+  float u;
+  glm::vec3 wi, wo;
+};
+std::vector<Hit> hits(int n, int size, float max_texels) {
+  Rng rng(7, 1);
+  std::vector<Hit> out(static_cast<std::size_t>(n));
+  for (Hit& h : out) {
+    const float w = std::exp2(rng.next_float() * std::log2(max_texels)) / static_cast<float>(size);
+    h.f = {{rng.next_float(), rng.next_float()}, {w, 0.2f * w * rng.next_float()}, {0.1f * w, w * (0.5f + rng.next_float())}};
+    h.u = rng.next_float();
+    auto dir = [&] {
+      const float z = 0.1f + 0.9f * rng.next_float(), phi = 6.2831853f * rng.next_float(), s = std::sqrt(1 - z * z);
+      return glm::vec3(s * std::cos(phi), s * std::sin(phi), z);
+    };
+    h.wi = dir();
+    h.wo = dir();
+  }
+  return out;
+}
+
+const MipData& tray_mip(int lobes) {
+  static std::map<int, std::unique_ptr<MipData>> cache;
+  auto& p = cache[lobes];
+  if (!p) {
+    BrdfBuildOptions o;
+    o.reduction.max_lobes = lobes;
+    p = std::make_unique<MipData>(build_mip(material(0, 1024), o));
+  }
+  return *p;
+}
+
+// Lookup (footprint → taps → one texel, copied into a LobeMixtureBsdf) + eval. Footprints 1–64 texels.
+void BM_LookupEvalBrdf(benchmark::State& state) {
+  const MipData& mip = tray_mip(static_cast<int>(state.range(0)));
+  const std::vector<Hit> hs = hits(4096, 1024, static_cast<float>(state.range(1)));
+  std::size_t k = 0;
+  for (auto _ : state) {
+    const Hit& h = hs[k++ & 4095];
+    const LobeMixtureBsdf b = lookup_brdf(mip.brdf, h.f, h.u);
+    benchmark::DoNotOptimize(b.eval(h.wi, h.wo));
+  }
+}
+BENCHMARK(BM_LookupEvalBrdf)->ArgsProduct({{1, 2, 4, 8}, {64}})->Args({4, 1})->Args({4, 4});
+
+// The same texel's mixture evaluated again (what the integrator does for light samples).
+void BM_EvalBrdfTexel(benchmark::State& state) {
+  const MipData& mip = tray_mip(4);
+  const std::vector<Hit> hs = hits(4096, 1024, 64);
+  const int level = static_cast<int>(state.range(0));
+  const Extent e = mip.extent(level);
+  std::vector<LobeMixtureBsdf> texels;
+  for (int t = 0; t < 64; ++t) texels.emplace_back(mip.brdf.texel(level, (t * 37) % e.width, (t * 11) % e.height));
+  std::size_t k = 0;
+  for (auto _ : state) {
+    const Hit& h = hs[k & 4095];
+    benchmark::DoNotOptimize(texels[k++ & 63].eval(h.wi, h.wo));
+  }
+}
+BENCHMARK(BM_EvalBrdfTexel)->Arg(0)->Arg(3)->Arg(6);
+
+// Level 0 as the renderer would shade it with the glTF model: the texel's frame, gltf_eval in it,
+// the f_eff factor max(0, n·wi)/wi.z.
+void BM_Level0GltfEval(benchmark::State& state) {
+  const MaterialTexels& m = material(0, 1024);
+  const std::vector<Hit> hs = hits(4096, 1024, 1);
+  std::size_t k = 0;
+  for (auto _ : state) {
+    const Hit& h = hs[k++ & 4095];
+    const int i = static_cast<int>(h.f.uv.x * 1024), j = static_cast<int>(h.f.uv.y * 1024);
+    const std::size_t t = m.index(i, j);
+    const glm::vec3 n = m.normal[t];
+    const Frame fr = Frame::from_normal(n);
+    const float cn = glm::dot(n, h.wi);
+    Rgb f(0);
+    if (cn > 0) f = gltf_eval({m.base_color[t], m.metallic[t], m.roughness[t]}, fr.to_local(h.wi), fr.to_local(h.wo)) * (cn / h.wi.z);
+    benchmark::DoNotOptimize(f);
+  }
+}
+BENCHMARK(BM_Level0GltfEval);
+
+}  // namespace
+}  // namespace svbrdf
