@@ -140,5 +140,17 @@ void BM_Level0GltfEval(benchmark::State& state) {
 }
 BENCHMARK(BM_Level0GltfEval);
 
+// The bare model on fixed parameters in its own frame: no texel fetch, no frame, no f_eff factor.
+void BM_GltfEvalOnly(benchmark::State& state) {
+  const std::vector<Hit> hs = hits(4096, 1024, 1);
+  const GltfParams p{Rgb(0.9f, 0.9f, 0.88f), 1.0f, 0.2f};
+  std::size_t k = 0;
+  for (auto _ : state) {
+    const Hit& h = hs[k++ & 4095];
+    benchmark::DoNotOptimize(gltf_eval(p, h.wi, h.wo));
+  }
+}
+BENCHMARK(BM_GltfEvalOnly);
+
 }  // namespace
 }  // namespace svbrdf
