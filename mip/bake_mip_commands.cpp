@@ -34,6 +34,7 @@ struct MipOptions {
   int lobes = kDefaultLobes;
   float tolerance = ReductionOptions{}.tolerance;
   bool normal_scale_set = false;
+  int stats = 0;
 };
 
 void run_mip(const MipOptions& o) {
@@ -64,15 +65,24 @@ void run_mip(const MipOptions& o) {
     f.normal_scale = o.normal_scale;
     texels = load_material_texels(f, color);
   }
+  if (o.stats < 0) throw input_error("--stats", "must be 0 or more texels per level");
   BrdfBuildOptions build;
   build.reduction.max_lobes = o.lobes;
   build.reduction.tolerance = o.tolerance;
+  build.stats_samples = o.stats;
+  std::vector<BrdfLevelStats> stats;
   const auto start = std::chrono::steady_clock::now();
-  const MipData mip = build_mip(std::move(texels), build);
+  const MipData mip = build_mip(std::move(texels), build, o.stats > 0 ? &stats : nullptr);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   write_mip_file(o.out, mip);
   std::printf("%s: %dx%d, %d levels, up to %d lobes per texel (built in %.2f s)\n", o.out.c_str(), mip.extent(0).width,
               mip.extent(0).height, mip.levels(), o.lobes, seconds);
+  if (o.stats > 0) {
+    std::printf("level  lobes mean  slots  reduction e_rel mean  max   (against the union of the children's lobes, %d texels)\n", o.stats);
+    for (std::size_t l = 1; l < stats.size(); ++l)
+      std::printf("%-6zu %10.2f %6d %21.4f %6.4f\n", l, stats[l].mean_lobes, stats[l].max_lobes, stats[l].reduction_erel_mean,
+                  stats[l].reduction_erel_max);
+  }
 }
 
 struct EvalOptions {
@@ -156,6 +166,7 @@ void add_mip_commands(CLI::App& app) {
   mip->add_option("--lobes", m->lobes, "most lobes per BRDF texel, 1.." + std::to_string(kMaxLobes) + " (default " +
                                            std::to_string(kDefaultLobes) + ")");
   mip->add_option("--tolerance", m->tolerance, "estimated relative error below which lobes merge even under --lobes (default 0.01)");
+  mip->add_option("--stats", m->stats, "print per level the lobes used and the measured reduction error on N random texels");
   mip->add_option("--ocio-config", m->ocio_config, "OpenColorIO config to use instead of $OCIO or the built-in one");
   mip->add_option("--out", m->out, "the MIP file to write (.exr)")->required();
   mip->callback([m] { run_mip(*m); });

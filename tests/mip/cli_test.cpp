@@ -15,6 +15,7 @@
 #include "tests/mip/temp_dir.h"
 #include "textures/image.h"
 #include "textures/material_loader.h"
+#include "textures/texture_set.h"
 #include "textures/normal_map.h"
 
 namespace svbrdf {
@@ -99,6 +100,29 @@ TEST(BakeCli, MipBuildsWhatTheLibraryBuilds) {
       EXPECT_EQ(a.lobes[k].alpha2, b.lobes[k].alpha2);
     }
   }
+}
+
+// `mip SCENE.gltf --material INDEX` reads the material's textures and factors from the glTF file: the
+// same pyramid as from the images named on the command line (the textures module's quad of a preset).
+TEST(BakeCli, MipFromAGltfMaterialEqualsMipFromItsImages) {
+  testing::TempDir dir;
+  MaterialRecipe r;
+  r.preset = "metal-tray";
+  r.size = 16;
+  const TextureSetFiles files = write_texture_set(generate_material(r), dir.path());
+  const BakeRun a = bake(dir, "mip " + q(files.gltf) + " --material 0 --out " + q(dir / "a.exr"));
+  ASSERT_EQ(a.code, 0) << a.err;
+  const BakeRun b = bake(dir, "mip --base-color " + q(files.base_color) + " --metallic-roughness " + q(files.metallic_roughness) +
+                                  " --normal " + q(files.normal) + " --out " + q(dir / "b.exr"));
+  ASSERT_EQ(b.code, 0) << b.err;
+  const MipData ma = read_mip_file(dir / "a.exr"), mb = read_mip_file(dir / "b.exr");
+  ASSERT_EQ(ma.levels(), mb.levels());
+  EXPECT_EQ(ma.level0.roughness, mb.level0.roughness);
+  EXPECT_EQ(ma.level0.base_color, mb.level0.base_color);
+  for (int l = 1; l < ma.levels(); ++l) EXPECT_EQ(ma.brdf.level(l).counts, mb.brdf.level(l).counts);
+  const BakeRun c = bake(dir, "mip " + q(files.gltf) + " --material 7 --out " + q(dir / "c.exr"));
+  EXPECT_EQ(c.code, 2);
+  EXPECT_NE(c.err.find("--material"), std::string::npos) << c.err;
 }
 
 // compare prints the library's numbers (compare_levels, formatted %.4f); eval prints mode_eval (%.9g).
