@@ -8,7 +8,8 @@
 // harmonic mean for similar roughness, which keeps the height of the highlight; see merge_pair) plus
 // the spread of their normals about the merged normal in slope space, α² += γ·E[tan²θ]. For Beckmann lobes
 // α² = 2σ² (σ² the per-axis slope variance) and isotropic slopes have E[tan²θ] = 2σ², so γ = 1 is the
-// LEAN-mapping composition (Olano & Baker 2010); GGX follows it to first order (the tests measure it).
+// LEAN-mapping composition (Olano & Baker 2010); GGX follows it to first order, and the bumpy presets'
+// figures (painted-wall, sandstone: tests/mip/pyramid_test.cpp) are the check.
 //
 // GGX loses energy as α grows (single scattering), so a merged lobe would not reflect the flux of the
 // two it replaces; its specular part is rescaled to keep their specular albedo summed over θi = 0°,
