@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
+#include "mip/lobe_mixture_bsdf.h"
 #include "render/surface.h"
 #include "render/surface_bsdf.h"
 
@@ -28,21 +30,34 @@ glm::vec3 offset_origin(const glm::vec3& p, const glm::vec3& ng, const glm::vec3
   return p + (glm::dot(dir, ng) > 0.0f ? eps : -eps) * ng;
 }
 
-float base_color_level(const RenderWorld& w, const SurfacePoint& sp, const Footprint& fp) {
+// The MIP-level AOV of a material without MIP data: the level the same filter would read on its
+// base color texture.
+float texture_level(const RenderWorld& w, const SurfacePoint& sp, const glm::vec3& dpdx, const glm::vec3& dpdy) {
   const TextureRef& r = sp.material->base_color_texture;
   if (!r.present()) return 0.0f;
-  const glm::vec2 size(w.textures->size(r));
-  const glm::vec2 dx = r.transform.apply_linear(fp.duvdx) * size, dy = r.transform.apply_linear(fp.duvdy) * size;
-  const float width = std::max(glm::length(dx), glm::length(dy));
-  return width > 1.0f ? std::log2(width) : 0.0f;
+  const glm::ivec2 size = w.textures->size(r);
+  const Extent e{size.x, size.y};
+  const Footprint f = footprint(sp, r.uv_set(), dpdx, dpdy);
+  const TextureTransform& t = r.transform;
+  return filter_taps(e, level_count(e), {t.apply(f.uv), t.apply_linear(f.duv_dx), t.apply_linear(f.duv_dy)}).level;
+}
+
+// The shading normal a mixture stands for, for the normal AOV: the weighted mean of its lobes'.
+glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
+  glm::vec3 n(0.0f);
+  for (int k = 0; k < b.size(); ++k) n += b.lobe(k).weight * b.lobe(k).normal;
+  const float len = glm::length(n);
+  return len > 0.0f ? frame.to_world(n / len) : frame.n;
 }
 
 }  // namespace
 
 PathSample trace_path(const RenderWorld& w, const IntegratorSettings& s, float film_x, float film_y, Rng& rng) {
   PathSample out;
+  const bool mip_filter = s.filter != TextureFilter::level0;
+  const float fp_scale = s.footprint_scale > 0.0f ? s.footprint_scale : 1.0f;
   CameraRay cr;
-  if (s.footprints) cr = w.camera->generate(film_x, film_y);
+  if (s.footprints || mip_filter) cr = w.camera->generate(film_x, film_y);
   else cr.ray = w.camera->ray(film_x, film_y);
   Ray ray = cr.ray;
   Rgb beta(1.0f);
@@ -77,35 +92,70 @@ PathSample trace_path(const RenderWorld& w, const IntegratorSettings& s, float f
     }
 
     SurfacePoint sp = make_surface_point(*w.bvh, hit, ray.dir);
-    apply_normal_map(sp, *w.textures);
-    const ShadingParams sh = shading_params(sp, *w.textures);
-    if (depth == 0) {
-      out.albedo = sh.base_color;
-      out.normal = sp.shading.n;
-      out.depth = hit.t;
-      if (s.footprints) {
-        glm::vec3 dpdx, dpdy;
-        camera_dp(sp, cr, dpdx, dpdy);
-        out.mip_level = base_color_level(w, sp, footprint(sp, dpdx, dpdy));
+    // The brdf filter's selection number: a dimension of every hit, drawn whatever the filter and
+    // the material, so a pixel's random sequence has the same layout under every filter.
+    const float u_select = u1();
+    const MaterialMip* mip = w.mips ? w.mips->find(sp.geom->prim->material) : nullptr;
+    const bool aov_footprint = depth == 0 && s.footprints;
+
+    // The hit's position differentials: exact for the camera ray (Igehy 1999), pbrt-v4's
+    // approximation from the camera for every later ray (Camera::approximate_dp).
+    glm::vec3 dpdx(0.0f), dpdy(0.0f);
+    if ((mip && mip_filter) || aov_footprint) {
+      if (depth == 0) camera_dp(sp, cr, dpdx, dpdy);
+      else w.camera->approximate_dp(sp.p, sp.ng, dpdx, dpdy);
+      dpdx *= fp_scale, dpdy *= fp_scale;
+    }
+    if (depth == 0) out.depth = hit.t;
+
+    // The BSDF at the hit and the frame it works in. A material with MIP data is shaded by the
+    // filter's lobes in the geometric tangent frame (the lobes carry the normal-mapped normals);
+    // any other by SurfaceBsdf in the normal-mapped shading frame.
+    std::optional<SurfaceBsdf> surface_bsdf;
+    std::optional<LobeMixtureBsdf> lobe_bsdf;
+    const Bsdf* bsdf = nullptr;
+    Frame frame;
+    Rgb emission(0.0f);
+    if (mip) {
+      frame = geometric_frame(sp);
+      const Footprint fp = mip->to_texture(footprint(sp, mip->uv_set(), dpdx, dpdy));
+      Lobe scratch;
+      lobe_bsdf.emplace(mip->lobes(s.filter, fp, Rgb(sp.color), u_select, scratch));
+      bsdf = &*lobe_bsdf;
+      emission = emission_at(sp, *w.textures);
+      if (depth == 0) {
+        out.albedo = base_color_at(sp, *w.textures);
+        out.normal = mean_normal(*lobe_bsdf, frame);
+        if (aov_footprint) out.mip_level = mip->level(fp);
       }
+    } else {
+      apply_normal_map(sp, *w.textures);
+      const ShadingParams sh = shading_params(sp, *w.textures);
+      if (depth == 0) {
+        out.albedo = sh.base_color;
+        out.normal = sp.shading.n;
+        if (aov_footprint) out.mip_level = texture_level(w, sp, dpdx, dpdy);
+      }
+      if (sh.unlit) {
+        // KHR_materials_unlit: the base color is the radiance leaving toward the viewer; nothing scatters.
+        out.radiance += beta * sh.base_color;
+        break;
+      }
+      emission = sh.emission;
+      bsdf = &surface_bsdf.emplace(sh);
+      frame = sp.shading;
     }
-    if (sh.unlit) {
-      // KHR_materials_unlit: the base color is the radiance leaving toward the viewer; nothing scatters.
-      out.radiance += beta * sh.base_color;
-      break;
-    }
-    out.radiance += beta * sh.emission;
+    out.radiance += beta * emission;
     if (depth >= s.max_depth) break;
 
-    const SurfaceBsdf bsdf(sh);
-    const glm::vec3 wo = sp.shading.to_local(-ray.dir);
+    const glm::vec3 wo = frame.to_local(-ray.dir);
 
     // Next-event estimation: every punctual light (they are delta lights: light sampling only).
     for (const LightDesc& light : w.lights) {
       const LightArrival a = arrive(light, sp.p);
       if (max3(a.irradiance) <= 0.0f || glm::dot(a.wi, sp.ng) <= 0.0f) continue;
-      const glm::vec3 wi = sp.shading.to_local(a.wi);
-      const Rgb f = bsdf.eval(wi, wo);
+      const glm::vec3 wi = frame.to_local(a.wi);
+      const Rgb f = bsdf->eval(wi, wo);
       if (max3(f) <= 0.0f) continue;
       const glm::vec3 o = offset_origin(sp.p, sp.ng, a.wi, w.scene_extent);
       const float tmax = std::isinf(a.distance) ? kInfinity : glm::length(light.position - o) * (1.0f - 1e-5f);
@@ -116,12 +166,12 @@ PathSample trace_path(const RenderWorld& w, const IntegratorSettings& s, float f
       float pdf_light = 0.0f;
       const glm::vec3 dir = w.environment.sample({u1(), u1()}, pdf_light);
       if (pdf_light > 0.0f && glm::dot(dir, sp.ng) > 0.0f) {
-        const glm::vec3 wi = sp.shading.to_local(dir);
-        const Rgb f = bsdf.eval(wi, wo);
+        const glm::vec3 wi = frame.to_local(dir);
+        const Rgb f = bsdf->eval(wi, wo);
         if (max3(f) > 0.0f) {
           if (!occluded(offset_origin(sp.p, sp.ng, dir, w.scene_extent), dir, kInfinity)) {
             const float weight =
-                s.light_sampling == LightSampling::mis ? power_heuristic(pdf_light, bsdf.pdf(wi, wo)) : 1.0f;
+                s.light_sampling == LightSampling::mis ? power_heuristic(pdf_light, bsdf->pdf(wi, wo)) : 1.0f;
             out.radiance += beta * f * w.environment.radiance(dir) * (wi.z * weight / pdf_light);
           }
         }
@@ -131,9 +181,9 @@ PathSample trace_path(const RenderWorld& w, const IntegratorSettings& s, float f
     }
 
     // Continue the path by sampling the BSDF.
-    const BsdfSample bs = bsdf.sample(wo, SampleU(u1(), u1(), u1()));
+    const BsdfSample bs = bsdf->sample(wo, SampleU(u1(), u1(), u1()));
     if (bs.kind == SampleKind::absorbed) break;
-    const glm::vec3 wi_world = sp.shading.to_world(bs.wi);
+    const glm::vec3 wi_world = frame.to_world(bs.wi);
     // f_eff vanishes below the geometric surface (brdf-mip.md): a finite sample there is absorbed.
     if (bs.kind == SampleKind::finite && glm::dot(wi_world, sp.ng) <= 0.0f) break;
     beta *= bs.weight;

@@ -11,6 +11,7 @@
 #include "render/camera.h"
 #include "render/embree_scene.h"
 #include "render/lights.h"
+#include "render/material_mips.h"
 #include "render/ray_log.h"
 #include "render/texture_set.h"
 
@@ -22,14 +23,15 @@ enum class LightSampling {
   bsdf,  // environment by BSDF sampling only
 };
 
-enum class TextureFilter { level0, param, brdf };
-
 // Everything a path reads, built once per render.
 struct RenderWorld {
   const Scene* scene = nullptr;
   const TextureSet* textures = nullptr;
   const EmbreeScene* bvh = nullptr;
   const Camera* camera = nullptr;
+  // The materials' MIP data (material_mips.h); render() prepares it for the filter it renders with.
+  // Null: every material is shaded with level0 lookups.
+  SceneMips* mips = nullptr;
   std::vector<LightDesc> lights;  // punctual lights, world space
   Environment environment = Environment::uniform(Rgb(0.0f));
   float scene_extent = 1.0f;      // bounding-box diagonal, for ray offsets
@@ -40,10 +42,15 @@ struct IntegratorSettings {
   int max_depth = 16;   // scattering events; 0 renders emission and the environment only
   int rr_depth = 3;     // Russian roulette from this depth on
   LightSampling light_sampling = LightSampling::mis;
-  TextureFilter filter = TextureFilter::level0;
-  // Compute the first hit's texture footprint (the MIP-level AOV; MIP filters need footprints at
-  // every hit). Off, camera rays skip their differentials.
+  // Texture filtering (material_mips.h): brdf, the BRDF-averaged MIP, is svbrdf-render's default.
+  TextureFilter filter = TextureFilter::brdf;
+  // Compute the first hit's texture footprint for the MIP-level AOV. The MIP filters compute
+  // footprints at every hit whatever this says; with neither, camera rays skip their differentials.
   bool footprints = true;
+  // The ray differentials are scaled by this before they become footprints. As pbrt-v4 does, a
+  // pixel integrated by n jittered samples needs each sample to filter only about 1/√n of it:
+  // render() sets max(1/8, 1/√spp) when this is 0; trace_path reads 0 as 1.
+  float footprint_scale = 0.0f;
 };
 
 // One camera sample's results: radiance and the first hit's auxiliary values.
@@ -52,7 +59,7 @@ struct PathSample {
   Rgb albedo{0.0f};
   glm::vec3 normal{0.0f};
   float depth = 0.0f;      // distance to the first hit (0 when the ray escapes)
-  float mip_level = 0.0f;  // log2 of the base color footprint in texels at the first hit
+  float mip_level = 0.0f;  // the MIP level λ the filters read at the first hit (MaterialMip::level)
   std::uint32_t rays = 0;  // rays traced (closest-hit and shadow)
 };
 

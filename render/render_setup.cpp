@@ -56,6 +56,8 @@ std::optional<Rgb> parse_color(const std::string& text) {
 
 PreparedScene::PreparedScene(Scene scene, const SceneSetup& setup, const ColorConfig& color) : scene_(std::move(scene)) {
   textures_ = std::make_unique<TextureSet>(scene_, color);
+  mips_ = std::make_unique<SceneMips>(scene_, *textures_);
+  if (setup.filter) mips_->prepare(*setup.filter);
   bvh_ = std::make_unique<EmbreeScene>(device_, scene_, *textures_);
 
   const int ci = pick_camera(scene_, setup.camera);
@@ -72,6 +74,7 @@ PreparedScene::PreparedScene(Scene scene, const SceneSetup& setup, const ColorCo
 
   world_.scene = &scene_;
   world_.textures = textures_.get();
+  world_.mips = mips_.get();
   world_.bvh = bvh_.get();
   world_.camera = camera_.get();
   world_.lights = scene_.lights;

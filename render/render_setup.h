@@ -9,6 +9,7 @@
 #include "render/embree_device.h"
 #include "render/embree_scene.h"
 #include "render/integrator.h"
+#include "render/material_mips.h"
 #include "render/scene.h"
 #include "render/texture_set.h"
 #include "textures/color.h"
@@ -23,6 +24,9 @@ struct SceneSetup {
   std::string env;
   // "--sun elevation,azimuth[,irradiance]" in degrees and W/m²; empty for none.
   std::string sun;
+  // The texture filter whose MIP data to build now (the materials in parallel); render() builds
+  // what any other filter needs on first use.
+  std::optional<TextureFilter> filter;
 };
 
 class PreparedScene {
@@ -32,11 +36,14 @@ class PreparedScene {
   const Scene& scene() const { return scene_; }
   const Camera& camera() const { return *camera_; }
   const EmbreeScene& bvh() const { return *bvh_; }
+  // Materials left out of MIP filtering, one line each (material_mips.h).
+  const std::vector<std::string>& mip_warnings() const { return mips_->warnings(); }
 
  private:
   Scene scene_;
   EmbreeDevice device_;
   std::unique_ptr<TextureSet> textures_;
+  std::unique_ptr<SceneMips> mips_;
   std::unique_ptr<EmbreeScene> bvh_;
   std::unique_ptr<Camera> camera_;
   RenderWorld world_;

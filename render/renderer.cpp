@@ -1,5 +1,6 @@
 #include "render/renderer.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
@@ -52,6 +53,11 @@ Film render(const RenderWorld& world, const RenderOptions& opt, RenderStats* sta
   const int w = world.camera->width(), h = world.camera->height();
   Film film(w, h);
   const int spp = std::max(opt.spp, 1);
+  // The MIP data the filter reads, built now if PreparedScene has not already.
+  if (world.mips) world.mips->prepare(opt.integrator.filter);
+  IntegratorSettings integrator = opt.integrator;
+  if (!(integrator.footprint_scale > 0.0f))
+    integrator.footprint_scale = std::max(0.125f, 1.0f / std::sqrt(static_cast<float>(spp)));
   // About 16 passes: frequent enough to stop soon after Ctrl-C, few enough to cost nothing.
   const int pass_spp = std::max(1, (spp + 15) / 16);
   constexpr int kTile = 16;
@@ -99,7 +105,7 @@ Film render(const RenderWorld& world, const RenderOptions& opt, RenderStats* sta
                   for (int s = first; s < last; ++s) {
                     Rng rng = pixel_rng(opt.seed, x, y, w, std::uint32_t(s));
                     const float jx = rng.next_float(), jy = rng.next_float();
-                    const PathSample ps = trace_path(world, opt.integrator, float(x) + jx, float(y) + jy, rng);
+                    const PathSample ps = trace_path(world, integrator, float(x) + jx, float(y) + jy, rng);
                     tile_rays += ps.rays;
                     // A non-finite sample would poison the pixel; it counts as black (never seen in tests).
                     const Rgb L = std::isfinite(ps.radiance.x + ps.radiance.y + ps.radiance.z) ? ps.radiance : Rgb(0.0f);

@@ -56,6 +56,8 @@ struct RenderStats {
   bool timed_out = false;    // stopped by the time limit
 };
 
+// Prepares world.mips for options.integrator.filter first (material_mips.h; the time that takes is
+// not in stats), and resolves a footprint_scale of 0 to pbrt-v4's max(1/8, 1/√spp).
 Film render(const RenderWorld& world, const RenderOptions& options, RenderStats* stats = nullptr);
 
 // The random-number generator of sample `index` of pixel (x, y): independent of everything else.

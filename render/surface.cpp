@@ -51,16 +51,17 @@ SurfacePoint make_surface_point(const EmbreeScene& bvh, const RayHit& hit, const
     if (!prim.texcoords[s].empty()) sp.uv[s] = lerp3(prim.texcoords[s], i, b0, b1, b2);
   if (!prim.colors.empty()) sp.color = lerp3(prim.colors, i, b0, b1, b2);
 
-  // ∂p/∂u, ∂p/∂v of TEXCOORD_0 from the triangle's edges (pbrt-v4 §6.5.3).
+  // ∂p/∂u, ∂p/∂v of each TEXCOORD set from the triangle's edges (pbrt-v4 §6.5.3).
   glm::vec3 tangent_hint(0.0f);
-  if (!prim.texcoords[0].empty()) {
-    const glm::vec2 t0 = prim.texcoords[0][i[0]], t1 = prim.texcoords[0][i[1]], t2 = prim.texcoords[0][i[2]];
+  for (int s = 0; s < 2; ++s) {
+    if (prim.texcoords[s].empty()) continue;
+    const glm::vec2 t0 = prim.texcoords[s][i[0]], t1 = prim.texcoords[s][i[1]], t2 = prim.texcoords[s][i[2]];
     const glm::vec2 d1 = t1 - t0, d2 = t2 - t0;
     const glm::vec3 e1 = m3 * (p1 - p0), e2 = m3 * (p2 - p0);
     const float det = d1.x * d2.y - d1.y * d2.x;
     if (std::abs(det) > 1e-20f) {
-      sp.dpdu = (d2.y * e1 - d1.y * e2) / det;
-      sp.dpdv = (-d2.x * e1 + d1.x * e2) / det;
+      sp.dpdu[s] = (d2.y * e1 - d1.y * e2) / det;
+      sp.dpdv[s] = (-d2.x * e1 + d1.x * e2) / det;
     }
   }
   if (!prim.tangents.empty()) {
@@ -71,7 +72,7 @@ SurfacePoint make_surface_point(const EmbreeScene& bvh, const RayHit& hit, const
     const glm::vec3 b_world = m3 * ((t.w < 0.0f ? -1.0f : 1.0f) * glm::cross(n_obj, glm::vec3(t)));
     sp.bitangent_sign = glm::dot(b_world, glm::cross(ns_front, tangent_hint)) < 0.0f ? -1.0f : 1.0f;
   } else {
-    tangent_hint = sp.dpdu;
+    tangent_hint = sp.dpdu[0];
   }
   sp.tangent = tangent_hint;
 
@@ -127,19 +128,46 @@ ShadingParams shading_params(const SurfacePoint& sp, const TextureSet& textures)
   return sh;
 }
 
-Footprint footprint(const SurfacePoint& sp, const glm::vec3& dpdx, const glm::vec3& dpdy) {
-  // Least squares: dp ≈ dpdu·du + dpdv·dv, solved through the 2×2 normal equations.
-  const float a = glm::dot(sp.dpdu, sp.dpdu), b = glm::dot(sp.dpdu, sp.dpdv), c = glm::dot(sp.dpdv, sp.dpdv);
-  const float det = a * c - b * b;
+Rgb emission_at(const SurfacePoint& sp, const TextureSet& textures) {
+  const MaterialDesc& m = *sp.material;
+  Rgb e = m.emissive * m.emissive_strength;
+  if (m.emissive_texture.present() && e != Rgb(0.0f))
+    e *= Rgb(textures.lookup(m.emissive_texture, sp.uv[m.emissive_texture.uv_set()], true));
+  return e;
+}
+
+Rgb base_color_at(const SurfacePoint& sp, const TextureSet& textures) {
+  const MaterialDesc& m = *sp.material;
+  Rgb c = m.base_color * Rgb(sp.color);
+  if (m.base_color_texture.present())
+    c *= Rgb(textures.lookup(m.base_color_texture, sp.uv[m.base_color_texture.uv_set()], true));
+  return c;
+}
+
+Frame geometric_frame(const SurfacePoint& sp) {
+  const glm::vec3 n = sp.front ? sp.shading.n : -sp.shading.n;
+  const glm::vec3 tan = normalize_or(sp.tangent - n * glm::dot(n, sp.tangent), sp.shading.s);
+  const glm::vec3 b = sp.bitangent_sign * glm::cross(n, tan);
+  if (sp.front) return {tan, b, n};
+  return {-tan, -b, -n};
+}
+
+Footprint footprint(const SurfacePoint& sp, int uv_set, const glm::vec3& dpdx, const glm::vec3& dpdy) {
   Footprint f;
+  const int s = uv_set == 1 ? 1 : 0;
+  f.uv = sp.uv[s];
+  const glm::vec3 &dpdu = sp.dpdu[s], &dpdv = sp.dpdv[s];
+  // Least squares: dp ≈ dpdu·du + dpdv·dv, solved through the 2×2 normal equations.
+  const float a = glm::dot(dpdu, dpdu), b = glm::dot(dpdu, dpdv), c = glm::dot(dpdv, dpdv);
+  const float det = a * c - b * b;
   if (!(std::abs(det) > 1e-30f)) return f;
   auto solve = [&](const glm::vec3& dp) {
-    const float r0 = glm::dot(sp.dpdu, dp), r1 = glm::dot(sp.dpdv, dp);
+    const float r0 = glm::dot(dpdu, dp), r1 = glm::dot(dpdv, dp);
     const glm::vec2 d((c * r0 - b * r1) / det, (a * r1 - b * r0) / det);
     return std::isfinite(d.x) && std::isfinite(d.y) ? d : glm::vec2(0.0f);
   };
-  f.duvdx = solve(dpdx);
-  f.duvdy = solve(dpdy);
+  f.duv_dx = solve(dpdx);
+  f.duv_dy = solve(dpdy);
   return f;
 }
 

@@ -4,6 +4,7 @@
 #include <glm/glm.hpp>
 
 #include "appearance/frame.h"
+#include "mip/mip_lookup.h"
 #include "render/camera.h"
 #include "render/embree_scene.h"
 
@@ -15,7 +16,7 @@ struct SurfacePoint {
   Frame shading;                   // z = shading normal (interpolated, normal-mapped), same side as ng
   glm::vec2 uv[2]{};               // TEXCOORD_0/1 (zero when absent)
   glm::vec4 color{1.0f};           // COLOR_0
-  glm::vec3 dpdu{0.0f}, dpdv{0.0f};  // world ∂p/∂(u, v) of TEXCOORD_0
+  glm::vec3 dpdu[2]{}, dpdv[2]{};  // world ∂p/∂(u, v) of TEXCOORD_0/1 (zero when absent)
   glm::vec3 tangent{0.0f};         // world TANGENT (or ∂p/∂u when absent), not normalized
   float bitangent_sign = 1.0f;     // B = sign·(N × T) in world space, N the front-face shading normal
   bool front = true;               // the ray hit the front face
@@ -38,22 +39,30 @@ struct ShadingParams {
   bool unlit = false;
 };
 
-// The texture footprint of a hit: uv derivatives per pixel step, for MIP level selection.
-struct Footprint {
-  glm::vec2 duvdx{0.0f}, duvdy{0.0f};
-};
-
 SurfacePoint make_surface_point(const EmbreeScene& bvh, const RayHit& hit, const glm::vec3& ray_dir);
 
 // Applies the material's normal map to sp.shading (tangent space, +Y up, scale; glTF §3.9.3).
 void apply_normal_map(SurfacePoint& sp, const TextureSet& textures);
 
 ShadingParams shading_params(const SurfacePoint& sp, const TextureSet& textures);
+// The parts of shading_params that the MIP filters do not cover: emission, and the base color (for
+// the albedo AOV), both at level0.
+Rgb emission_at(const SurfacePoint& sp, const TextureSet& textures);
+Rgb base_color_at(const SurfacePoint& sp, const TextureSet& textures);
 
-// uv derivatives from the position derivatives (least squares on ∂p/∂u, ∂p/∂v; pbrt-v4 §10.1.1).
-Footprint footprint(const SurfacePoint& sp, const glm::vec3& dpdx, const glm::vec3& dpdy);
+// The geometric tangent frame of brdf-mip.md at a hit, in which normal maps are defined: z = the
+// interpolated normal before any normal map (on the side the ray came from), x = the tangent made
+// orthogonal to it, y = the glTF bitangent (sign·N×T). A back-face hit negates all three, which
+// mirrors a tangent-space normal exactly as apply_normal_map does. Call before apply_normal_map.
+Frame geometric_frame(const SurfacePoint& sp);
+
+// The texture footprint of TEXCOORD_`uv_set` at the hit (the mip module's Footprint: uv and its
+// derivatives per pixel step), from the position derivatives by least squares on ∂p/∂u, ∂p/∂v
+// (pbrt-v4 §10.1.1). Zero derivatives where the set is absent or degenerate.
+Footprint footprint(const SurfacePoint& sp, int uv_set, const glm::vec3& dpdx, const glm::vec3& dpdy);
 
 // The position differentials of a camera ray's two offset rays on the tangent plane at the hit.
+// Secondary rays use Camera::approximate_dp instead (pbrt-v4's approximation).
 void camera_dp(const SurfacePoint& sp, const CameraRay& cr, glm::vec3& dpdx, glm::vec3& dpdy);
 
 }  // namespace svbrdf

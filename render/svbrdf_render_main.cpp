@@ -42,7 +42,7 @@ fs::path find_showcase(const char* argv0) {
 
 int main(int argc, char** argv) {
   CLI::App app{"svbrdf-render: path-trace a textured glTF 2.0 scene"};
-  std::string scene_file, out = "", png, res, camera, env, sun, filter = "level0", light_sampling = "mis", ocio;
+  std::string scene_file, out = "", png, res, camera, env, sun, filter = "brdf", light_sampling = "mis", ocio;
   int spp = 64, threads = 0, max_depth = 16;
   std::uint64_t seed = 0;
   double time_limit = 0.0;
@@ -62,8 +62,11 @@ int main(int argc, char** argv) {
   app.add_option("--env", env, "environment: r,g,b radiance or an equirectangular HDR/EXR file "
                                "(default: white 1 when the scene has no lights, none when it has)");
   app.add_option("--sun", sun, "add a directional light: elevation,azimuth[,irradiance] (degrees, W/m^2)");
-  app.add_option("--filter", filter, "texture filter: level0 | param | brdf")
-      ->check(CLI::IsMember({"level0", "param", "brdf"}));
+  const std::vector<std::string> filters = svbrdf::filter_names();
+  std::string filter_help = "texture filter:";
+  for (const std::string& f : filters) filter_help += (f == filters.front() ? " " : " | ") + f;
+  filter_help += " (default brdf: the BRDF-averaged MIP; level0: the nearest texel, no MIP, the ground truth at many spp)";
+  app.add_option("--filter", filter, filter_help)->check(CLI::IsMember(filters));
   app.add_option("--light-sampling", light_sampling, "environment sampling: mis | nee | bsdf")
       ->check(CLI::IsMember({"mis", "nee", "bsdf"}));
   app.add_option("--exposure", exposure, "exposure in stops for the PNG (the EXR is never scaled)");
@@ -78,12 +81,12 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (filter != "level0")
-      throw svbrdf::input_error("--filter " + filter, "not available yet: it needs the mip module's lookup (issue 5)");
+    const svbrdf::TextureFilter texture_filter = *svbrdf::parse_filter(filter);
     svbrdf::SceneSetup setup;
     setup.camera = camera;
     setup.env = env;
     setup.sun = sun;
+    setup.filter = texture_filter;
     if (!res.empty()) {
       int w = 0, h = 0;
       char x = 0, extra = 0;
@@ -101,6 +104,8 @@ int main(int argc, char** argv) {
     svbrdf::Scene scene = svbrdf::load_gltf(scene_path);
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "svbrdf-render: warning: %s\n", w.c_str());
     const svbrdf::PreparedScene prepared(std::move(scene), setup, color);
+    if (texture_filter != svbrdf::TextureFilter::level0)
+      for (const std::string& w : prepared.mip_warnings()) std::fprintf(stderr, "svbrdf-render: warning: %s\n", w.c_str());
 
     svbrdf::RenderOptions options;
     options.spp = spp;
@@ -108,7 +113,8 @@ int main(int argc, char** argv) {
     options.seed = seed;
     options.time_limit = time_limit;
     options.integrator.max_depth = max_depth;
-    options.integrator.footprints = aovs;  // only the MIP-level AOV reads them while filters are level0
+    options.integrator.filter = texture_filter;
+    options.integrator.footprints = aovs;  // the MIP-level AOV; the MIP filters compute their own
     options.aovs = aovs;
     options.integrator.light_sampling = light_sampling == "nee"    ? svbrdf::LightSampling::nee
                                         : light_sampling == "bsdf" ? svbrdf::LightSampling::bsdf

@@ -25,6 +25,16 @@ class TextureSet {
     return sample(image, p.sampler, ref.transform.apply(uv));
   }
 
+  // The image a slot reads: the linearized copy when `color` and one exists, else as stored.
+  const Image& image(const TextureRef& ref, bool color) const {
+    const Prepared& p = textures_[static_cast<std::size_t>(ref.texture)];
+    return color && p.linear ? *p.linear : *p.raw;
+  }
+  // Whether image(ref, true) is a linearized copy (color slots have one).
+  bool linearized(const TextureRef& ref) const { return textures_[static_cast<std::size_t>(ref.texture)].linear != nullptr; }
+  // The texture's sampler (its wrap modes; the filter is nearest).
+  const Sampler& sampler(const TextureRef& ref) const { return textures_[static_cast<std::size_t>(ref.texture)].sampler; }
+
   // Texture size in texels (for footprints and the MIP-level AOV).
   glm::ivec2 size(const TextureRef& ref) const {
     const Image& im = *textures_[static_cast<std::size_t>(ref.texture)].raw;

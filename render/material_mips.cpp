@@ -1,0 +1,274 @@
+#include "render/material_mips.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/parallel_for.h>
+
+#include "textures/material_loader.h"
+
+namespace svbrdf {
+
+namespace {
+
+ParamBaseline baseline_of(TextureFilter f) {
+  switch (f) {
+    case TextureFilter::toksvig: return ParamBaseline::toksvig;
+    case TextureFilter::vmf: return ParamBaseline::vmf;
+    default: return ParamBaseline::param;
+  }
+}
+
+bool uses_param(TextureFilter f) {
+  return f == TextureFilter::param || f == TextureFilter::toksvig || f == TextureFilter::vmf;
+}
+
+// The texel index along one axis that a coordinate falls in, as textures/sampler.cpp's nearest
+// lookup reads it (far-out and non-finite coordinates brought near first).
+int nearest_index(float t, int n, WrapMode mode) {
+  float x = t * static_cast<float>(n);
+  if (!std::isfinite(x)) x = 0.0f;
+  else if (mode == WrapMode::clamp_to_edge) x = std::clamp(x, -1.0f, static_cast<float>(n) + 1.0f);
+  else if (std::fabs(x) > static_cast<float>(1 << 24)) x = std::fmod(x, static_cast<float>(2 * n));
+  return wrap_texel(static_cast<int>(std::floor(x)), n, mode);
+}
+
+// A coordinate brought into the texture for the repeat-wrapping MIP filter (see the header).
+float into_texture(float t, int n, WrapMode mode) {
+  if (mode == WrapMode::repeat || !std::isfinite(t)) return t;
+  if (mode == WrapMode::mirrored_repeat) {
+    const float r = t - 2.0f * std::floor(0.5f * t);
+    t = r <= 1.0f ? r : 2.0f - r;
+  }
+  const float h = 0.5f / static_cast<float>(n);
+  return std::clamp(t, h, 1.0f - h);
+}
+
+bool same_transform(const TextureTransform& a, const TextureTransform& b) {
+  return a.offset == b.offset && a.scale == b.scale && a.rotation() == b.rotation();
+}
+
+// An image replicated by integer factors onto a larger grid (nearest upsampling).
+Image replicate(const Image& im, Extent e) {
+  Image out(e.width, e.height, im.channels);
+  const int fx = e.width / im.width, fy = e.height / im.height;
+  const std::size_t c = static_cast<std::size_t>(im.channels);
+  tbb::parallel_for(0, e.height, [&](int j) {
+    for (int i = 0; i < e.width; ++i) {
+      const float* src = &im.pixels[(static_cast<std::size_t>(j / fy) * im.width + i / fx) * c];
+      std::copy(src, src + c, &out.pixels[(static_cast<std::size_t>(j) * e.width + i) * c]);
+    }
+  });
+  return out;
+}
+
+bool same_ref(const TextureRef& a, const TextureRef& b) {
+  return a.texture == b.texture && (!a.present() || (a.uv_set() == b.uv_set() && same_transform(a.transform, b.transform)));
+}
+
+// Two materials whose level-0 texels and lookups are the same (decode_material_texels' inputs).
+bool same_texels(const MaterialDesc& a, const MaterialDesc& b) {
+  return same_ref(a.base_color_texture, b.base_color_texture) &&
+         same_ref(a.metallic_roughness_texture, b.metallic_roughness_texture) &&
+         same_ref(a.normal_texture, b.normal_texture) && a.base_color == b.base_color && a.metallic == b.metallic &&
+         a.roughness == b.roughness && a.normal_texture.scale == b.normal_texture.scale;
+}
+
+std::string label(const MaterialDesc& m) { return m.where + (m.name.empty() ? "" : " '" + m.name + "'"); }
+
+// Why the lobes cannot stand for this material's BRDF (empty: they can).
+std::string unsupported(const MaterialDesc& m) {
+  if (m.unlit) return "KHR_materials_unlit (no BRDF to filter)";
+  if (m.ior != 1.5f) return "KHR_materials_ior (the MIP lobes model F0 = 0.04)";
+  if (m.specular != 1.0f || m.specular_texture.present() || m.specular_color != Rgb(1.0f) ||
+      m.specular_color_texture.present())
+    return "KHR_materials_specular (the MIP lobes model the plain glTF BRDF)";
+  if (m.transmission > 0.0f || m.transmission_texture.present()) return "KHR_materials_transmission";
+  if (m.diffuse_roughness > 0.0f || m.diffuse_roughness_texture.present())
+    return "KHR_materials_diffuse_roughness (the MIP lobes are Lambertian)";
+  return {};
+}
+
+}  // namespace
+
+Footprint MaterialMip::to_texture(const Footprint& f) const {
+  const TextureTransform& t = grid_.transform;
+  return {t.apply(f.uv), t.apply_linear(f.duv_dx), t.apply_linear(f.duv_dy)};
+}
+
+Footprint MaterialMip::wrapped(const Footprint& f) const {
+  Footprint w = f;
+  w.uv.x = into_texture(f.uv.x, extent_.width, sampler_.wrap_s);
+  w.uv.y = into_texture(f.uv.y, extent_.height, sampler_.wrap_t);
+  return w;
+}
+
+glm::ivec2 MaterialMip::nearest_texel(glm::vec2 uv) const {
+  return {nearest_index(uv.x, extent_.width, sampler_.wrap_s), nearest_index(uv.y, extent_.height, sampler_.wrap_t)};
+}
+
+float MaterialMip::level(const Footprint& f) const { return filter_taps(extent_, level_count(extent_), wrapped(f)).level; }
+
+std::span<const Lobe> MaterialMip::lobes(TextureFilter filter, const Footprint& f, const Rgb& tint, float u,
+                                         Lobe& scratch) const {
+  if (filter == TextureFilter::brdf && tint == Rgb(1.0f)) {
+    const FilterTaps taps = filter_taps(brdf_.level0(), brdf_.levels(), wrapped(f));
+    const FilterTap t = select_tap(taps, u);
+    return brdf_.texel(t.level, t.i, t.j);
+  }
+  if (uses_param(filter)) {
+    ParamTexel t = filter_params(param_, wrapped(f));
+    t.base_color *= tint;
+    scratch = param_lobe(t, baseline_of(filter));
+    return {&scratch, 1};
+  }
+  // level0, and brdf on a tinted hit: the nearest texel's f_eff. With tint 1 the product is exact,
+  // so this is level0_lobe of the texel, the BRDF pyramid's level-0 lobe bit for bit.
+  const glm::ivec2 p = nearest_texel(f.uv);
+  const std::size_t k = texels_.index(p.x, p.y);
+  scratch = lobe_from_texel(texels_.base_color[k] * tint, texels_.metallic[k], texels_.roughness[k], texels_.normal[k]);
+  return {&scratch, 1};
+}
+
+SceneMips::SceneMips(const Scene& scene, const TextureSet& textures)
+    : scene_(scene), textures_(textures), slot_(scene.materials.size(), -1) {
+  for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+    const MaterialDesc& m = scene.materials[i];
+    const TextureRef* refs[3] = {&m.base_color_texture, &m.metallic_roughness_texture, &m.normal_texture};
+    const char* names[3] = {"baseColorTexture", "metallicRoughnessTexture", "normalTexture"};
+    int first = -1;
+    for (int k = 0; k < 3 && first < 0; ++k)
+      if (refs[k]->present()) first = k;
+    if (first < 0) continue;  // untextured: nothing to filter
+    std::string why = unsupported(m);
+    const TextureRef& g = *refs[first];
+    const Sampler& gs = textures.sampler(g);
+    Extent e{0, 0};
+    for (int k = 0; k < 3 && why.empty(); ++k) {
+      if (!refs[k]->present()) continue;
+      const TextureRef& r = *refs[k];
+      const Sampler& rs = textures.sampler(r);
+      const std::string pair = std::string(names[k]) + " and " + names[first];
+      if (r.uv_set() != g.uv_set()) why = pair + " read different TEXCOORD sets";
+      else if (!same_transform(r.transform, g.transform)) why = pair + " have different KHR_texture_transforms";
+      else if (rs.wrap_s != gs.wrap_s || rs.wrap_t != gs.wrap_t) why = pair + " have different wrap modes";
+      else if (k == 2 && textures.image(r, false).channels < 3) why = "its normal map has fewer than three channels";
+      const glm::ivec2 size = textures.size(r);
+      e.width = std::max(e.width, size.x), e.height = std::max(e.height, size.y);
+    }
+    for (int k = 0; k < 3 && why.empty(); ++k) {
+      if (!refs[k]->present()) continue;
+      const glm::ivec2 size = textures.size(*refs[k]);
+      if (e.width % size.x != 0 || e.height % size.y != 0)
+        why = std::string(names[k]) + " (" + std::to_string(size.x) + "x" + std::to_string(size.y) +
+              ") does not divide the largest texture (" + std::to_string(e.width) + "x" + std::to_string(e.height) + ")";
+    }
+    if (!why.empty()) {
+      warnings_.push_back(label(m) + ": " + why + "; it is shaded with level0 lookups under every filter");
+      continue;
+    }
+    // Share the data of an earlier material whose texels and lookups would be the same.
+    for (std::size_t k = 0; k < mips_.size() && slot_[i] < 0; ++k)
+      if (same_texels(scene.materials[source_[k]], m)) slot_[i] = static_cast<int>(k);
+    if (slot_[i] >= 0) continue;
+    MaterialMip& mip = mips_.emplace_back();
+    mip.grid_ = g;
+    mip.sampler_ = gs;
+    mip.extent_ = e;
+    slot_[i] = static_cast<int>(mips_.size()) - 1;
+    source_.push_back(i);
+  }
+  // COLOR_0 that is not white, on a material that takes part (see the header).
+  for (const Mesh& mesh : scene.meshes)
+    for (const MeshPrimitive& p : mesh.primitives) {
+      if (p.colors.empty() || !find(p.material)) continue;
+      const bool tinted = std::any_of(p.colors.begin(), p.colors.end(),
+                                      [](const glm::vec4& c) { return glm::vec3(c) != glm::vec3(1.0f); });
+      if (tinted)
+        warnings_.push_back(p.where + ": COLOR_0 tints the base color, which a BRDF texel cannot carry; under "
+                            "--filter brdf its hits are shaded with level0 lookups");
+    }
+}
+
+int SceneMips::active_count() const {
+  return static_cast<int>(std::count_if(slot_.begin(), slot_.end(), [](int s) { return s >= 0; }));
+}
+
+void SceneMips::prepare(TextureFilter filter) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  const bool param = uses_param(filter), brdf = filter == TextureFilter::brdf;
+  std::vector<std::size_t> todo;
+  for (std::size_t i = 0; i < mips_.size(); ++i) {
+    const MaterialMip& m = mips_[i];
+    if (!m.has_texels_ || (param && !m.has_param_) || (brdf && !m.has_brdf_)) todo.push_back(i);
+  }
+  // Materials in parallel; each build is parallel over rows inside (oneTBB nests).
+  tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t t) {
+    const std::size_t i = todo[t];
+    MaterialMip& mip = mips_[i];
+    const MaterialDesc& m = scene_.materials[source_[i]];
+    if (!mip.has_texels_) {
+      // The images as TextureSet holds them (base color already scene-linear: decoded once),
+      // smaller ones replicated onto the grid.
+      std::vector<Image> replicas;
+      replicas.reserve(3);
+      auto image_for = [&](const TextureRef& r, bool color) -> const Image* {
+        if (!r.present()) return nullptr;
+        const Image& im = textures_.image(r, color);
+        if (im.width == mip.extent_.width && im.height == mip.extent_.height) return &im;
+        replicas.push_back(replicate(im, mip.extent_));
+        return &replicas.back();
+      };
+      MaterialImages in;
+      in.base_color = image_for(m.base_color_texture, true);
+      in.base_color_is_linear = m.base_color_texture.present() && textures_.linearized(m.base_color_texture);
+      in.base_color_name = m.where + ".pbrMetallicRoughness.baseColorTexture";
+      in.base_color_factor = glm::vec4(m.base_color, m.base_alpha);
+      in.metallic_roughness = image_for(m.metallic_roughness_texture, false);
+      in.metallic_roughness_name = m.where + ".pbrMetallicRoughness.metallicRoughnessTexture";
+      in.metallic_factor = m.metallic;
+      in.roughness_factor = m.roughness;
+      in.normal = image_for(m.normal_texture, false);
+      in.normal_name = m.where + ".normalTexture";
+      in.normal_scale = m.normal_texture.scale;
+      mip.texels_ = decode_material_texels(in);
+      mip.has_texels_ = true;
+    }
+    if (param && !mip.has_param_) {
+      mip.param_ = ParamPyramid::build(mip.texels_);
+      mip.has_param_ = true;
+    }
+    if (brdf && !mip.has_brdf_) {
+      mip.brdf_ = BrdfPyramid::build(mip.texels_);
+      mip.has_brdf_ = true;
+    }
+  }, tbb::simple_partitioner());
+}
+
+std::string_view filter_name(TextureFilter f) {
+  switch (f) {
+    case TextureFilter::level0: return "level0";
+    case TextureFilter::param: return baseline_name(ParamBaseline::param);
+    case TextureFilter::toksvig: return baseline_name(ParamBaseline::toksvig);
+    case TextureFilter::vmf: return baseline_name(ParamBaseline::vmf);
+    case TextureFilter::brdf: return "brdf";
+  }
+  return "?";
+}
+
+std::vector<std::string> filter_names() {
+  std::vector<std::string> names;
+  for (TextureFilter f : {TextureFilter::level0, TextureFilter::param, TextureFilter::toksvig, TextureFilter::vmf,
+                          TextureFilter::brdf})
+    names.emplace_back(filter_name(f));
+  return names;
+}
+
+std::optional<TextureFilter> parse_filter(std::string_view name) {
+  for (TextureFilter f : {TextureFilter::level0, TextureFilter::param, TextureFilter::toksvig, TextureFilter::vmf,
+                          TextureFilter::brdf})
+    if (filter_name(f) == name) return f;
+  return std::nullopt;
+}
+
+}  // namespace svbrdf

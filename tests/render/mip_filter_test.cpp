@@ -1,0 +1,471 @@
+// The MIP texture filters in the renderer (issue 6, "Texture filtering"; render/material_mips.h),
+// checked against closed forms of ../shared/spec/brdf-mip.md: a textured quad seen by an
+// orthographic camera under a directional light E from wi, black environment, has pixel value
+//   E · wi.z · F(wi, wo),
+// F the footprint's filtered BRDF. For a level-L texel F is the mean of its covered texels' f_eff,
+//   f_eff,x(wi, wo) = f_x(wi, wo) · max(0, n_x·wi) / wi.z,
+// f_x the glTF BRDF (appearance/gltf.h) in a frame about the texel's normal n_x; for `param` it is
+// f_eff of one texel with the covered texels' mean parameters. The expectations are computed here
+// from the texel values with gltf_eval, never from the renderer or the mip module.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "appearance/frame.h"
+#include "appearance/gltf.h"
+#include "appearance/rng.h"
+#include "render/material_mips.h"
+#include "render/surface.h"
+#include "render_test_scenes.h"
+#include "textures/color.h"
+
+namespace svbrdf {
+namespace {
+
+using test::ortho_camera;
+
+// One texel as stored in the three glTF textures.
+struct TexelSpec {
+  glm::vec3 srgb;  // base color, sRGB-encoded as glTF stores it
+  float metallic;
+  float roughness;
+  glm::vec3 normal;  // unit, tangent space
+};
+
+glm::vec3 tilted(float deg, float azimuth_deg) {
+  const float t = glm::radians(deg), p = glm::radians(azimuth_deg);
+  return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
+}
+
+// Four texels that differ in every parameter, normals 20° apart around the geometric normal.
+const TexelSpec kA{{0.8f, 0.25f, 0.1f}, 0.0f, 0.6f, tilted(20, 0)};
+const TexelSpec kB{{0.9f, 0.75f, 0.35f}, 1.0f, 0.35f, tilted(20, 180)};
+const TexelSpec kC{{0.15f, 0.4f, 0.85f}, 0.0f, 0.45f, tilted(20, 90)};
+const TexelSpec kD{{0.95f, 0.95f, 0.95f}, 1.0f, 0.25f, tilted(20, 270)};
+// A plain texel for the other squares of the checkerboard.
+const TexelSpec kE{{0.5f, 0.6f, 0.4f}, 0.0f, 0.7f, {0, 0, 1}};
+
+Rgb linear(const glm::vec3& srgb) {
+  const ColorConfig& c = ColorConfig::builtin();
+  return {c.srgb_texture_to_linear(srgb.x), c.srgb_texture_to_linear(srgb.y), c.srgb_texture_to_linear(srgb.z)};
+}
+
+// The normal as the renderer reads it back from the map (rgb = n/2 + 1/2, spec: n = normalize(2·rgb − 1)).
+glm::vec3 stored_normal(const glm::vec3& n) { return glm::normalize(2.0f * (0.5f * n + 0.5f) - 1.0f); }
+
+// f_eff of brdf-mip.md in double-checked float: the glTF BRDF about n, times max(0, n·wi)/wi.z.
+glm::dvec3 f_eff(const Rgb& base, float metallic, float roughness, const glm::vec3& n, const glm::vec3& wi,
+                 const glm::vec3& wo) {
+  if (wi.z <= 0 || wo.z <= 0 || glm::dot(n, wi) <= 0 || glm::dot(n, wo) <= 0) return glm::dvec3(0);
+  const Frame f = Frame::from_normal(n);
+  return glm::dvec3(gltf_eval({base, metallic, roughness}, f.to_local(wi), f.to_local(wo))) *
+         double(glm::dot(n, wi)) / double(wi.z);
+}
+glm::dvec3 f_eff(const TexelSpec& t, const glm::vec3& wi, const glm::vec3& wo) {
+  return f_eff(linear(t.srgb), t.metallic, t.roughness, stored_normal(t.normal), wi, wo);
+}
+
+// The mean f_eff of a set of texels (a coarse texel's exact BRDF).
+glm::dvec3 mean_f_eff(std::initializer_list<TexelSpec> texels, const glm::vec3& wi, const glm::vec3& wo) {
+  glm::dvec3 s(0);
+  for (const TexelSpec& t : texels) s += f_eff(t, wi, wo);
+  return s / double(texels.size());
+}
+
+// f_eff of one texel with the texels' mean parameters (brdf-mip.md, `param`).
+glm::dvec3 param_f_eff(std::initializer_list<TexelSpec> texels, const glm::vec3& wi, const glm::vec3& wo) {
+  Rgb c(0);
+  float m = 0, r = 0;
+  glm::vec3 n(0);
+  for (const TexelSpec& t : texels) c += linear(t.srgb), m += t.metallic, r += t.roughness, n += stored_normal(t.normal);
+  const float k = float(texels.size());
+  return f_eff(c / k, m / k, r / k, glm::normalize(n), wi, wo);
+}
+
+// A material of three float textures (base color, metallic-roughness, normal) of size×size texels,
+// texel (i, j) given by `at`, on a square of side 8 in z = 0 (front +z, tangent +x, bitangent +y)
+// whose uv runs over [0, 4]² (repeat), uv (0, 0) at the top-left corner (−4, +4).
+template <class At>
+Scene textured_quad(int size, At at) {
+  Scene s;
+  Image base(size, size, 3), mr(size, size, 3), normal(size, size, 3);
+  for (int j = 0; j < size; ++j)
+    for (int i = 0; i < size; ++i) {
+      const TexelSpec t = at(i, j);
+      const glm::vec3 enc = 0.5f * t.normal + 0.5f;
+      for (int c = 0; c < 3; ++c) base.at(i, j, c) = t.srgb[c], normal.at(i, j, c) = enc[c];
+      mr.at(i, j, 0) = 1.0f, mr.at(i, j, 1) = t.roughness, mr.at(i, j, 2) = t.metallic;
+    }
+  for (Image* im : {&base, &mr, &normal}) {
+    ImageDesc d;
+    d.pixels = std::move(*im);
+    d.where = "images[" + std::to_string(s.images.size()) + "]";
+    s.images.push_back(std::move(d));
+    TextureDesc t;
+    t.image = int(s.images.size()) - 1;
+    s.textures.push_back(t);
+  }
+  MaterialDesc m;
+  m.where = "materials[0]";
+  m.base_color_texture.texture = 0;
+  m.metallic_roughness_texture.texture = 1;
+  m.normal_texture.texture = 2;
+  s.materials.push_back(m);
+  MeshPrimitive p;
+  p.positions = {{-4, -4, 0}, {4, -4, 0}, {4, 4, 0}, {-4, 4, 0}};
+  p.normals.assign(4, {0, 0, 1});
+  p.texcoords[0] = {{0, 4}, {4, 4}, {4, 0}, {0, 0}};
+  p.tangents.assign(4, {1, 0, 0, 1});
+  p.indices = {0, 1, 2, 0, 2, 3};
+  p.material = 0;
+  p.where = "meshes[0].primitives[0]";
+  Mesh mesh;
+  mesh.primitives.push_back(std::move(p));
+  s.meshes.push_back(std::move(mesh));
+  s.instances.push_back({0, 0, glm::dmat4(1.0)});
+  return s;
+}
+
+// The 2×2 pattern A B / C D everywhere: every texel of level ≥ 1 covers the same texels.
+Scene periodic_quad(int size = 256) {
+  return textured_quad(size, [](int i, int j) { return (j % 2 ? (i % 2 ? kD : kC) : (i % 2 ? kB : kA)); });
+}
+
+// Blocks of 8×8 texels (the texels of level 3) in a checkerboard: the pattern A B / C D on even
+// blocks (P), plain E on odd ones (Q).
+Scene checker_quad(int size = 256) {
+  return textured_quad(size, [](int i, int j) {
+    if ((i / 8 + j / 8) % 2) return kE;
+    return (j % 2 ? (i % 2 ? kD : kC) : (i % 2 ? kB : kA));
+  });
+}
+
+const glm::vec3 kWi = tilted(35, 20);  // toward the light
+constexpr float kE0 = 2.0f;            // its irradiance
+
+// The quad under the sun from kWi, seen by an orthographic camera from `view` (a unit direction
+// toward the camera) with half height 1 at 32×32 pixels: head-on, a pixel spans 1/16 of the square,
+// 256·4/8/16 = 8 texels of a 256² texture: level 3.
+Film render_quad(Scene s, TextureFilter filter, int spp, const glm::vec3& view = {0, 0, 1}, float footprint_scale = 1.0f,
+                 int threads = 0, bool aovs = false) {
+  LightDesc sun;
+  sun.type = LightDesc::Type::directional;
+  sun.intensity = kE0;
+  sun.direction = -kWi;
+  s.lights.push_back(sun);
+  s.cameras.push_back(ortho_camera(5.0f * view, {0, 0, 0}, 1.0f, std::abs(view.y) > 0.9f ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0)));
+  SceneSetup setup;
+  setup.width = setup.height = 32;
+  setup.env = "0,0,0";
+  const PreparedScene prepared(std::move(s), setup);
+  RenderOptions o;
+  o.spp = spp;
+  o.threads = threads;
+  o.seed = 3;
+  o.aovs = aovs;
+  o.integrator.filter = filter;
+  o.integrator.max_depth = 1;  // light reflected once; what leaves the plane meets the black sky
+  o.integrator.footprint_scale = footprint_scale;
+  o.integrator.footprints = aovs;
+  return render(prepared.world(), o);
+}
+
+glm::dvec3 pixel(const Image& im, int x, int y) {
+  const float* p = &im.pixels[(std::size_t(y) * im.width + x) * im.channels];
+  return {p[0], p[1], p[2]};
+}
+
+glm::dvec3 image_mean(const Image& im) {
+  glm::dvec3 s(0);
+  for (int y = 0; y < im.height; ++y)
+    for (int x = 0; x < im.width; ++x) s += pixel(im, x, y);
+  return s / double(im.width * im.height);
+}
+
+void expect_rgb_near(const glm::dvec3& got, const glm::dvec3& want, double rel, const std::string& what) {
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], want[c], rel * std::max(want[c], 1e-3)) << what << " channel " << c;
+}
+
+// The premise of the tests below: the closed forms of `brdf` and `param` differ, by far more than
+// the tolerances, at the pairs the renders look at.
+TEST(MipFilters, ClosedFormsDiffer) {
+  for (const glm::vec3& wo : {glm::vec3(0, 0, 1), tilted(50, 180)}) {
+    const glm::dvec3 brdf = mean_f_eff({kA, kB, kC, kD}, kWi, wo), param = param_f_eff({kA, kB, kC, kD}, kWi, wo);
+    EXPECT_GT(glm::length(brdf - param), 0.1 * glm::length(brdf));
+  }
+}
+
+// `brdf` on a texture whose level-3 texels all cover A B C D: every pixel is the mean f_eff of the
+// four, head-on (isotropic footprint) and from 50° (anisotropic: two probes).
+TEST(MipFilters, BrdfIsTheMeanOfTheCoveredTexels) {
+  for (const glm::vec3& wo : {glm::vec3(0, 0, 1), tilted(50, 180)}) {
+    const Image im = render_quad(periodic_quad(), TextureFilter::brdf, 16, wo).radiance();
+    const glm::dvec3 want = kE0 * double(kWi.z) * mean_f_eff({kA, kB, kC, kD}, kWi, wo);
+    // The coarse texels keep the four lobes (their colors rounded to half floats, 5e-4).
+    expect_rgb_near(image_mean(im), want, 5e-3, "brdf, view z " + std::to_string(wo.z));
+    expect_rgb_near(pixel(im, 7, 20), want, 5e-3, "brdf, one pixel, view z " + std::to_string(wo.z));
+  }
+}
+
+// `param`: the f_eff of the averaged parameters (mean linear color, metallic, roughness; normal
+// the normalized mean) of the same texels.
+TEST(MipFilters, ParamIsTheBrdfOfTheMeanParameters) {
+  for (const glm::vec3& wo : {glm::vec3(0, 0, 1), tilted(50, 180)}) {
+    const Image im = render_quad(periodic_quad(), TextureFilter::param, 4, wo).radiance();
+    const glm::dvec3 want = kE0 * double(kWi.z) * param_f_eff({kA, kB, kC, kD}, kWi, wo);
+    expect_rgb_near(image_mean(im), want, 2e-4, "param, view z " + std::to_string(wo.z));
+    expect_rgb_near(pixel(im, 20, 3), want, 2e-4, "param, one pixel");
+  }
+}
+
+// level0 at many samples: each pixel covers 8×8 texels, 16 copies of A B C D, so its mean is the
+// same closed form as brdf's (the ground truth brdf converges to).
+TEST(MipFilters, Level0ConvergesToTheSameMean) {
+  const Image im = render_quad(periodic_quad(), TextureFilter::level0, 64).radiance();
+  const glm::dvec3 want = kE0 * double(kWi.z) * mean_f_eff({kA, kB, kC, kD}, kWi, {0, 0, 1});
+  // 65536 samples of four texel values: σ/mean ≈ 0.7/256 ≈ 3e-3 at worst; 1 % is three of those.
+  expect_rgb_near(image_mean(im), want, 1e-2, "level0");
+}
+
+// Stochastic selection: on the checkerboard of level-3 texels P (A B C D) and Q (E), pixel-aligned,
+// a pixel's samples spread uniformly over its texel, where the bilinear weights of the texel and
+// its neighbours average (1/8, 3/4, 1/8) per axis: a P pixel is 0.625·F_P + 0.375·F_Q in
+// expectation (its four diagonal neighbours are P, its four edge neighbours Q), a Q pixel the reverse.
+TEST(MipFilters, BrdfSelectsTexelsWithTheFilterWeights) {
+  const Image im = render_quad(checker_quad(), TextureFilter::brdf, 64).radiance();
+  const glm::vec3 wo(0, 0, 1);
+  const glm::dvec3 fp = kE0 * double(kWi.z) * mean_f_eff({kA, kB, kC, kD}, kWi, wo);
+  const glm::dvec3 fq = kE0 * double(kWi.z) * f_eff(kE, kWi, wo);
+  // The view's left edge is u = 1.5 (texel 384, level-3 texel 48, even), its top v = 1.5.
+  glm::dvec3 on_p(0), on_q(0);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 32; ++x) ((x + y) % 2 ? on_q : on_p) += pixel(im, x, y) / 512.0;
+  // Each mean has 32768 samples of two values: σ ≤ 0.5·|F_P − F_Q|/181; 4σ ≈ 0.011·|F_P − F_Q|.
+  for (int c = 0; c < 3; ++c) {
+    const double tol = 0.011 * std::abs(fp[c] - fq[c]) + 5e-3 * fp[c];
+    EXPECT_NEAR(on_p[c], 0.625 * fp[c] + 0.375 * fq[c], tol) << "P pixels, channel " << c;
+    EXPECT_NEAR(on_q[c], 0.375 * fp[c] + 0.625 * fq[c], tol) << "Q pixels, channel " << c;
+  }
+}
+
+// Bit-identical images for any number of threads with the stochastic selection on, and another
+// image from another seed.
+TEST(MipFilters, BrdfDeterministicAcrossThreadCounts) {
+  auto make = [] {
+    Rng rng(11, 1);
+    const TexelSpec choices[5] = {kA, kB, kC, kD, kE};
+    std::vector<int> pick(64 * 64);
+    for (int& k : pick) k = int(rng.next_u32() % 5);
+    Scene s = textured_quad(64, [&](int i, int j) { return choices[pick[std::size_t(j) * 64 + i]]; });
+    // Perspective: footprints vary over the image; a tilted second quad gets secondary rays.
+    s.cameras.push_back(test::perspective_camera({1, 2, 6}, {0, 0, 0}, 40.0f));
+    test::add_quad(s, 0, glm::translate(glm::dmat4(1.0), glm::dvec3(0, 0, 1)) *
+                             glm::rotate(glm::dmat4(1.0), glm::radians(80.0), glm::dvec3(0, 1, 0)), 3.0f);
+    return s;
+  };
+  SceneSetup setup;
+  setup.width = 40, setup.height = 30;
+  setup.env = "0.8,0.9,1";
+  IntegratorSettings integ;
+  integ.filter = TextureFilter::brdf;
+  const Film a = test::render_scene(make(), setup, 8, integ, 1);
+  const Film b = test::render_scene(make(), setup, 8, integ, 2);
+  ASSERT_EQ(a.radiance_sum.size(), b.radiance_sum.size());
+  EXPECT_EQ(std::memcmp(a.radiance_sum.data(), b.radiance_sum.data(), a.radiance_sum.size() * sizeof(glm::dvec3)), 0);
+  const Film c = test::render_scene(make(), setup, 8, integ, 2, 8);
+  EXPECT_NE(std::memcmp(a.radiance_sum.data(), c.radiance_sum.data(), a.radiance_sum.size() * sizeof(glm::dvec3)), 0);
+}
+
+// The MIP-level AOV is the level the filters read: log2 of the footprint's (minor) width in texels.
+// Head-on, 8 texels per pixel: 3; with pbrt-v4's footprint scale max(1/8, 1/√spp) at 4 spp (1/2)
+// one level less, at 64 spp (1/8) three less; under a KHR_texture_transform scale of 2, one more.
+TEST(MipFilters, MipLevelAovReflectsTheFootprint) {
+  struct Case {
+    int spp;
+    float scale;  // 0: render() chooses
+    float uv_scale;
+    float level;
+  };
+  for (const Case& k : {Case{1, 1.0f, 1.0f, 3.0f}, Case{4, 0.0f, 1.0f, 2.0f}, Case{64, 0.0f, 1.0f, 0.0f},
+                        Case{1, 1.0f, 2.0f, 4.0f}}) {
+    Scene s = periodic_quad();
+    for (TextureRef* r : {&s.materials[0].base_color_texture, &s.materials[0].metallic_roughness_texture,
+                          &s.materials[0].normal_texture})
+      r->transform = TextureTransform::make({0.0f, 0.0f}, 0.0f, {k.uv_scale, k.uv_scale});
+    const Image level = render_quad(std::move(s), TextureFilter::brdf, k.spp, {0, 0, 1}, k.scale, 0, true).mip_level();
+    for (const auto& [x, y] : {std::pair{3, 5}, std::pair{16, 16}, std::pair{30, 29}})
+      EXPECT_NEAR(level.at(x, y, 0), k.level, 1e-3f) << "spp " << k.spp << ", uv scale " << k.uv_scale;
+  }
+}
+
+// --- lookups, without rendering ---------------------------------------------------------------
+
+struct Prepared {
+  Scene scene;
+  std::unique_ptr<TextureSet> textures;
+  std::unique_ptr<SceneMips> mips;
+  explicit Prepared(Scene s) : scene(std::move(s)) {
+    textures = std::make_unique<TextureSet>(scene);
+    mips = std::make_unique<SceneMips>(scene, *textures);
+  }
+};
+
+bool same_lobes(std::span<const Lobe> a, std::span<const Lobe> b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Lobe)) == 0;
+}
+
+// level0 and brdf agree exactly on the same texel: at a texel's centre with no footprint the filter
+// has one tap, and brdf returns the very lobe level0 does; off-centre, whichever of the four
+// bilinear neighbours brdf selects, its lobe is level0's at that neighbour's centre.
+TEST(MipFilters, Level0AndBrdfAgreeExactlyAtLevel0) {
+  Rng rng(5, 2);
+  const TexelSpec choices[5] = {kA, kB, kC, kD, kE};
+  std::vector<int> pick(16 * 16);
+  for (int& k : pick) k = int(rng.next_u32() % 5);
+  Prepared p(textured_quad(16, [&](int i, int j) { return choices[pick[std::size_t(j) * 16 + i]]; }));
+  p.mips->prepare(TextureFilter::brdf);
+  const MaterialMip* mip = p.mips->find(0);
+  ASSERT_NE(mip, nullptr);
+  Lobe s0, s1;
+  for (int j = 0; j < 16; ++j)
+    for (int i = 0; i < 16; ++i) {
+      const Footprint centre{{(i + 0.5f) / 16, (j + 0.5f) / 16}, {0, 0}, {0, 0}};
+      const auto l0 = mip->lobes(TextureFilter::level0, centre, Rgb(1), 0.0f, s0);
+      for (float u : {0.0f, 0.5f, 0.999f})
+        EXPECT_TRUE(same_lobes(mip->lobes(TextureFilter::brdf, centre, Rgb(1), u, s1), l0)) << i << "," << j;
+      // And it is f_eff of that texel, as the closed form has it.
+      const TexelSpec& t = choices[pick[std::size_t(j) * 16 + i]];
+      const LobeMixtureBsdf b(l0);
+      const glm::dvec3 want = f_eff(t, kWi, tilted(30, 200));
+      const glm::dvec3 got(b.eval(kWi, tilted(30, 200)));
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], want[c], 1e-4 * std::max(want[c], 1.0)) << i << "," << j;
+    }
+  for (int n = 0; n < 200; ++n) {
+    const Footprint f{{rng.next_float(), rng.next_float()}, {0.01f, 0}, {0, 0.01f}};  // magnified: level 0
+    const auto got = mip->lobes(TextureFilter::brdf, f, Rgb(1), rng.next_float(), s1);
+    bool found = false;
+    for (int dj = -1; dj <= 1 && !found; ++dj)
+      for (int di = -1; di <= 1 && !found; ++di) {
+        const int i = int(std::floor(f.uv.x * 16)) + di, j = int(std::floor(f.uv.y * 16)) + dj;
+        const Footprint c{{(i + 0.5f) / 16, (j + 0.5f) / 16}, {0, 0}, {0, 0}};
+        found = same_lobes(got, mip->lobes(TextureFilter::level0, c, Rgb(1), 0.0f, s0));
+      }
+    EXPECT_TRUE(found) << "uv " << f.uv.x << "," << f.uv.y;
+  }
+}
+
+// COLOR_0 tints the base color: exact for level0 and param; brdf falls back to level0 on such hits.
+TEST(MipFilters, VertexColorTint) {
+  Prepared p(periodic_quad(16));
+  p.mips->prepare(TextureFilter::brdf);
+  p.mips->prepare(TextureFilter::param);
+  const MaterialMip* mip = p.mips->find(0);
+  ASSERT_NE(mip, nullptr);
+  const Rgb tint(0.5f, 1.0f, 0.25f);
+  const Footprint f{{0.5f / 16, 0.5f / 16}, {0.2f, 0}, {0, 0.2f}};
+  Lobe s0, s1;
+  const Lobe l0 = mip->lobes(TextureFilter::level0, f, tint, 0.3f, s0)[0];
+  EXPECT_TRUE(same_lobes(mip->lobes(TextureFilter::brdf, f, tint, 0.3f, s1), {&l0, 1}));
+  // Texel A is a dielectric: ρ = c·tint, F0 = 0.04.
+  const Rgb c = linear(kA.srgb);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(l0.diffuse[k], c[k] * tint[k], 1e-6f);
+  const Lobe pl = mip->lobes(TextureFilter::param, f, tint, 0.0f, s0)[0];
+  const Lobe pw = mip->lobes(TextureFilter::param, f, Rgb(1), 0.0f, s1)[0];
+  EXPECT_NEAR(pl.diffuse.x, 0.5f * pw.diffuse.x, 1e-6f);
+  EXPECT_NEAR(pl.diffuse.z, 0.25f * pw.diffuse.z, 1e-6f);
+}
+
+// One texel grid per material: a smaller texture whose size divides the largest is replicated
+// (the nearest texel at any uv is unchanged); other mismatches and unmodelled extensions leave the
+// material to level0 with one warning naming why.
+TEST(MipFilters, TextureGridRules) {
+  {
+    Scene s = periodic_quad(8);
+    s.images[0].pixels = Image(2, 4, 3);  // base color 2×4 against 8×8: factors 4 and 2
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 2; ++i) s.images[0].pixels.at(i, j, 0) = 0.1f + 0.1f * float(i + 2 * j);
+    Prepared p(std::move(s));
+    EXPECT_TRUE(p.mips->warnings().empty());
+    p.mips->prepare(TextureFilter::level0);
+    const MaterialMip* mip = p.mips->find(0);
+    ASSERT_NE(mip, nullptr);
+    EXPECT_EQ(mip->extent(), (Extent{8, 8}));
+    Rng rng(3, 3);
+    for (int n = 0; n < 100; ++n) {
+      const glm::vec2 uv(rng.next_float() * 3 - 1, rng.next_float() * 3 - 1);
+      const glm::ivec2 t = mip->nearest_texel(uv);
+      const float want = ColorConfig::builtin().srgb_texture_to_linear(
+          0.1f + 0.1f * float(int(std::floor((uv.x - std::floor(uv.x)) * 2)) + 2 * int(std::floor((uv.y - std::floor(uv.y)) * 4))));
+      EXPECT_FLOAT_EQ(mip->texels().base_color[mip->texels().index(t.x, t.y)].x, want) << uv.x << "," << uv.y;
+    }
+  }
+  auto warned = [](Scene s, const std::string& why) {
+    Prepared p(std::move(s));
+    EXPECT_EQ(p.mips->find(0), nullptr) << why;
+    ASSERT_EQ(p.mips->warnings().size(), 1u) << why;
+    EXPECT_NE(p.mips->warnings()[0].find(why), std::string::npos) << p.mips->warnings()[0];
+    EXPECT_NE(p.mips->warnings()[0].find("materials[0]"), std::string::npos) << p.mips->warnings()[0];
+  };
+  {
+    Scene s = periodic_quad(8);
+    s.images[1].pixels = Image(3, 8, 3);
+    warned(std::move(s), "does not divide");
+  }
+  {
+    Scene s = periodic_quad(8);
+    s.materials[0].normal_texture.tex_coord = 1;
+    warned(std::move(s), "TEXCOORD");
+  }
+  {
+    Scene s = periodic_quad(8);
+    s.materials[0].metallic_roughness_texture.transform = TextureTransform::make({0.5f, 0}, 0, {1, 1});
+    warned(std::move(s), "KHR_texture_transform");
+  }
+  {
+    Scene s = periodic_quad(8);
+    s.textures[2].sampler.wrap_s = WrapMode::clamp_to_edge;
+    warned(std::move(s), "wrap modes");
+  }
+  {
+    Scene s = periodic_quad(8);
+    s.materials[0].specular = 0.5f;
+    warned(std::move(s), "KHR_materials_specular");
+  }
+  {
+    // Materials that differ only in what the texels do not hold share one build.
+    Scene s = periodic_quad(8);
+    s.materials.push_back(s.materials[0]);
+    s.materials[1].alpha_mode = AlphaMode::blend;
+    s.materials[1].emissive = Rgb(1.0f);
+    s.materials.push_back(s.materials[0]);
+    s.materials[2].roughness = 0.5f;
+    Prepared p(std::move(s));
+    EXPECT_EQ(p.mips->active_count(), 3);
+    EXPECT_EQ(p.mips->distinct_count(), 2);
+    EXPECT_EQ(p.mips->find(0), p.mips->find(1));
+    EXPECT_NE(p.mips->find(0), p.mips->find(2));
+  }
+  {
+    // Untextured: nothing to filter, nothing to say.
+    Scene s = periodic_quad(8);
+    s.materials[0] = test::lambertian(Rgb(0.5f));
+    Prepared p(std::move(s));
+    EXPECT_EQ(p.mips->find(0), nullptr);
+    EXPECT_TRUE(p.mips->warnings().empty());
+  }
+}
+
+// The filter names svbrdf-render takes: level0, the mip module's parameter baselines, brdf.
+TEST(MipFilters, FilterNames) {
+  const std::vector<std::string> names = filter_names();
+  for (const char* n : {"level0", "param", "toksvig", "vmf", "brdf"}) {
+    EXPECT_NE(std::find(names.begin(), names.end(), n), names.end()) << n;
+    ASSERT_TRUE(parse_filter(n).has_value());
+    EXPECT_EQ(filter_name(*parse_filter(n)), n);
+  }
+  EXPECT_FALSE(parse_filter("trilinear").has_value());
+}
+
+}  // namespace
+}  // namespace svbrdf
