@@ -22,4 +22,6 @@ function(svbrdf_program name)
   cmake_parse_arguments(P "" "" "SOURCES;DEPS" ${ARGN})
   add_executable(${name} ${P_SOURCES})
   target_link_libraries(${name} PRIVATE ${P_DEPS} CLI11::CLI11 svbrdf_warnings)
+  # Every program lands at the top of the build tree (build/svbrdf-bake, ...), where the README runs it.
+  set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY "${PROJECT_BINARY_DIR}")
 endfunction()
