@@ -75,9 +75,16 @@ Ray Camera::ray_at(float x, float y) const {
 CameraRay Camera::generate(float x, float y) const {
   CameraRay cr;
   cr.ray = ray_at(x, y);
-  const Ray rx = ray_at(x + 1.0f, y), ry = ray_at(x, y + 1.0f);
-  cr.dx_origin = rx.origin, cr.dx_dir = rx.dir;
-  cr.dy_origin = ry.origin, cr.dy_dir = ry.dir;
+  // The offset rays through (x + 1, y) and (x, y + 1), their directions left unnormalized: only
+  // the lines matter (camera_dp intersects them with the tangent plane).
+  if (type_ == CameraDesc::Type::perspective) {
+    const glm::vec3 q = corner_ + x * dx_ + y * dy_;
+    cr.dx_origin = cr.dy_origin = position_;
+    cr.dx_dir = q + dx_, cr.dy_dir = q + dy_;
+  } else {
+    cr.dx_origin = cr.ray.origin + dx_, cr.dy_origin = cr.ray.origin + dy_;
+    cr.dx_dir = cr.dy_dir = forward_;
+  }
   return cr;
 }
 

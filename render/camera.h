@@ -16,7 +16,8 @@ struct Ray {
   float tfar = 3.4e38f;
 };
 
-// A camera ray with its differentials in x and y (one pixel apart).
+// A camera ray with its differentials in x and y: the rays one pixel apart (directions not
+// necessarily unit).
 struct CameraRay {
   Ray ray;
   glm::vec3 dx_origin{0.0f}, dx_dir{0.0f};

@@ -123,11 +123,11 @@ PathSample trace_path(const RenderWorld& w, const IntegratorSettings& s, float f
       lobe_bsdf.emplace(mip->lobes(s.filter, fp, Rgb(sp.color), u_select, scratch));
       bsdf = &*lobe_bsdf;
       emission = emission_at(sp, *w.textures);
-      if (depth == 0) {
+      if (depth == 0 && s.aovs) {
         out.albedo = base_color_at(sp, *w.textures);
         out.normal = mean_normal(*lobe_bsdf, frame);
-        if (aov_footprint) out.mip_level = mip->level(fp);
       }
+      if (aov_footprint) out.mip_level = mip->level(fp);
     } else {
       apply_normal_map(sp, *w.textures);
       const ShadingParams sh = shading_params(sp, *w.textures);

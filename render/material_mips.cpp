@@ -23,16 +23,6 @@ bool uses_param(TextureFilter f) {
   return f == TextureFilter::param || f == TextureFilter::toksvig || f == TextureFilter::vmf;
 }
 
-// The texel index along one axis that a coordinate falls in, as textures/sampler.cpp's nearest
-// lookup reads it (far-out and non-finite coordinates brought near first).
-int nearest_index(float t, int n, WrapMode mode) {
-  float x = t * static_cast<float>(n);
-  if (!std::isfinite(x)) x = 0.0f;
-  else if (mode == WrapMode::clamp_to_edge) x = std::clamp(x, -1.0f, static_cast<float>(n) + 1.0f);
-  else if (std::fabs(x) > static_cast<float>(1 << 24)) x = std::fmod(x, static_cast<float>(2 * n));
-  return wrap_texel(static_cast<int>(std::floor(x)), n, mode);
-}
-
 // A coordinate brought into the texture for the repeat-wrapping MIP filter (see the header).
 float into_texture(float t, int n, WrapMode mode) {
   if (mode == WrapMode::repeat || !std::isfinite(t)) return t;
@@ -104,7 +94,7 @@ Footprint MaterialMip::wrapped(const Footprint& f) const {
 }
 
 glm::ivec2 MaterialMip::nearest_texel(glm::vec2 uv) const {
-  return {nearest_index(uv.x, extent_.width, sampler_.wrap_s), nearest_index(uv.y, extent_.height, sampler_.wrap_t)};
+  return {nearest_texel_index(uv.x, extent_.width, sampler_.wrap_s), nearest_texel_index(uv.y, extent_.height, sampler_.wrap_t)};
 }
 
 float MaterialMip::level(const Footprint& f) const { return filter_taps(extent_, level_count(extent_), wrapped(f)).level; }
@@ -112,8 +102,7 @@ float MaterialMip::level(const Footprint& f) const { return filter_taps(extent_,
 std::span<const Lobe> MaterialMip::lobes(TextureFilter filter, const Footprint& f, const Rgb& tint, float u,
                                          Lobe& scratch) const {
   if (filter == TextureFilter::brdf && tint == Rgb(1.0f)) {
-    const FilterTaps taps = filter_taps(brdf_.level0(), brdf_.levels(), wrapped(f));
-    const FilterTap t = select_tap(taps, u);
+    const FilterTap t = select_tap(brdf_.level0(), brdf_.levels(), wrapped(f), u);  // O(1), mip_lookup.h
     return brdf_.texel(t.level, t.i, t.j);
   }
   if (uses_param(filter)) {

@@ -56,6 +56,7 @@ Film render(const RenderWorld& world, const RenderOptions& opt, RenderStats* sta
   // The MIP data the filter reads, built now if PreparedScene has not already.
   if (world.mips) world.mips->prepare(opt.integrator.filter);
   IntegratorSettings integrator = opt.integrator;
+  integrator.aovs = opt.aovs;
   if (!(integrator.footprint_scale > 0.0f))
     integrator.footprint_scale = std::max(0.125f, 1.0f / std::sqrt(static_cast<float>(spp)));
   // About 16 passes: frequent enough to stop soon after Ctrl-C, few enough to cost nothing.

@@ -1,13 +1,60 @@
 #include "render/texture_set.h"
 
+#include <bit>
+
+#include <tbb/parallel_for.h>
+
 namespace svbrdf {
 
 namespace {
+
 bool color_slot_uses(const MaterialDesc& m, int texture) {
   return m.base_color_texture.texture == texture || m.emissive_texture.texture == texture ||
          m.specular_color_texture.texture == texture;
 }
+
+int repeat_mask(WrapMode mode, int n) {
+  return mode == WrapMode::repeat && std::has_single_bit(static_cast<unsigned>(n)) ? n - 1 : -1;
+}
+
 }  // namespace
+
+// The 8-bit form of an image and its linearized copy, or null when some channel takes a value that
+// is not one of 256 codes, or one code stands for two different values (then lookups read floats).
+std::unique_ptr<TextureSet::Packed> TextureSet::pack(const Image& raw, const Image* linear) {
+  if (raw.width <= 0 || raw.height <= 0 || raw.channels < 1) return nullptr;
+  auto k = std::make_unique<Packed>();
+  k->width = raw.width, k->height = raw.height;
+  k->codes.resize(4 * static_cast<std::size_t>(raw.width) * raw.height);
+  std::array<std::array<bool, 256>, 4> seen{};
+  auto enter = [](float value, int c, int code, Table& table, bool& known) {
+    if (!known) {
+      table[static_cast<std::size_t>(c)][static_cast<std::size_t>(code)] = value;
+      known = true;
+      return true;
+    }
+    return table[static_cast<std::size_t>(c)][static_cast<std::size_t>(code)] == value;
+  };
+  for (int j = 0; j < raw.height; ++j)
+    for (int i = 0; i < raw.width; ++i) {
+      const glm::vec4 v = texel(raw, i, j);
+      const glm::vec4 l = linear ? texel(*linear, i, j) : v;
+      std::uint8_t* out = &k->codes[4 * (static_cast<std::size_t>(j) * raw.width + i)];
+      for (int c = 0; c < 4; ++c) {
+        const float x = v[c] * 255.0f, r = std::round(x);
+        if (!(r >= 0.0f && r <= 255.0f) || std::fabs(x - r) > 1e-3f) return nullptr;
+        const int code = static_cast<int>(r);
+        out[c] = static_cast<std::uint8_t>(code);
+        bool& known = seen[static_cast<std::size_t>(c)][static_cast<std::size_t>(code)];
+        // The linearized value is entered beside the raw one: both tables fill on first sight.
+        const bool first = !known;
+        if (!enter(v[c], c, code, k->raw, known)) return nullptr;
+        if (first) k->linear[static_cast<std::size_t>(c)][static_cast<std::size_t>(code)] = l[c];
+        else if (k->linear[static_cast<std::size_t>(c)][static_cast<std::size_t>(code)] != l[c]) return nullptr;
+      }
+    }
+  return k;
+}
 
 TextureSet::TextureSet(const Scene& scene, const ColorConfig& color) {
   std::vector<char> needs_linear(scene.images.size(), 0);
@@ -23,15 +70,23 @@ TextureSet::TextureSet(const Scene& scene, const ColorConfig& color) {
     linear_images_[i] = scene.images[i].pixels;
     color.srgb_texture_to_linear(linear_images_[i]);
   }
+  packed_images_.resize(scene.images.size());
+  tbb::parallel_for(std::size_t(0), scene.images.size(), [&](std::size_t i) {
+    packed_images_[i] = pack(scene.images[i].pixels, needs_linear[i] ? &linear_images_[i] : nullptr);
+  });
   textures_.resize(scene.textures.size());
   for (std::size_t t = 0; t < scene.textures.size(); ++t) {
     const TextureDesc& d = scene.textures[t];
     if (d.image < 0) continue;
+    const auto image = static_cast<std::size_t>(d.image);
     Prepared& p = textures_[t];
-    p.raw = &scene.images[static_cast<std::size_t>(d.image)].pixels;
-    if (needs_linear[static_cast<std::size_t>(d.image)]) p.linear = &linear_images_[static_cast<std::size_t>(d.image)];
+    p.raw = &scene.images[image].pixels;
+    if (needs_linear[image]) p.linear = &linear_images_[image];
+    p.packed = packed_images_[image].get();
     p.sampler = d.sampler;
     p.sampler.filter = FilterMode::nearest;  // level0: the nearest texel at the exact uv
+    p.mask_s = repeat_mask(p.sampler.wrap_s, p.raw->width);
+    p.mask_t = repeat_mask(p.sampler.wrap_t, p.raw->height);
   }
 }
 

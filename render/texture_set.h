@@ -4,6 +4,17 @@
 // config, data images kept raw; lookups by its sampler (textures/sampler.h) with the glTF sampler's
 // wrap modes and the slot's KHR_texture_transform. The `level0` filter of issue 6 is the nearest
 // texel at the exact uv. Allocation-free and thread-safe after construction.
+//
+// The fast path: most glTF textures are 8-bit PNG or JPEG, whose decoded floats take 256 values per
+// channel. Such an image is also kept as 8-bit codes (4 bytes a texel instead of 16) with a table per
+// channel from code to the float the image holds — and to the float its linearized copy holds,
+// checked texel by texel while the table is made, so lookups return exactly what textures/sampler.h's
+// nearest lookup of the float images returns, from a quarter of the memory traffic. Wrap repeat on a
+// power-of-two side is a mask.
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -13,6 +24,19 @@
 
 namespace svbrdf {
 
+// The texel index along one axis of n texels that coordinate t (texture space, after any transform)
+// falls in under a wrap mode, exactly as textures/sampler.h's nearest lookup reads it (far-out and
+// non-finite coordinates brought near first). `mask` = n − 1 when the mode is repeat and n a power
+// of two (a fast path), else −1.
+inline int nearest_texel_index(float t, int n, WrapMode mode, int mask = -1) {
+  float x = t * static_cast<float>(n);
+  if (mask >= 0 && std::fabs(x) < 16777216.0f) return static_cast<int>(std::floor(x)) & mask;
+  if (!std::isfinite(x)) x = 0.0f;
+  else if (mode == WrapMode::clamp_to_edge) x = std::min(std::max(x, -1.0f), static_cast<float>(n) + 1.0f);
+  else if (std::fabs(x) > 16777216.0f) x = std::fmod(x, static_cast<float>(2 * n));
+  return wrap_texel(static_cast<int>(std::floor(x)), n, mode);
+}
+
 class TextureSet {
  public:
   TextureSet(const Scene& scene, const ColorConfig& color = ColorConfig::builtin());
@@ -21,8 +45,16 @@ class TextureSet {
   // gray expanded and a missing alpha read as 1. `color` selects the linearized copy.
   glm::vec4 lookup(const TextureRef& ref, glm::vec2 uv, bool color) const {
     const Prepared& p = textures_[static_cast<std::size_t>(ref.texture)];
+    const glm::vec2 t = ref.transform.apply(uv);
+    if (const Packed* k = p.packed) {
+      const int i = nearest_texel_index(t.x, k->width, p.sampler.wrap_s, p.mask_s);
+      const int j = nearest_texel_index(t.y, k->height, p.sampler.wrap_t, p.mask_t);
+      const std::uint8_t* c = &k->codes[4 * (static_cast<std::size_t>(j) * k->width + i)];
+      const Table& tab = color && p.linear ? k->linear : k->raw;
+      return {tab[0][c[0]], tab[1][c[1]], tab[2][c[2]], tab[3][c[3]]};
+    }
     const Image& image = color && p.linear ? *p.linear : *p.raw;
-    return sample(image, p.sampler, ref.transform.apply(uv));
+    return sample(image, p.sampler, t);
   }
 
   // The image a slot reads: the linearized copy when `color` and one exists, else as stored.
@@ -34,6 +66,8 @@ class TextureSet {
   bool linearized(const TextureRef& ref) const { return textures_[static_cast<std::size_t>(ref.texture)].linear != nullptr; }
   // The texture's sampler (its wrap modes; the filter is nearest).
   const Sampler& sampler(const TextureRef& ref) const { return textures_[static_cast<std::size_t>(ref.texture)].sampler; }
+  // Whether lookups of the slot's texture take the 8-bit path.
+  bool packed(const TextureRef& ref) const { return textures_[static_cast<std::size_t>(ref.texture)].packed != nullptr; }
 
   // Texture size in texels (for footprints and the MIP-level AOV).
   glm::ivec2 size(const TextureRef& ref) const {
@@ -42,12 +76,23 @@ class TextureSet {
   }
 
  private:
+  using Table = std::array<std::array<float, 256>, 4>;  // per channel: code → value
+  struct Packed {
+    int width = 0, height = 0;
+    std::vector<std::uint8_t> codes;  // RGBA per texel, rows from the top
+    Table raw{}, linear{};            // the image's values and its linearized copy's
+  };
   struct Prepared {
     const Image* raw = nullptr;
     const Image* linear = nullptr;  // null unless a color slot uses the image
+    const Packed* packed = nullptr;  // the 8-bit path, when the image allows it
     Sampler sampler;                // nearest, with the texture's wrap modes
+    int mask_s = -1, mask_t = -1;   // width − 1, height − 1 where the wrap is repeat on a power of two
   };
+  static std::unique_ptr<Packed> pack(const Image& raw, const Image* linear);
+
   std::vector<Image> linear_images_;  // per scene image; empty when no color slot uses it
+  std::vector<std::unique_ptr<Packed>> packed_images_;  // per scene image; null when not 8-bit
   std::vector<Prepared> textures_;     // per scene texture
 };
 

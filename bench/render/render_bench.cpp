@@ -1,6 +1,7 @@
 // Issue 6's renderer benchmark: rays per second of the whole renderer on a textured scene
 // (DamagedHelmet at 640×360, 64 spp) against raw Embree on the same rays in the same run, at 1 and 2
-// threads; time per frame and peak memory. The raw side replays the renderer's own rays — recorded
+// threads, under --filter level0 and brdf (the default); time per frame, setup and MIP build times,
+// and peak memory. The raw side replays the renderer's own rays — recorded
 // from the same frame at 8 spp (the same pixels, paths and ray mix; 1/8 of the count) and traced 8
 // times, so both sides trace the same number of rays — with rtcIntersect1 for closest-hit rays and
 // rtcOccluded1 for shadow rays, through the same Embree scene (filters included).
@@ -33,7 +34,8 @@ double peak_rss_mb() {
 
 struct Loaded {
   std::unique_ptr<PreparedScene> scene;
-  std::vector<RecordedRay> rays;  // the 8-spp frame's rays
+  std::map<TextureFilter, std::vector<RecordedRay>> rays;  // per filter, the 8-spp frame's rays
+  double setup_seconds = 0.0;                              // load_gltf + PreparedScene (textures, BVH)
 };
 
 // Loads a scene once per process; null when the file is absent.
@@ -45,16 +47,28 @@ Loaded* load(const fs::path& file, int width, int height) {
   auto l = std::make_unique<Loaded>();
   SceneSetup setup;
   setup.width = width, setup.height = height;
+  const auto t0 = std::chrono::steady_clock::now();
   l->scene = std::make_unique<PreparedScene>(load_gltf(file), setup);
+  l->setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return cache.emplace(file.string(), std::move(l)).first->second.get();
+}
+
+// The renderer's own rays of an 8-spp frame under `filter` (the same pixels, paths and ray mix as
+// the timed frame), recorded once per filter.
+const std::vector<RecordedRay>& recorded_rays(Loaded& l, TextureFilter filter) {
+  auto it = l.rays.find(filter);
+  if (it != l.rays.end()) return it->second;
   RayLog log;
-  RenderWorld world = l->scene->world();
+  RenderWorld world = l.scene->world();
   world.ray_log = &log;
   RenderOptions o;
   o.spp = 8;
+  o.integrator.filter = filter;
   o.integrator.footprints = false;
+  // The timed frame's footprints: its spp's scale, not the 8-spp frame's.
+  o.integrator.footprint_scale = 0.125f;
   render(world, o);
-  l->rays = log.gather();
-  return cache.emplace(file.string(), std::move(l)).first->second.get();
+  return l.rays.emplace(filter, log.gather()).first->second;
 }
 
 double raw_embree_seconds(const EmbreeScene& bvh, const std::vector<RecordedRay>& rays, int repeats, int threads) {
@@ -78,6 +92,7 @@ double raw_embree_seconds(const EmbreeScene& bvh, const std::vector<RecordedRay>
 
 void bench_scene(benchmark::State& state, const fs::path& file) {
   const int threads = int(state.range(0));
+  const TextureFilter filter = TextureFilter(state.range(1));
   constexpr int kWidth = 640, kHeight = 360, kSpp = 64, kRecordedSpp = 8;
   Loaded* l = load(file, kWidth, kHeight);
   if (!l) {
@@ -86,19 +101,25 @@ void bench_scene(benchmark::State& state, const fs::path& file) {
     }
     return;
   }
+  // The MIP data of the filter, built before the clock starts (as svbrdf-render builds it at setup).
+  const auto t0 = std::chrono::steady_clock::now();
+  l->scene->world().mips->prepare(filter);
+  const double mip_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const std::vector<RecordedRay>& rays = recorded_rays(*l, filter);
   RenderOptions o;
   o.spp = kSpp;
   o.threads = threads;
+  o.integrator.filter = filter;
   o.integrator.footprints = false;  // as svbrdf-render runs without --aov
   o.aovs = false;
   RenderStats stats;
   double raw_seconds = 0.0;
   for (auto _ : state) {
     render(l->scene->world(), o, &stats);
-    raw_seconds = raw_embree_seconds(l->scene->bvh(), l->rays, kSpp / kRecordedSpp, threads);
+    raw_seconds = raw_embree_seconds(l->scene->bvh(), rays, kSpp / kRecordedSpp, threads);
     state.SetIterationTime(stats.seconds);
   }
-  const double raw_rays = double(l->rays.size()) * (kSpp / kRecordedSpp);
+  const double raw_rays = double(rays.size()) * (kSpp / kRecordedSpp);
   const double renderer_mrays = double(stats.rays) / stats.seconds * 1e-6;
   const double raw_mrays = raw_rays / raw_seconds * 1e-6;
   state.counters["frame_s"] = stats.seconds;
@@ -108,6 +129,9 @@ void bench_scene(benchmark::State& state, const fs::path& file) {
   state.counters["raw_Mrays/s"] = raw_mrays;
   state.counters["ratio"] = renderer_mrays / raw_mrays;
   state.counters["peak_MB"] = peak_rss_mb();
+  state.counters["setup_s"] = l->setup_seconds;
+  state.counters["mip_build_s"] = mip_seconds;  // 0 when an earlier run built it
+  state.SetLabel(std::string(filter_name(filter)));
 }
 
 void BM_DamagedHelmet(benchmark::State& state) {
@@ -117,8 +141,14 @@ void BM_Showcase(benchmark::State& state) {
   bench_scene(state, fs::path(SVBRDF_BINARY_DIR) / "scenes/showcase/showcase.gltf");
 }
 
-BENCHMARK(BM_DamagedHelmet)->Arg(1)->Arg(2)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
-BENCHMARK(BM_Showcase)->Arg(1)->Arg(2)->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
+// Arguments: threads, filter (TextureFilter: 0 level0, 4 brdf, svbrdf-render's default).
+constexpr int kLevel0 = int(TextureFilter::level0), kBrdf = int(TextureFilter::brdf);
+BENCHMARK(BM_DamagedHelmet)
+    ->Args({1, kLevel0})->Args({2, kLevel0})->Args({1, kBrdf})->Args({2, kBrdf})
+    ->ArgNames({"threads", "filter"})->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
+BENCHMARK(BM_Showcase)
+    ->Args({1, kLevel0})->Args({2, kLevel0})->Args({1, kBrdf})->Args({2, kBrdf})
+    ->ArgNames({"threads", "filter"})->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
 
 }  // namespace
 }  // namespace svbrdf
