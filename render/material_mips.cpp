@@ -97,6 +97,15 @@ glm::ivec2 MaterialMip::nearest_texel(glm::vec2 uv) const {
   return {nearest_texel_index(uv.x, extent_.width, sampler_.wrap_s), nearest_texel_index(uv.y, extent_.height, sampler_.wrap_t)};
 }
 
+MaterialTexels MaterialMip::texels() const {
+  MaterialTexels m(extent_.width, extent_.height);
+  for (std::size_t k = 0; k < level0_.size(); ++k) {
+    const Texel& t = level0_[k];
+    m.base_color[k] = t.base_color, m.metallic[k] = t.metallic, m.normal[k] = t.normal, m.roughness[k] = t.roughness;
+  }
+  return m;
+}
+
 float MaterialMip::level(const Footprint& f) const { return filter_taps(extent_, level_count(extent_), wrapped(f)).level; }
 
 std::span<const Lobe> MaterialMip::lobes(TextureFilter filter, const Footprint& f, const Rgb& tint, float u,
@@ -114,8 +123,8 @@ std::span<const Lobe> MaterialMip::lobes(TextureFilter filter, const Footprint& 
   // level0, and brdf on a tinted hit: the nearest texel's f_eff. With tint 1 the product is exact,
   // so this is level0_lobe of the texel, the BRDF pyramid's level-0 lobe bit for bit.
   const glm::ivec2 p = nearest_texel(f.uv);
-  const std::size_t k = texels_.index(p.x, p.y);
-  scratch = lobe_from_texel(texels_.base_color[k] * tint, texels_.metallic[k], texels_.roughness[k], texels_.normal[k]);
+  const Texel& t = texel(p.x, p.y);
+  scratch = lobe_from_texel(t.base_color * tint, t.metallic, t.roughness, t.normal);
   return {&scratch, 1};
 }
 
@@ -196,6 +205,7 @@ void SceneMips::prepare(TextureFilter filter) {
     const std::size_t i = todo[t];
     MaterialMip& mip = mips_[i];
     const MaterialDesc& m = scene_.materials[source_[i]];
+    MaterialTexels texels;  // level 0 for the builds, dropped afterwards
     if (!mip.has_texels_) {
       // The images as TextureSet holds them (base color already scene-linear: decoded once),
       // smaller ones replicated onto the grid.
@@ -220,15 +230,20 @@ void SceneMips::prepare(TextureFilter filter) {
       in.normal = image_for(m.normal_texture, false);
       in.normal_name = m.where + ".normalTexture";
       in.normal_scale = m.normal_texture.scale;
-      mip.texels_ = decode_material_texels(in);
+      texels = decode_material_texels(in);
+      mip.level0_.resize(texels.size());
+      for (std::size_t k = 0; k < texels.size(); ++k)
+        mip.level0_[k] = {texels.base_color[k], texels.metallic[k], texels.normal[k], texels.roughness[k]};
       mip.has_texels_ = true;
+    } else if ((param && !mip.has_param_) || (brdf && !mip.has_brdf_)) {
+      texels = mip.texels();
     }
     if (param && !mip.has_param_) {
-      mip.param_ = ParamPyramid::build(mip.texels_);
+      mip.param_ = ParamPyramid::build(texels);
       mip.has_param_ = true;
     }
     if (brdf && !mip.has_brdf_) {
-      mip.brdf_ = BrdfPyramid::build(mip.texels_);
+      mip.brdf_ = BrdfPyramid::build(texels);
       mip.has_brdf_ = true;
     }
   }, tbb::simple_partitioner());

@@ -67,7 +67,14 @@ class MaterialMip {
   // The uv set (TEXCOORD_n) the material's grid reads, and the grid's size in texels.
   int uv_set() const { return grid_.uv_set(); }
   Extent extent() const { return extent_; }
-  const MaterialTexels& texels() const { return texels_; }
+  // The level-0 parameters of texel (i, j) (MaterialTexels' values, one texel in one cache line).
+  struct Texel {
+    glm::vec3 base_color{1.0f};  // linear
+    float metallic = 0.0f;
+    glm::vec3 normal{0, 0, 1};  // unit, tangent space
+    float roughness = 1.0f;     // perceptual
+  };
+  const Texel& texel(int i, int j) const { return level0_[static_cast<std::size_t>(j) * extent_.width + i]; }
   const ParamPyramid& param() const { return param_; }
   const BrdfPyramid& brdf() const { return brdf_; }
 
@@ -94,7 +101,10 @@ class MaterialMip {
   TextureRef grid_;  // the slot whose uv set and transform the grid follows
   Sampler sampler_;
   Extent extent_{};
-  MaterialTexels texels_;
+  // Level 0 as MaterialTexels holds it, stored a texel at a time for level0's lookups; the pyramids
+  // are built from MaterialTexels made back from it (the same floats).
+  std::vector<Texel> level0_;
+  MaterialTexels texels() const;
   ParamPyramid param_;
   BrdfPyramid brdf_;
   bool has_texels_ = false, has_param_ = false, has_brdf_ = false;

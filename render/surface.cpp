@@ -145,11 +145,12 @@ Rgb base_color_at(const SurfacePoint& sp, const TextureSet& textures) {
 }
 
 Frame geometric_frame(const SurfacePoint& sp) {
-  const glm::vec3 n = sp.front ? sp.shading.n : -sp.shading.n;
-  const glm::vec3 tan = normalize_or(sp.tangent - n * glm::dot(n, sp.tangent), sp.shading.s);
-  const glm::vec3 b = sp.bitangent_sign * glm::cross(n, tan);
-  if (sp.front) return {tan, b, n};
-  return {-tan, -b, -n};
+  // sp.shading is (T, N×T, N) about the normal on the ray's side, T the tangent made orthogonal to
+  // it. The front face's frame is (T, B, N) with B = sign·N×T; a back face negates all three, and
+  // N×T flips with N: both cases keep sign·(shading t) and the shading normal.
+  const Frame& f = sp.shading;
+  const glm::vec3 b = sp.bitangent_sign * f.t;
+  return sp.front ? Frame{f.s, b, f.n} : Frame{-f.s, b, f.n};
 }
 
 Footprint footprint(const SurfacePoint& sp, int uv_set, const glm::vec3& dpdx, const glm::vec3& dpdy) {

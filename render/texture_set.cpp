@@ -27,30 +27,24 @@ std::unique_ptr<TextureSet::Packed> TextureSet::pack(const Image& raw, const Ima
   k->width = raw.width, k->height = raw.height;
   k->codes.resize(4 * static_cast<std::size_t>(raw.width) * raw.height);
   std::array<std::array<bool, 256>, 4> seen{};
-  auto enter = [](float value, int c, int code, Table& table, bool& known) {
-    if (!known) {
-      table[static_cast<std::size_t>(c)][static_cast<std::size_t>(code)] = value;
-      known = true;
-      return true;
-    }
-    return table[static_cast<std::size_t>(c)][static_cast<std::size_t>(code)] == value;
-  };
   for (int j = 0; j < raw.height; ++j)
     for (int i = 0; i < raw.width; ++i) {
       const glm::vec4 v = texel(raw, i, j);
       const glm::vec4 l = linear ? texel(*linear, i, j) : v;
       std::uint8_t* out = &k->codes[4 * (static_cast<std::size_t>(j) * raw.width + i)];
-      for (int c = 0; c < 4; ++c) {
-        const float x = v[c] * 255.0f, r = std::round(x);
-        if (!(r >= 0.0f && r <= 255.0f) || std::fabs(x - r) > 1e-3f) return nullptr;
-        const int code = static_cast<int>(r);
+      for (std::size_t c = 0; c < 4; ++c) {
+        const float x = v[int(c)] * 255.0f;
+        if (!(x > -0.5f && x < 255.5f)) return nullptr;
+        const auto code = static_cast<std::size_t>(x + 0.5f);  // rounds: x + 0.5 > 0
+        if (std::fabs(x - static_cast<float>(code)) > 1e-3f) return nullptr;
         out[c] = static_cast<std::uint8_t>(code);
-        bool& known = seen[static_cast<std::size_t>(c)][static_cast<std::size_t>(code)];
-        // The linearized value is entered beside the raw one: both tables fill on first sight.
-        const bool first = !known;
-        if (!enter(v[c], c, code, k->raw, known)) return nullptr;
-        if (first) k->linear[static_cast<std::size_t>(c)][static_cast<std::size_t>(code)] = l[c];
-        else if (k->linear[static_cast<std::size_t>(c)][static_cast<std::size_t>(code)] != l[c]) return nullptr;
+        float &rv = k->raw[c][code], &lv = k->linear[c][code];
+        if (!seen[c][code]) {
+          rv = v[int(c)], lv = l[int(c)];
+          seen[c][code] = true;
+        } else if (rv != v[int(c)] || lv != l[int(c)]) {
+          return nullptr;  // one code, two values: not an 8-bit image after all
+        }
       }
     }
   return k;

@@ -19,6 +19,7 @@
 #include "render/surface.h"
 #include "render_test_scenes.h"
 #include "textures/color.h"
+#include "textures/normal_map.h"
 
 namespace svbrdf {
 namespace {
@@ -397,7 +398,7 @@ TEST(MipFilters, TextureGridRules) {
       const glm::ivec2 t = mip->nearest_texel(uv);
       const float want = ColorConfig::builtin().srgb_texture_to_linear(
           0.1f + 0.1f * float(int(std::floor((uv.x - std::floor(uv.x)) * 2)) + 2 * int(std::floor((uv.y - std::floor(uv.y)) * 4))));
-      EXPECT_FLOAT_EQ(mip->texels().base_color[mip->texels().index(t.x, t.y)].x, want) << uv.x << "," << uv.y;
+      EXPECT_FLOAT_EQ(mip->texel(t.x, t.y).base_color.x, want) << uv.x << "," << uv.y;
     }
   }
   auto warned = [](Scene s, const std::string& why) {
@@ -465,6 +466,53 @@ TEST(MipFilters, FilterNames) {
     EXPECT_EQ(filter_name(*parse_filter(n)), n);
   }
   EXPECT_FALSE(parse_filter("trilinear").has_value());
+}
+
+}  // namespace
+}  // namespace svbrdf
+
+namespace svbrdf {
+namespace {
+
+// The geometric tangent frame the MIP lobes live in maps a tangent-space normal to the same world
+// normal as apply_normal_map (the level0 path of non-MIP materials), on front and back faces, for
+// both bitangent signs: the two ways of shading a normal map agree.
+TEST(MipFilters, GeometricFrameMatchesTheNormalMap) {
+  const glm::vec3 n_t = glm::normalize(glm::vec3(0.4f, -0.3f, 0.8f));
+  Scene s;
+  ImageDesc im;
+  im.pixels = Image(1, 1, 3);
+  for (int c = 0; c < 3; ++c) im.pixels.pixels[std::size_t(c)] = 0.5f * n_t[c] + 0.5f;
+  s.images.push_back(std::move(im));
+  TextureDesc t;
+  t.image = 0;
+  s.textures.push_back(t);
+  MaterialDesc m;
+  m.normal_texture.texture = 0;
+  s.materials.push_back(m);
+  MeshPrimitive prim;
+  prim.tangents.assign(1, {1, 0, 0, 1});
+  GeometryData g;
+  g.prim = &prim;
+  g.material = &s.materials[0];
+  const TextureSet textures(s);
+  const glm::vec3 n = glm::normalize(glm::vec3(0.2f, 0.1f, 1.0f)), tangent(1.0f, 0.3f, -0.1f);
+  for (bool front : {true, false})
+    for (float sign : {1.0f, -1.0f}) {
+      SurfacePoint sp;
+      sp.geom = &g;
+      sp.material = &s.materials[0];
+      sp.front = front;
+      sp.tangent = tangent;
+      sp.bitangent_sign = sign;
+      sp.ng = front ? n : -n;
+      sp.shading = Frame::from_normal_tangent(sp.ng, glm::normalize(tangent));
+      const Frame geo = geometric_frame(sp);
+      apply_normal_map(sp, textures);
+      const glm::vec3 a = geo.to_world(decode_normal(0.5f * n_t + 0.5f)), b = sp.shading.n;
+      EXPECT_NEAR(glm::length(a - b), 0.0f, 1e-5f) << "front " << front << ", sign " << sign;
+      EXPECT_NEAR(glm::dot(glm::cross(geo.s, geo.t), geo.n), sign * (front ? 1.0f : -1.0f) * 1.0f, 1e-5f);
+    }
 }
 
 }  // namespace
