@@ -11,6 +11,7 @@
 #include "render/camera.h"
 #include "render/gltf_loader.h"
 #include "render/lights.h"
+#include "render/material_mips.h"
 #include "render/render_setup.h"
 #include "render/renderer.h"
 
@@ -26,21 +27,16 @@ const LodShot::FilterResult* LodShot::find(const std::string& filter) const {
 
 namespace {
 
-// The renderer's name for each filter it has. The baselines (toksvig, vmf, ...) join here when the
-// renderer's TextureFilter offers them.
-std::optional<TextureFilter> renderer_filter(const std::string& name) {
-  if (name == "level0") return TextureFilter::level0;
-  if (name == "param") return TextureFilter::param;
-  if (name == "brdf") return TextureFilter::brdf;
-  return std::nullopt;
-}
+// The renderer's filter of that name (svbrdf-render --filter), if it has one.
+std::optional<TextureFilter> renderer_filter(const std::string& name) { return parse_filter(name); }
 
 // One glTF file, prepared once (textures, BVH and whatever the renderer builds per scene), then
 // rendered under any light from any of its cameras: the light and the environment are the world's
 // members, replaced per light as svbrdf-render's --sun and --env would set them.
 class ShotRenderer {
  public:
-  ShotRenderer(const fs::path& gltf, int size, const ColorConfig& color) : size_(size) {
+  ShotRenderer(const fs::path& gltf, int size, float footprint_scale, const ColorConfig& color)
+      : size_(size), footprint_scale_(footprint_scale) {
     Scene scene = load_gltf(gltf);
     cameras_ = scene.cameras;
     SceneSetup setup;
@@ -87,12 +83,14 @@ class ShotRenderer {
     options.integrator.max_depth = max_depth;
     options.integrator.filter = filter;
     options.integrator.footprints = filter != TextureFilter::level0;
+    options.integrator.footprint_scale = footprint_scale_;
     const Film film = render(world, options);
     return {film.radiance(), film.depth()};
   }
 
  private:
   int size_ = 0;
+  float footprint_scale_ = 0.0f;
   std::vector<CameraDesc> cameras_;
   std::unique_ptr<PreparedScene> prepared_;
 };
@@ -148,7 +146,7 @@ LodResults run_lod_comparison(const LodManifest& m, const LodOptions& o, const C
   for (const LodCase& c : m.cases) {
     if (!selected(o.cases, c.name) || filters.empty()) continue;
     const LodView& v = c.views.front();
-    const ShotRenderer probe(c.gltf, m.image_size, color);
+    const ShotRenderer probe(c.gltf, m.image_size, o.footprint_scale, color);
     const RenderWorld lit = probe.world(m.light(v.lights.front()));
     const auto level0 = probe.render_image(lit, v.cameras.back(), TextureFilter::level0, 4, o.filter_seed, c.max_depth, o.threads);
     std::vector<std::pair<std::string, TextureFilter>> kept;
@@ -177,8 +175,8 @@ LodResults run_lod_comparison(const LodManifest& m, const LodOptions& o, const C
         const bool any = std::any_of(m.distances.begin(), m.distances.end(), [&](double k) { return k >= o.min_distance; });
         if (!any) continue;
         if (!subject_owner) {
-          subject_owner = std::make_unique<ShotRenderer>(c.gltf, m.image_size, color);
-          if (c.reference != c.gltf) reference_owner = std::make_unique<ShotRenderer>(c.reference, m.image_size, color);
+          subject_owner = std::make_unique<ShotRenderer>(c.gltf, m.image_size, o.footprint_scale, color);
+          if (c.reference != c.gltf) reference_owner = std::make_unique<ShotRenderer>(c.reference, m.image_size, o.footprint_scale, color);
         }
         const ShotRenderer& subject = *subject_owner;
         const ShotRenderer& reference = reference_owner ? *reference_owner : subject;
@@ -200,6 +198,7 @@ LodResults run_lod_comparison(const LodManifest& m, const LodOptions& o, const C
           auto truth2 = reference.render_image(reference_world, shot.camera, TextureFilter::level0, o.spp, o.second_seed, c.max_depth, o.threads).first;
           shot.mask = object_mask(depth);
           shot.floor = compare_images(truth2, truth, shot.mask);
+          shot.flux_sigma = flux_noise(truth, truth2, shot.mask);
           for (const auto& [name, f] : filters) {
             LodShot::FilterResult r;
             r.filter = name;

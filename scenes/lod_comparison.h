@@ -16,9 +16,9 @@
 // filters render the flat proxy.
 //
 // Filters the renderer does not offer are reported as unavailable and skipped, never replaced: a
-// filter is available when svbrdf-render's TextureFilter has it *and* a probe render of the first
-// case's farthest camera under it differs from the level0 render with the same seed (a renderer that
-// accepted the name but ignored it would render bit-identical images).
+// filter is available when svbrdf-render knows its name (parse_filter) *and* a probe render of the
+// first case's farthest camera under it differs from the level0 render with the same seed (a
+// renderer that accepted the name but ignored it would render bit-identical images).
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -41,6 +41,10 @@ struct LodOptions {
   std::vector<std::string> lights;  // empty: all
   std::vector<std::string> views;   // empty: all
   int threads = 0;                  // 0: all cores
+  // The filters' footprint scale (IntegratorSettings::footprint_scale): 0 is the renderer's default,
+  // max(1/8, 1/√spp) — each of the pixel's jittered samples filters its share of the pixel, as
+  // pbrt-v4 does; 1 makes every sample filter the whole pixel footprint.
+  float footprint_scale = 0.0f;
   bool keep_images = true;          // keep the images (the report needs them; the tests do not)
   std::function<void(const std::string&)> progress;  // one line per shot
 };
@@ -49,7 +53,8 @@ struct LodOptions {
 struct LodShot {
   std::string case_name, kind, view, light, camera;
   double multiple = 1.0;
-  LodMetrics floor;  // second ground truth against the first
+  LodMetrics floor;         // second ground truth against the first
+  double flux_sigma = 0.0;  // relative σ of one ground truth's flux (lod_metrics.h flux_noise)
   struct FilterResult {
     std::string filter;
     LodMetrics metrics;

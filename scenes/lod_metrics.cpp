@@ -43,6 +43,22 @@ LodMetrics compare_images(const Image& X, const Image& R, const std::vector<std:
   return {se / ref2, sum_x / sum_r - 1.0, peak_x / peak_r};
 }
 
+double flux_noise(const Image& a, const Image& b, const std::vector<std::uint8_t>& mask) {
+  if (a.width != b.width || a.height != b.height || mask.size() != std::size_t(a.width) * a.height)
+    throw Error("LOD metrics: images of different sizes", Error::Kind::internal);
+  double var = 0, sum = 0;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x) {
+      if (!mask[std::size_t(y) * a.width + x]) continue;
+      double sa = 0, sb = 0;
+      for (int c = 0; c < 3; ++c) sa += a.at(x, y, c), sb += b.at(x, y, c);
+      var += 0.5 * (sa - sb) * (sa - sb);
+      sum += sa;
+    }
+  if (sum <= 0) throw Error("LOD metrics: the reference is black over the mask", Error::Kind::internal);
+  return std::sqrt(var) / sum;
+}
+
 void error_color(double t, float rgb[3]) {
   // Control points sampled from matplotlib's "inferno" (perceptually uniform, black at 0).
   static const float stops[][3] = {{0.001f, 0.000f, 0.014f}, {0.258f, 0.039f, 0.406f}, {0.578f, 0.148f, 0.404f},

@@ -36,6 +36,13 @@ LodMetrics compare_images(const Image& x, const Image& reference, const std::vec
 
 double luminance(const Image& im, int x, int y);
 
+// The relative standard deviation σ of one render's total flux (Σ_p Σ_c), estimated from two renders
+// that differ only in their seed: per pixel, (S₁ − S₂)²/2 estimates the variance of S (S: the sum of
+// the pixel's channels) and pixels are independent, so Var(Σ S) ≈ Σ_p (S₁ − S₂)²/2; σ = √that / Σ S₁.
+// A flux bias measured against one ground truth carries about √2·σ of noise (its own and the
+// image's, when both have similar variance).
+double flux_noise(const Image& a, const Image& b, const std::vector<std::uint8_t>& mask);
+
 // A false-color error image: per pixel |Y(X) − Y(R)| / mean_mask Y(R), mapped through a perceptual
 // color map (black → purple → orange → yellow, like matplotlib's "inferno") from 0 to `full_scale`
 // (clamped); pixels outside the mask are mid gray. RGB in [0, 1], display-referred.

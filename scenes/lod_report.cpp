@@ -264,7 +264,9 @@ fs::path write_lod_report(const LodResults& r, const LodManifest& m, const fs::p
     add("<stop offset=\"" + fmt("%.1f", i / 5.0) + "\" stop-color=\"rgb(" + std::to_string(int(c[0] * 255)) + "," +
         std::to_string(int(c[1] * 255)) + "," + std::to_string(int(c[2] * 255)) + ")\"/>");
   }
-  add("</linearGradient></defs><rect width=\"120\" height=\"10\" fill=\"url(#cm)\"/></svg>.</p>\n");
+  add("</linearGradient></defs><rect width=\"120\" height=\"10\" fill=\"url(#cm)\"/></svg>. Flux σ: the relative "
+      "standard deviation of one ground truth's total flux, estimated from the two ground truths' per-pixel differences "
+      "(a flux bias carries about √2·σ of noise). All numbers are also in <a href=\"results.json\">results.json</a>.</p>\n");
   add("<p>Filters: ");
   for (std::size_t i = 0; i < r.filters.size(); ++i) add((i ? ", " : "") + std::string("<code>") + html_escape(r.filters[i]) + "</code>");
   if (r.filters.empty()) add("none");
@@ -355,7 +357,7 @@ fs::path write_lod_report(const LodResults& r, const LodManifest& m, const fs::p
     add("<table>\n<tr><th>distance</th><th>camera</th><th>noise floor</th>");
     for (const std::string& f : r.filters)
       add("<th>" + html_escape(f) + " rel. MSE</th><th>×floor</th><th>flux bias</th><th>peak ratio</th>");
-    add("<th>floor flux</th><th>floor peak</th></tr>\n");
+    add("<th>floor flux</th><th>floor peak</th><th>flux σ</th></tr>\n");
     for (const LodShot* s : g.shots) {
       add("<tr><td>" + json::number_text(s->multiple) + "×</td><td class=\"l\">" + html_escape(s->camera) + "</td><td>" +
           sig(s->floor.rel_mse) + "</td>");
@@ -368,11 +370,50 @@ fs::path write_lod_report(const LodResults& r, const LodManifest& m, const fs::p
         add("<td>" + sig(fr->metrics.rel_mse) + "</td><td>" + sig(fr->metrics.rel_mse / std::max(s->floor.rel_mse, 1e-300)) +
             "</td><td>" + fmt("%+.2f%%", 100 * fr->metrics.flux_bias) + "</td><td>" + sig(fr->metrics.peak_ratio) + "</td>");
       }
-      add("<td>" + fmt("%+.2f%%", 100 * s->floor.flux_bias) + "</td><td>" + sig(s->floor.peak_ratio) + "</td></tr>\n");
+      add("<td>" + fmt("%+.2f%%", 100 * s->floor.flux_bias) + "</td><td>" + sig(s->floor.peak_ratio) + "</td><td>" +
+          fmt("%.2f%%", 100 * s->flux_sigma) + "</td></tr>\n");
     }
     add("</table>\n");
   }
   add("</body>\n</html>\n");
+
+  // The numbers, machine-readable.
+  {
+    json::Value doc = json::Value::object();
+    doc.set("spp", json::Value::of(r.options.spp));
+    doc.set("seeds", json::Value::numbers({double(r.options.seed), double(r.options.second_seed), double(r.options.filter_seed)}));
+    doc.set("footprint_scale", json::Value::of(double(r.options.footprint_scale)));
+    doc.set("image_size", json::Value::of(r.image_size));
+    json::Value filters = json::Value::array(), unavailable = json::Value::array();
+    for (const auto& f : r.filters) filters.push(json::Value::of(f));
+    for (const auto& f : r.unavailable) unavailable.push(json::Value::of(f));
+    doc.set("filters", std::move(filters));
+    doc.set("unavailable", std::move(unavailable));
+    const auto metrics = [](const LodMetrics& mm) {
+      json::Value v = json::Value::object();
+      v.set("rel_mse", json::Value::of(mm.rel_mse));
+      v.set("flux_bias", json::Value::of(mm.flux_bias));
+      v.set("peak_ratio", json::Value::of(mm.peak_ratio));
+      return v;
+    };
+    json::Value shots = json::Value::array();
+    for (const LodShot& s : r.shots) {
+      json::Value v = json::Value::object();
+      v.set("case", json::Value::of(s.case_name));
+      v.set("view", json::Value::of(s.view));
+      v.set("light", json::Value::of(s.light));
+      v.set("camera", json::Value::of(s.camera));
+      v.set("multiple", json::Value::of(s.multiple));
+      v.set("floor", metrics(s.floor));
+      v.set("flux_sigma", json::Value::of(s.flux_sigma));
+      json::Value fs_ = json::Value::object();
+      for (const auto& f : s.filters) fs_.set(f.filter, metrics(f.metrics));
+      v.set("filters", std::move(fs_));
+      shots.push(std::move(v));
+    }
+    doc.set("shots", std::move(shots));
+    json::write_file(dir / "results.json", doc);
+  }
 
   const fs::path index = dir / "index.html";
   write_atomically(index, [&](const fs::path& tmp) {
