@@ -98,7 +98,9 @@ constexpr double kErrorScale = 0.5;  // false-color full scale: |ΔY| / mean Y
 
 std::string svg_chart(const std::string& title, const std::string& y_label, const std::vector<ChartSeries>& series,
                       bool log_y, int width, int height) {
-  const double left = 58, right = 10, top = 22, bottom = 50;
+  // The plot: [left, width − right] × [top, height − bottom]; the bottom margin holds the x labels
+  // and two rows of legend.
+  const double left = 58, right = 10, top = 22, bottom = 64;
   const double pw = width - left - right, ph = height - top - bottom;
   double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
   for (const ChartSeries& s : series)
@@ -149,10 +151,11 @@ std::string svg_chart(const std::string& title, const std::string& y_label, cons
   if (log_y) {
     for (int e = int(y0); e <= int(y1); ++e) ytick(e, "1e" + std::to_string(e));
   } else {
-    for (int i = 0; i <= 4; ++i) {
-      const double v = y0 + (y1 - y0) * i / 4;
-      ytick(v, fmt("%.3g", v));
-    }
+    // Ticks at a "nice" step (1, 2 or 5 × 10^k) giving about five of them.
+    const double raw = (y1 - y0) / 5;
+    const double mag = std::pow(10.0, std::floor(std::log10(raw)));
+    const double step = raw / mag < 1.5 ? mag : raw / mag < 3.5 ? 2 * mag : raw / mag < 7.5 ? 5 * mag : 10 * mag;
+    for (double v = std::ceil(y0 / step) * step; v <= y1 + 1e-9 * step; v += step) ytick(v, fmt("%.3g", std::abs(v) < 1e-9 * step ? 0.0 : v));
     if (y0 < 0 && y1 > 0) {
       const double y = top + (1 - (0 - y0) / (y1 - y0)) * ph;
       out += "<line x1=\"" + fmt("%.1f", left) + "\" y1=\"" + fmt("%.1f", y) + "\" x2=\"" + fmt("%.1f", left + pw) +
@@ -163,8 +166,8 @@ std::string svg_chart(const std::string& title, const std::string& y_label, cons
          fmt("%.1f", top + ph / 2) + ")\">" + html_escape(y_label) + "</text>";
   out += "<text x=\"" + fmt("%.1f", left + pw / 2) + "\" y=\"" + fmt("%.1f", top + ph + 28) +
          "\" class=\"tx\">distance (multiples of d₁)</text>";
-  // Series and legend.
-  double lx = left;
+  // Series and legend (wrapping onto a second row).
+  double lx = left, ly = top + ph + 42;
   for (const ChartSeries& s : series) {
     std::string points;
     for (std::size_t i = 0; i < s.x.size(); ++i) {
@@ -176,12 +179,13 @@ std::string svg_chart(const std::string& title, const std::string& y_label, cons
     }
     out += "<polyline points=\"" + points + "\" fill=\"none\" stroke=\"" + s.color + "\" stroke-width=\"1.5\"" +
            (s.dashed ? " stroke-dasharray=\"4 3\"" : "") + "/>";
-    const double ly = top + ph + 42;
+    const double item = 24 + 6.5 * double(s.name.size());
+    if (lx + item > width && lx > left) lx = left, ly += 14;
     out += "<line x1=\"" + fmt("%.1f", lx) + "\" y1=\"" + fmt("%.1f", ly - 4) + "\" x2=\"" + fmt("%.1f", lx + 14) + "\" y2=\"" +
            fmt("%.1f", ly - 4) + "\" stroke=\"" + s.color + "\" stroke-width=\"2\"" +
            (s.dashed ? " stroke-dasharray=\"4 3\"" : "") + "/>";
     out += "<text x=\"" + fmt("%.1f", lx + 17) + "\" y=\"" + fmt("%.1f", ly) + "\" class=\"lg\">" + html_escape(s.name) + "</text>";
-    lx += 24 + 6.5 * double(s.name.size());
+    lx += item;
   }
   out += "</svg>";
   return out;

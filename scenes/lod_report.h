@@ -31,7 +31,7 @@ struct ChartSeries {
   std::vector<double> x, y;  // y ≤ 0 is skipped on a log axis
 };
 std::string svg_chart(const std::string& title, const std::string& y_label, const std::vector<ChartSeries>& series,
-                      bool log_y, int width = 320, int height = 220);
+                      bool log_y, int width = 320, int height = 234);
 
 // Text for HTML: & < > " escaped.
 std::string html_escape(const std::string& s);

@@ -25,11 +25,12 @@ const fs::path kManifest = fs::path(SVBRDF_BINARY_DIR) / "scenes" / "lod" / "man
 TEST(LodReport, ChartPointsLieInThePlot) {
   const std::string svg = svg_chart("t <&>", "y", {{"a", "#000", false, {1, 4, 16, 1024}, {1e-3, 1e-2, 0.5, 2.0}},
                                                    {"b", "#111", true, {1, 1024}, {0.0, 1e-4}}},
-                                    true, 320, 220);
+                                    true, 320, 234);
   EXPECT_EQ(svg.rfind("<svg", 0), 0u);
   EXPECT_EQ(svg.substr(svg.size() - 6), "</svg>");
   EXPECT_NE(svg.find("t &lt;&amp;&gt;"), std::string::npos);
-  // Every circle inside the plot rectangle [58, 310] × [22, 170]; the zero of the log series skipped.
+  // Every circle inside the plot rectangle [58, 310] × [22, 170] (234 − 64); the zero of the log
+  // series skipped.
   const std::regex circle("<circle cx=\"([0-9.]+)\" cy=\"([0-9.]+)\"");
   int n = 0;
   for (auto it = std::sregex_iterator(svg.begin(), svg.end(), circle); it != std::sregex_iterator(); ++it, ++n) {
