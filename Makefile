@@ -39,7 +39,7 @@ bench: build
 # The distance-LOD report (issue 7) at its full size (4096 samples per pixel; long: about an hour on
 # 2 cores): out/lod-report/index.html.
 lod-report: build
-	$(BUILD)/scenes/svbrdf-lod-report --full --out out/lod-report
+	$(BUILD)/svbrdf-lod-report --full --out out/lod-report
 
 $(ASAN_BUILD)/build.ninja:
 	@$(MAKE) --no-print-directory deps

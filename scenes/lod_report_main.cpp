@@ -20,12 +20,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The LOD manifest the build bakes: <build>/scenes/lod/manifest.json, the program being <build>/scenes/.
+// The LOD manifest the build bakes: <build>/scenes/lod/manifest.json, the program being at <build>/.
 fs::path default_manifest(const char* argv0) {
   std::error_code ec;
   fs::path exe = fs::canonical("/proc/self/exe", ec);
   if (ec) exe = fs::absolute(argv0);
-  return exe.parent_path() / "lod" / "manifest.json";
+  return exe.parent_path() / "scenes" / "lod" / "manifest.json";
 }
 
 }  // namespace
