@@ -97,8 +97,8 @@ void Camera::approximate_dp(const glm::vec3& p, const glm::vec3& n, glm::vec3& d
     const float dist = glm::length(to_p);
     d = dist > 0.0f ? to_p / dist : forward_;
     const float px = 2.0f * half_w_ / float(width_), py = 2.0f * half_h_ / float(height_);
-    dx = glm::normalize(d + right_ * px);
-    dy = glm::normalize(d - up_ * py);
+    dx = d + right_ * px;  // only the lines matter: no need to normalize
+    dy = d - up_ * py;
   } else {
     d = dx = dy = forward_;
     o = p - forward_;
