@@ -183,9 +183,16 @@ SceneMips::SceneMips(const Scene& scene, const TextureSet& textures)
       const bool tinted = std::any_of(p.colors.begin(), p.colors.end(),
                                       [](const glm::vec4& c) { return glm::vec3(c) != glm::vec3(1.0f); });
       if (tinted)
-        warnings_.push_back(p.where + ": COLOR_0 tints the base color, which a BRDF texel cannot carry; under "
+        tint_warnings_.push_back(p.where + ": COLOR_0 tints the base color, which a BRDF texel cannot carry; under "
                             "--filter brdf its hits are shaded with level0 lookups");
     }
+}
+
+std::vector<std::string> SceneMips::warnings(TextureFilter filter) const {
+  if (filter == TextureFilter::level0) return {};
+  std::vector<std::string> w = warnings_;
+  if (filter == TextureFilter::brdf) w.insert(w.end(), tint_warnings_.begin(), tint_warnings_.end());
+  return w;
 }
 
 int SceneMips::active_count() const {

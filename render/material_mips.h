@@ -130,8 +130,9 @@ class SceneMips {
     return slot < 0 ? nullptr : &mips_[static_cast<std::size_t>(slot)];
   }
 
-  // One line per textured material left out (and per primitive whose COLOR_0 keeps brdf at level0).
-  const std::vector<std::string>& warnings() const { return warnings_; }
+  // What a render under `filter` should say, one line each: the textured materials left out (every
+  // MIP filter), and for brdf the primitives whose COLOR_0 keeps it at level0. None for level0.
+  std::vector<std::string> warnings(TextureFilter filter) const;
   // Materials that take part, and the distinct MIP data they share (materials that differ only in
   // what the texels do not hold — alpha, emission, double-sidedness — share one).
   int active_count() const;
@@ -143,7 +144,8 @@ class SceneMips {
   std::vector<MaterialMip> mips_;       // distinct MIP data
   std::vector<int> slot_;                // per material: its entry in mips_, −1 when it does not take part
   std::vector<std::size_t> source_;      // per entry: the first material that uses it
-  std::vector<std::string> warnings_;
+  std::vector<std::string> warnings_;        // materials left out
+  std::vector<std::string> tint_warnings_;   // COLOR_0 under brdf
   std::mutex mutex_;
 };
 

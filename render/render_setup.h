@@ -36,8 +36,8 @@ class PreparedScene {
   const Scene& scene() const { return scene_; }
   const Camera& camera() const { return *camera_; }
   const EmbreeScene& bvh() const { return *bvh_; }
-  // Materials left out of MIP filtering, one line each (material_mips.h).
-  const std::vector<std::string>& mip_warnings() const { return mips_->warnings(); }
+  // What a render under `filter` should warn about the MIP data, one line each (material_mips.h).
+  std::vector<std::string> mip_warnings(TextureFilter filter) const { return mips_->warnings(filter); }
 
  private:
   Scene scene_;

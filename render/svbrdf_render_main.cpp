@@ -104,8 +104,8 @@ int main(int argc, char** argv) {
     svbrdf::Scene scene = svbrdf::load_gltf(scene_path);
     for (const std::string& w : scene.warnings) std::fprintf(stderr, "svbrdf-render: warning: %s\n", w.c_str());
     const svbrdf::PreparedScene prepared(std::move(scene), setup, color);
-    if (texture_filter != svbrdf::TextureFilter::level0)
-      for (const std::string& w : prepared.mip_warnings()) std::fprintf(stderr, "svbrdf-render: warning: %s\n", w.c_str());
+    for (const std::string& w : prepared.mip_warnings(texture_filter))
+      std::fprintf(stderr, "svbrdf-render: warning: %s\n", w.c_str());
 
     svbrdf::RenderOptions options;
     options.spp = spp;

@@ -387,7 +387,7 @@ TEST(MipFilters, TextureGridRules) {
     for (int j = 0; j < 4; ++j)
       for (int i = 0; i < 2; ++i) s.images[0].pixels.at(i, j, 0) = 0.1f + 0.1f * float(i + 2 * j);
     Prepared p(std::move(s));
-    EXPECT_TRUE(p.mips->warnings().empty());
+    EXPECT_TRUE(p.mips->warnings(TextureFilter::brdf).empty());
     p.mips->prepare(TextureFilter::level0);
     const MaterialMip* mip = p.mips->find(0);
     ASSERT_NE(mip, nullptr);
@@ -404,9 +404,11 @@ TEST(MipFilters, TextureGridRules) {
   auto warned = [](Scene s, const std::string& why) {
     Prepared p(std::move(s));
     EXPECT_EQ(p.mips->find(0), nullptr) << why;
-    ASSERT_EQ(p.mips->warnings().size(), 1u) << why;
-    EXPECT_NE(p.mips->warnings()[0].find(why), std::string::npos) << p.mips->warnings()[0];
-    EXPECT_NE(p.mips->warnings()[0].find("materials[0]"), std::string::npos) << p.mips->warnings()[0];
+    const std::vector<std::string> w = p.mips->warnings(TextureFilter::param);
+    ASSERT_EQ(w.size(), 1u) << why;
+    EXPECT_NE(w[0].find(why), std::string::npos) << w[0];
+    EXPECT_NE(w[0].find("materials[0]"), std::string::npos) << w[0];
+    EXPECT_TRUE(p.mips->warnings(TextureFilter::level0).empty()) << "level0 filters nothing: nothing to say";
   };
   {
     Scene s = periodic_quad(8);
@@ -434,6 +436,17 @@ TEST(MipFilters, TextureGridRules) {
     warned(std::move(s), "KHR_materials_specular");
   }
   {
+    // A tinted COLOR_0 keeps brdf at level0 on that primitive (exact for the other filters): said once.
+    Scene s = periodic_quad(8);
+    s.meshes[0].primitives[0].colors.assign(4, {1.0f, 0.5f, 1.0f, 1.0f});
+    Prepared p(std::move(s));
+    ASSERT_NE(p.mips->find(0), nullptr);
+    const std::vector<std::string> w = p.mips->warnings(TextureFilter::brdf);
+    ASSERT_EQ(w.size(), 1u);
+    EXPECT_NE(w[0].find("meshes[0].primitives[0]: COLOR_0"), std::string::npos) << w[0];
+    EXPECT_TRUE(p.mips->warnings(TextureFilter::param).empty());
+  }
+  {
     // Materials that differ only in what the texels do not hold share one build.
     Scene s = periodic_quad(8);
     s.materials.push_back(s.materials[0]);
@@ -453,7 +466,7 @@ TEST(MipFilters, TextureGridRules) {
     s.materials[0] = test::lambertian(Rgb(0.5f));
     Prepared p(std::move(s));
     EXPECT_EQ(p.mips->find(0), nullptr);
-    EXPECT_TRUE(p.mips->warnings().empty());
+    EXPECT_TRUE(p.mips->warnings(TextureFilter::brdf).empty());
   }
 }
 
