@@ -6,6 +6,7 @@
 
 #include "base/atomic_file.h"
 #include "base/error.h"
+#include "base/markup_escape.h"
 
 namespace svbrdf {
 namespace {
@@ -23,20 +24,6 @@ std::string stroke(const std::string& color, double width, const std::string& da
 }
 
 }  // namespace
-
-std::string svg_escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
 
 Svg::Svg(double width, double height) : width_(width), height_(height) {}
 
@@ -78,7 +65,7 @@ void Svg::arrow(glm::dvec2 a, glm::dvec2 b, const std::string& color, double wid
 
 void Svg::text(glm::dvec2 at, const std::string& s, double size, const std::string& color, const std::string& anchor) {
   body_ += "<text x=\"" + num(at.x) + "\" y=\"" + num(at.y) + "\" font-family=\"sans-serif\" font-size=\"" + num(size) +
-           "\" fill=\"" + color + "\" text-anchor=\"" + anchor + "\">" + svg_escape(s) + "</text>\n";
+           "\" fill=\"" + color + "\" text-anchor=\"" + anchor + "\">" + markup_escape(s) + "</text>\n";
 }
 
 std::string Svg::str() const {

@@ -29,7 +29,5 @@ class Svg {
   std::string body_;
 };
 
-// Escapes &, <, > and quotes for SVG text content.
-std::string svg_escape(const std::string& s);
 
 }  // namespace svbrdf

@@ -309,6 +309,22 @@ int reduce_lobes(std::span<Lobe> lobes, int n, const ReductionOptions& options) 
     std::array<Summary, kCap> sum;
     for (int i = 0; i < n; ++i) sum[static_cast<std::size_t>(i)] = summarize(L(i));
     auto S = [&](int i) -> const Summary& { return sum[static_cast<std::size_t>(i)]; };
+    // Merges lobe bj into lobe bi; the last lobe takes bj's place, with its row of the pair matrix M
+    // (the caller recomputes bi's row).
+    auto merge_into = [&](int bi, int bj, auto& M) {
+      Merged m = merge_pair(L(bi), S(bi), L(bj), S(bj), options.spread_scale);
+      keep_specular_flux(L(bi), L(bj), m);
+      L(bi) = m.lobe;
+      sum[static_cast<std::size_t>(bi)] = m.summary;
+      const int last = n - 1;
+      if (bj != last) {
+        L(bj) = L(last);
+        sum[static_cast<std::size_t>(bj)] = sum[static_cast<std::size_t>(last)];
+        for (int i = 0; i < last; ++i)
+          if (i != bj) M(i, bj) = M(i, last);
+      }
+      --n;
+    };
     // The texel's own squared norm in the units of the cost, for the relative tolerance.
     double norm2 = 0, diffuse_amp = 0;
     for (int i = 0; i < n; ++i) {
@@ -332,18 +348,7 @@ int reduce_lobes(std::span<Lobe> lobes, int n, const ReductionOptions& options) 
         for (int i = 0; i < n; ++i)
           for (int j = i + 1; j < n; ++j)
             if (D(i, j) < best) best = D(i, j), bi = i, bj = j;
-        Merged m = merge_pair(L(bi), S(bi), L(bj), S(bj), options.spread_scale);
-        keep_specular_flux(L(bi), L(bj), m);
-        L(bi) = m.lobe;
-        sum[static_cast<std::size_t>(bi)] = m.summary;
-        const int last = n - 1;
-        if (bj != last) {
-          L(bj) = L(last);
-          sum[static_cast<std::size_t>(bj)] = sum[static_cast<std::size_t>(last)];
-          for (int i = 0; i < last; ++i)
-            if (i != bj) D(i, bj) = D(i, last);
-        }
-        --n;
+        merge_into(bi, bj, D);
         for (int i = 0; i < n; ++i)
           if (i != bi) D(i, bi) = rough_distance(S(i), S(bi));
       }
@@ -364,19 +369,7 @@ int reduce_lobes(std::span<Lobe> lobes, int n, const ReductionOptions& options) 
         if (spent + best > budget) break;
         spent += best;
       }
-      Merged m = merge_pair(L(bi), S(bi), L(bj), S(bj), options.spread_scale);
-      keep_specular_flux(L(bi), L(bj), m);
-      L(bi) = m.lobe;
-      sum[static_cast<std::size_t>(bi)] = m.summary;
-      // The last lobe takes bj's place, with its costs.
-      const int last = n - 1;
-      if (bj != last) {
-        L(bj) = L(last);
-        sum[static_cast<std::size_t>(bj)] = sum[static_cast<std::size_t>(last)];
-        for (int i = 0; i < last; ++i)
-          if (i != bj) C(i, bj) = C(i, last);
-      }
-      --n;
+      merge_into(bi, bj, C);
       for (int i = 0; i < n; ++i)
         if (i != bi) compute(i, bi);
     }

@@ -9,6 +9,7 @@
 
 #include "base/atomic_file.h"
 #include "base/error.h"
+#include "base/markup_escape.h"
 #include "render/output.h"
 #include "scenes/json.h"
 #include "textures/image.h"
@@ -16,20 +17,6 @@
 namespace svbrdf {
 
 namespace fs = std::filesystem;
-
-std::string html_escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
 
 namespace {
 
@@ -113,8 +100,8 @@ std::string svg_chart(const std::string& title, const std::string& y_label, cons
   std::string out;
   out += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + std::to_string(width) + "\" height=\"" +
          std::to_string(height) + "\" viewBox=\"0 0 " + std::to_string(width) + " " + std::to_string(height) +
-         "\" role=\"img\" aria-label=\"" + html_escape(title) + "\">";
-  out += "<text x=\"" + fmt("%.0f", left) + "\" y=\"14\" class=\"ct\">" + html_escape(title) + "</text>";
+         "\" role=\"img\" aria-label=\"" + markup_escape(title) + "\">";
+  out += "<text x=\"" + fmt("%.0f", left) + "\" y=\"14\" class=\"ct\">" + markup_escape(title) + "</text>";
   if (x0 > x1) {
     out += "<text x=\"" + fmt("%.0f", left) + "\" y=\"60\">no data</text></svg>";
     return out;
@@ -163,7 +150,7 @@ std::string svg_chart(const std::string& title, const std::string& y_label, cons
     }
   }
   out += "<text x=\"12\" y=\"" + fmt("%.1f", top + ph / 2) + "\" class=\"yl\" transform=\"rotate(-90 12 " +
-         fmt("%.1f", top + ph / 2) + ")\">" + html_escape(y_label) + "</text>";
+         fmt("%.1f", top + ph / 2) + ")\">" + markup_escape(y_label) + "</text>";
   out += "<text x=\"" + fmt("%.1f", left + pw / 2) + "\" y=\"" + fmt("%.1f", top + ph + 28) +
          "\" class=\"tx\">distance (multiples of d₁)</text>";
   // Series and legend (wrapping onto a second row).
@@ -174,7 +161,7 @@ std::string svg_chart(const std::string& title, const std::string& y_label, cons
       if ((log_y && !(s.y[i] > 0)) || !std::isfinite(s.y[i])) continue;
       points += fmt("%.1f", X(s.x[i])) + "," + fmt("%.1f", Y(s.y[i])) + " ";
       out += "<circle cx=\"" + fmt("%.1f", X(s.x[i])) + "\" cy=\"" + fmt("%.1f", Y(s.y[i])) + "\" r=\"2.5\" fill=\"" +
-             s.color + "\"><title>" + html_escape(s.name) + ": " + sig(s.y[i]) + " at " + json::number_text(s.x[i]) +
+             s.color + "\"><title>" + markup_escape(s.name) + ": " + sig(s.y[i]) + " at " + json::number_text(s.x[i]) +
              "×</title></circle>";
     }
     out += "<polyline points=\"" + points + "\" fill=\"none\" stroke=\"" + s.color + "\" stroke-width=\"1.5\"" +
@@ -184,7 +171,7 @@ std::string svg_chart(const std::string& title, const std::string& y_label, cons
     out += "<line x1=\"" + fmt("%.1f", lx) + "\" y1=\"" + fmt("%.1f", ly - 4) + "\" x2=\"" + fmt("%.1f", lx + 14) + "\" y2=\"" +
            fmt("%.1f", ly - 4) + "\" stroke=\"" + s.color + "\" stroke-width=\"2\"" +
            (s.dashed ? " stroke-dasharray=\"4 3\"" : "") + "/>";
-    out += "<text x=\"" + fmt("%.1f", lx + 17) + "\" y=\"" + fmt("%.1f", ly) + "\" class=\"lg\">" + html_escape(s.name) + "</text>";
+    out += "<text x=\"" + fmt("%.1f", lx + 17) + "\" y=\"" + fmt("%.1f", ly) + "\" class=\"lg\">" + markup_escape(s.name) + "</text>";
     lx += item;
   }
   out += "</svg>";
@@ -228,7 +215,7 @@ fs::path write_lod_report(const LodResults& r, const LodManifest& m, const fs::p
   const auto add = [&h](const std::string& s) { h += s; };
   add("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n");
   add("<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n");
-  add("<title>" + html_escape(info.title) + "</title>\n<style>\n");
+  add("<title>" + markup_escape(info.title) + "</title>\n<style>\n");
   add("body{font:14px/1.45 system-ui,sans-serif;margin:24px auto;max-width:1200px;padding:0 16px;color:#222}\n"
       "h1{font-size:22px}h2{font-size:17px;margin-top:36px;border-top:1px solid #ccc;padding-top:12px}\n"
       "table{border-collapse:collapse;margin:8px 0}td,th{border:1px solid #ddd;padding:2px 6px;text-align:right}\n"
@@ -241,7 +228,7 @@ fs::path write_lod_report(const LodResults& r, const LodManifest& m, const fs::p
       "svg .ty{text-anchor:end}svg .yl{text-anchor:middle}code{background:#f4f4f4;padding:0 3px}\n"
       ".note{color:#555}\n");
   add("</style>\n</head>\n<body>\n");
-  add("<h1>" + html_escape(info.title) + "</h1>\n");
+  add("<h1>" + markup_escape(info.title) + "</h1>\n");
 
   // What was done.
   add("<p>Each material family lies on a quad seen head-on from k × d₁, where d₁ = s·H / (2·tan(φ/2)) is the distance at "
@@ -254,9 +241,9 @@ fs::path write_lod_report(const LodResults& r, const LodManifest& m, const fs::p
       std::to_string(r.options.spp) + " samples per pixel, the renderer's box pixel filter. Ground truth: "
       "<code>--filter level0</code> (nearest texel at the exact uv, no MIP), seed " + std::to_string(r.options.seed) +
       "; noise floor: the same with seed " + std::to_string(r.options.second_seed) + "; filters with seed " +
-      std::to_string(r.options.filter_seed) + ". Size: " + html_escape(info.size_name) + ". " +
+      std::to_string(r.options.filter_seed) + ". Size: " + markup_escape(info.size_name) + ". " +
       fmt("%.0f", r.seconds) + " s.</p>\n");
-  if (!info.command.empty()) add("<p class=\"note\">Made by <code>" + html_escape(info.command) + "</code>.</p>\n");
+  if (!info.command.empty()) add("<p class=\"note\">Made by <code>" + markup_escape(info.command) + "</code>.</p>\n");
   add("<p>Metrics over the object's pixels (those whose depth is positive in the ground truth): relative MSE "
       "Σ(X−R)²/ΣR² over pixels and RGB channels; flux bias ΣX/ΣR − 1; peak ratio max Y(X) / max Y(R) (Y: luminance). "
       "The noise floor is the relative MSE between the two ground truths. False-color images show |Y(X) − Y(R)| / "
@@ -272,12 +259,12 @@ fs::path write_lod_report(const LodResults& r, const LodManifest& m, const fs::p
       "standard deviation of one ground truth's total flux, estimated from the two ground truths' per-pixel differences "
       "(a flux bias carries about √2·σ of noise). All numbers are also in <a href=\"results.json\">results.json</a>.</p>\n");
   add("<p>Filters: ");
-  for (std::size_t i = 0; i < r.filters.size(); ++i) add((i ? ", " : "") + std::string("<code>") + html_escape(r.filters[i]) + "</code>");
+  for (std::size_t i = 0; i < r.filters.size(); ++i) add((i ? ", " : "") + std::string("<code>") + markup_escape(r.filters[i]) + "</code>");
   if (r.filters.empty()) add("none");
   add(".");
   if (!r.unavailable.empty()) {
     add(" <strong>Not available in this renderer (not rendered):</strong> ");
-    for (std::size_t i = 0; i < r.unavailable.size(); ++i) add((i ? ", " : "") + std::string("<code>") + html_escape(r.unavailable[i]) + "</code>");
+    for (std::size_t i = 0; i < r.unavailable.size(); ++i) add((i ? ", " : "") + std::string("<code>") + markup_escape(r.unavailable[i]) + "</code>");
     add(".");
   }
   add("</p>\n");
@@ -288,12 +275,12 @@ fs::path write_lod_report(const LodResults& r, const LodManifest& m, const fs::p
     if (std::find(distances.begin(), distances.end(), s.multiple) == distances.end()) distances.push_back(s.multiple);
   std::sort(distances.begin(), distances.end());
   for (const std::string& f : r.filters) {
-    add("<h2 id=\"summary-" + html_escape(f) + "\">Summary: relative MSE of <code>" + html_escape(f) +
+    add("<h2 id=\"summary-" + markup_escape(f) + "\">Summary: relative MSE of <code>" + markup_escape(f) +
         "</code> over the noise floor (flux bias in brackets)</h2>\n<table>\n<tr><th class=\"l\">scene</th>");
     for (double k : distances) add("<th>" + json::number_text(k) + "×</th>");
     add("</tr>\n");
     for (const ReportScene& g : scenes) {
-      add("<tr><td class=\"l\"><a href=\"#" + html_escape(g.id) + "\">" + html_escape(g.case_name + " / " + g.view + " / " + g.light) +
+      add("<tr><td class=\"l\"><a href=\"#" + markup_escape(g.id) + "\">" + markup_escape(g.case_name + " / " + g.view + " / " + g.light) +
           "</a></td>");
       for (double k : distances) {
         const auto it = std::find_if(g.shots.begin(), g.shots.end(), [&](const LodShot* s) { return s->multiple == k; });
@@ -314,8 +301,8 @@ fs::path write_lod_report(const LodResults& r, const LodManifest& m, const fs::p
 
   // Per scene.
   for (const ReportScene& g : scenes) {
-    add("<h2 id=\"" + html_escape(g.id) + "\">" + html_escape(g.case_name) + " — " + html_escape(g.view) + " — " +
-        html_escape(g.light) + "</h2>\n<div class=\"charts\">\n");
+    add("<h2 id=\"" + markup_escape(g.id) + "\">" + markup_escape(g.case_name) + " — " + markup_escape(g.view) + " — " +
+        markup_escape(g.light) + "</h2>\n<div class=\"charts\">\n");
     std::vector<ChartSeries> mse, flux, peak;
     ChartSeries floor{"noise floor", "#777", true, {}, {}};
     ChartSeries floor_flux{"noise floor", "#777", true, {}, {}}, floor_peak{"noise floor", "#777", true, {}, {}};
@@ -341,14 +328,14 @@ fs::path write_lod_report(const LodResults& r, const LodManifest& m, const fs::p
 
     if (!g.shots.empty() && !g.shots.front()->truth.pixels.empty()) {
       add("<table class=\"strip\">\n<tr><th>distance</th>");
-      for (const std::string& f : r.filters) add("<th>" + html_escape(f) + "</th>");
+      for (const std::string& f : r.filters) add("<th>" + markup_escape(f) + "</th>");
       add("<th>ground truth</th>");
-      for (const std::string& f : r.filters) add("<th>error: " + html_escape(f) + "</th>");
+      for (const std::string& f : r.filters) add("<th>error: " + markup_escape(f) + "</th>");
       add("</tr>\n");
       for (const LodShot* s : g.shots) {
         add("<tr><td>" + json::number_text(s->multiple) + "×</td>");
         const auto img = [&](const std::string& what, const std::string& alt) {
-          add("<td><img src=\"img/" + html_escape(image_name(g, *s, what)) + "\" alt=\"" + html_escape(alt) + "\"></td>");
+          add("<td><img src=\"img/" + markup_escape(image_name(g, *s, what)) + "\" alt=\"" + markup_escape(alt) + "\"></td>");
         };
         for (const auto& f : s->filters) img(f.filter, f.filter);
         img("truth", "ground truth");
@@ -360,10 +347,10 @@ fs::path write_lod_report(const LodResults& r, const LodManifest& m, const fs::p
 
     add("<table>\n<tr><th>distance</th><th>camera</th><th>noise floor</th>");
     for (const std::string& f : r.filters)
-      add("<th>" + html_escape(f) + " rel. MSE</th><th>×floor</th><th>flux bias</th><th>peak ratio</th>");
+      add("<th>" + markup_escape(f) + " rel. MSE</th><th>×floor</th><th>flux bias</th><th>peak ratio</th>");
     add("<th>floor flux</th><th>floor peak</th><th>flux σ</th></tr>\n");
     for (const LodShot* s : g.shots) {
-      add("<tr><td>" + json::number_text(s->multiple) + "×</td><td class=\"l\">" + html_escape(s->camera) + "</td><td>" +
+      add("<tr><td>" + json::number_text(s->multiple) + "×</td><td class=\"l\">" + markup_escape(s->camera) + "</td><td>" +
           sig(s->floor.rel_mse) + "</td>");
       for (const std::string& f : r.filters) {
         const auto* fr = s->find(f);

@@ -33,7 +33,5 @@ struct ChartSeries {
 std::string svg_chart(const std::string& title, const std::string& y_label, const std::vector<ChartSeries>& series,
                       bool log_y, int width = 320, int height = 234);
 
-// Text for HTML: & < > " escaped.
-std::string html_escape(const std::string& s);
 
 }  // namespace svbrdf

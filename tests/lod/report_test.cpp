@@ -8,9 +8,10 @@
 #include <regex>
 #include <string>
 
+#include "base/markup_escape.h"
 #include "scenes/lod_comparison.h"
 #include "scenes/lod_report.h"
-#include "tests/lod/temp_dir.h"
+#include "tests/lod/run_command.h"
 
 namespace svbrdf {
 namespace {
@@ -41,7 +42,7 @@ TEST(LodReport, ChartPointsLieInThePlot) {
     EXPECT_LE(y, 170.0 + 1e-6);
   }
   EXPECT_EQ(n, 5);
-  EXPECT_EQ(html_escape("a<b>&\"c\""), "a&lt;b&gt;&amp;&quot;c&quot;");
+  EXPECT_EQ(markup_escape("a<b>&\"c\""), "a&lt;b&gt;&amp;&quot;c&quot;");
 }
 
 // Loads file:// `page` in headless Chromium; returns its stderr (console messages are logged there

@@ -20,7 +20,7 @@
 #include "scenes/recipe.h"
 #include "textures/image.h"
 #include "textures/normal_map.h"
-#include "tests/lod/temp_dir.h"
+#include "tests/lod/run_command.h"
 
 namespace svbrdf {
 namespace {

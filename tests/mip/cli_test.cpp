@@ -12,7 +12,7 @@
 #include "mip/compare_report.h"
 #include "mip/mip_file.h"
 #include "tests/mip/synthetic_materials.h"
-#include "tests/mip/temp_dir.h"
+#include "tests/common/temp_dir.h"
 #include "textures/image.h"
 #include "textures/material_loader.h"
 #include "textures/texture_set.h"

@@ -12,7 +12,7 @@
 #include "base/error.h"
 #include "mip/mip_file.h"
 #include "tests/mip/synthetic_materials.h"
-#include "tests/mip/temp_dir.h"
+#include "tests/common/temp_dir.h"
 
 namespace svbrdf {
 namespace {

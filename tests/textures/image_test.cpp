@@ -7,7 +7,7 @@
 #include <iterator>
 
 #include "base/error.h"
-#include "tests/textures/temp_dir.h"
+#include "tests/common/temp_dir.h"
 
 namespace svbrdf {
 namespace {

@@ -6,7 +6,7 @@
 #include <fstream>
 
 #include "base/error.h"
-#include "tests/textures/temp_dir.h"
+#include "tests/common/temp_dir.h"
 
 namespace svbrdf {
 namespace {

@@ -10,7 +10,7 @@
 #include <iterator>
 
 #include "base/error.h"
-#include "tests/textures/temp_dir.h"
+#include "tests/common/temp_dir.h"
 #include "textures/material_loader.h"
 
 namespace svbrdf {

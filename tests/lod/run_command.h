@@ -1,6 +1,5 @@
 #pragma once
-// A fresh directory per test under the system temp dir, removed when the test ends.
-#include <gtest/gtest.h>
+// Running a program from a test with its outputs captured.
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -10,30 +9,9 @@
 #include <sstream>
 #include <string>
 
+#include "tests/common/temp_dir.h"
+
 namespace svbrdf::testing {
-
-class TempDir {
- public:
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = std::filesystem::temp_directory_path() /
-            ("svbrdf_lod_" + std::to_string(::getpid()) + "_" + (info ? std::string(info->name()) : "x"));
-    std::filesystem::remove_all(path_);
-    std::filesystem::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-
-  const std::filesystem::path& path() const { return path_; }
-  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
-
- private:
-  std::filesystem::path path_;
-};
 
 // Runs a shell command with stdout and stderr captured in files under `dir`; returns the exit status
 // (−1 when it did not exit normally) and both outputs.
