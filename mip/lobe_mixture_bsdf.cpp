@@ -15,14 +15,14 @@ float mean3(const glm::vec3& c) { return (c.x + c.y + c.z) * (1.0f / 3.0f); }
 LobeMixtureBsdf::LobeMixtureBsdf(std::span<const Lobe> lobes) {
   for (const Lobe& l : lobes) {
     if (count_ == kMaxLobes) break;
-    const std::size_t k = static_cast<std::size_t>(count_);
-    lobes_[k] = l;
-    shapes_[k] = lobe_shape<float>(l);
-    if (!shapes_[k].valid) continue;
+    Slot& k = slots_[static_cast<std::size_t>(count_)].s;
+    k.lobe = l;
+    k.shape = lobe_shape<float>(l);
+    if (!k.shape.valid) continue;
     // Albedo estimates for the choice: the diffuse term 0.96·ρ, the specular F0 plus Fresnel's rise.
-    const float scale = l.weight * shapes_[k].len;
-    diffuse_albedo_[k] = scale * 0.96f * mean3(l.diffuse);
-    spec_albedo_[k] = scale * (mean3(l.f0) + 0.1f * (1.0f - mean3(l.f0)));
+    const float scale = l.weight * k.shape.len;
+    k.diffuse_albedo = scale * 0.96f * mean3(l.diffuse);
+    k.spec_albedo = scale * (mean3(l.f0) + 0.1f * (1.0f - mean3(l.f0)));
     ++count_;
   }
 }
@@ -31,7 +31,7 @@ Rgb LobeMixtureBsdf::eval(const glm::vec3& wi, const glm::vec3& wo) const {
   const PairTerms<float> p = pair_terms<float>(wi, wo);
   if (!p.valid) return Rgb(0);
   Rgb f(0);
-  for (int k = 0; k < count_; ++k) f += lobe_eval(lobes_[static_cast<std::size_t>(k)], shapes_[static_cast<std::size_t>(k)], p);
+  for (int k = 0; k < count_; ++k) f += lobe_eval(slot(k).lobe, slot(k).shape, p);
   return f;
 }
 
@@ -41,8 +41,8 @@ LobeMixtureBsdf::Choice LobeMixtureBsdf::choice(const glm::vec3& wo) const {
   for (int k = 0; k < count_; ++k) {
     const std::size_t i = static_cast<std::size_t>(k);
     // The specular sampler needs wo above the lobe's own horizon.
-    const bool spec_ok = glm::dot(shapes_[i].n, wo) > 1e-4f;
-    const float d = diffuse_albedo_[i], s = spec_ok ? spec_albedo_[i] : 0.0f;
+    const bool spec_ok = glm::dot(slot(k).shape.n, wo) > 1e-4f;
+    const float d = slot(k).diffuse_albedo, s = spec_ok ? slot(k).spec_albedo : 0.0f;
     c.lobe[i] = d + s;
     c.diffuse[i] = d + s > 0 ? d / (d + s) : 1.0f;
     total += d + s;
@@ -63,7 +63,7 @@ float LobeMixtureBsdf::pdf_with(const Choice& c, const glm::vec3& wi, const glm:
   for (int k = 0; k < count_; ++k) {
     const std::size_t i = static_cast<std::size_t>(k);
     if (!(c.lobe[i] > 0)) continue;
-    const glm::vec3 n = shapes_[i].n;
+    const glm::vec3 n = slot(k).shape.n;
     float p = c.diffuse[i] * cosine_hemisphere_pdf(glm::dot(n, wi));
     if (c.diffuse[i] < 1.0f) {
       const Frame fr = Frame::from_normal(n);
@@ -73,7 +73,7 @@ float LobeMixtureBsdf::pdf_with(const Choice& c, const glm::vec3& wi, const glm:
       if (len > 0) {
         const glm::vec3 h = hsum / len;
         const float oh = glm::dot(wo_l, h);
-        if (oh > 0) p += (1.0f - c.diffuse[i]) * ggx_visible_pdf(std::sqrt(shapes_[i].alpha2), wo_l, h) / (4.0f * oh);
+        if (oh > 0) p += (1.0f - c.diffuse[i]) * ggx_visible_pdf(std::sqrt(slot(k).shape.alpha2), wo_l, h) / (4.0f * oh);
       }
     }
     pdf += c.lobe[i] * p;
@@ -105,12 +105,12 @@ BsdfSample LobeMixtureBsdf::sample(const glm::vec3& wo, const SampleU& u) const 
     wi = sample_cosine_hemisphere(uv);
   } else {
     const std::size_t i = static_cast<std::size_t>(picked);
-    const Frame fr = Frame::from_normal(shapes_[i].n);
+    const Frame fr = Frame::from_normal(slot(picked).shape.n);
     if (ux < c.diffuse[i]) {
       wi = fr.to_world(sample_cosine_hemisphere(uv));
     } else {
       const glm::vec3 wo_l = fr.to_local(wo);
-      const glm::vec3 h = sample_ggx_visible(std::sqrt(shapes_[i].alpha2), wo_l, uv);
+      const glm::vec3 h = sample_ggx_visible(std::sqrt(slot(picked).shape.alpha2), wo_l, uv);
       wi = fr.to_world(2.0f * glm::dot(wo_l, h) * h - wo_l);
     }
   }
