@@ -21,6 +21,7 @@ void round_colors_to_half(Lobe& lobe) {
     lobe.diffuse[c] = glm::unpackHalf1x16(glm::packHalf1x16(lobe.diffuse[c]));
     lobe.f0[c] = glm::unpackHalf1x16(glm::packHalf1x16(lobe.f0[c]));
   }
+  lobe.ggx = glm::unpackHalf1x16(glm::packHalf1x16(lobe.ggx));
 }
 
 namespace {

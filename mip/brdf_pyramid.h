@@ -45,11 +45,12 @@ struct BrdfBuildOptions {
   int stats_samples = 0;  // texels per level whose reduction error is measured (0: none)
 };
 
-// Rounds a lobe's colors to what a half float holds (what the MIP file stores).
+// Rounds a lobe's colors and GGX share to what a half float holds (what the MIP file stores).
 void round_colors_to_half(Lobe& lobe);
 
-// Bytes a stored lobe takes: weight, normal (3) and α² as 32-bit floats, ρ and F0 as half floats.
-inline constexpr int kBytesPerLobe = 5 * 4 + 6 * 2;
+// Bytes a stored lobe takes: weight, normal (3), α² and its mixture's upper end as 32-bit floats, ρ,
+// F0 and the GGX share as half floats.
+inline constexpr int kBytesPerLobe = 6 * 4 + 7 * 2;
 
 class BrdfPyramid {
  public:

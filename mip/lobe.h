@@ -13,10 +13,27 @@
 //             ρ is divided by the same factor, so weight·ρ stays the exact diffuse amplitude),
 //   diffuse — the mean ρ, f0 — the mean F0 (linear, exact under averaging),
 //   normal  — the mean of the unit shading normals, unnormalized: its length says how much they spread,
-//   alpha2  — the GGX α² of the lobe around normalize(normal), widened by the normals' spread.
+//   alpha2, alpha2_hi, ggx — the specular shape about n̂ = normalize(normal) (below),
+// and its microfacet distribution D is one of two shapes, both normalized, both exactly GGX(α²) for a
+// level-0 texel (alpha2_hi = 0, ggx = 1):
+//   - a roughness mixture (alpha2_hi > alpha2, ggx = 1): GGX averaged over α² log-uniform in
+//     [l, h] = [alpha2, alpha2_hi], in closed form
+//       D = L(l, h) / (π·(|n×h|² + (n·h)²·l)·(|n×h|² + (n·h)²·h)),  L(l, h) = (h − l)/ln(h/l);
+//   - a spread core (alpha2_hi = 0, ggx = μ ≤ 1): D = μ·D_GGX(α²) + (1 − μ)·D_Beckmann(α²).
+// Why two: far from its peak a GGX lobe falls as α²/(π·tan⁴θ·cos⁴θ), so a mixture's tail is set by
+// the mean α² (A) and its peak by the mean 1/α² (P). Lobes of different roughness have A·P > 1 —
+// heavier tails than any one GGX; the log-uniform mixture matches both moments (A = L(l, h),
+// P = L/(l·h)). Narrow lobes tilted by different small angles widen their union's core (LEAN adds the
+// normals' spread to α²) but add nothing to its tail: A·P < 1, lighter tails than GGX; the Beckmann
+// share (Gaussian slopes, LEAN's own model of the spread) carries those, μ = A·P. One GGX of the widened
+// α² would raise every off-specular value by the ratio of widened to base α² (×4 for α = 0.01 lobes
+// tilted ±1°).
 // and reflects, in the geometric tangent frame,
 //   weight · [0.96·(1 − w)·ρ/π + D·V·(F0 + (1 − F0)·w)] · (normal·wi) / wi.z,
-// with D and V the glTF GGX terms about n̂ = normalize(normal) with α², and 0 when n̂·wi ≤ 0,
+// with D as above and V the glTF (GGX, height-correlated Smith) visibility about n̂ — for a roughness
+// mixture the mean of its components' V weighted by their D at the half vector, for the Beckmann
+// share at α² (the two masking functions differ by a few percent at grazing angles only) — and 0 when
+// n̂·wi ≤ 0,
 // n̂·wo ≤ 0, wi.z ≤ 0 or wo.z ≤ 0. A level-0 texel is one lobe of weight 1 with a unit normal and
 // this is then exactly f_eff,x = f_x · max(0, n_x·wi)/wi.z. For a merged lobe, (normal·wi) =
 // E[n_x]·wi is the exact mean of the texels' cosine factors while no normal is below the light's
@@ -34,7 +51,9 @@ struct Lobe {
   glm::vec3 diffuse{0.0f};
   glm::vec3 f0{0.0f};
   glm::vec3 normal{0.0f, 0.0f, 1.0f};
-  float alpha2 = 1e-6f;
+  float alpha2 = 1e-6f;     // GGX α² (a roughness mixture's lower end)
+  float ggx = 1.0f;         // μ, the GGX share of a spread core
+  float alpha2_hi = 0.0f;   // > alpha2: a roughness mixture's upper end
 };
 
 // The level-0 lobe of a texel with glTF parameters (linear base color, metallic, perceptual
@@ -87,6 +106,8 @@ struct LobeShape {
   T len = 1;                  // |mean normal|
   T sigma = 0;                // spread of the normals' slopes (0: a hard horizon)
   T alpha2 = 1;
+  T ggx = 1;  // μ, the GGX share of D
+  T alpha2_hi = 0, lmean = 0;  // log-uniform α² mixture: upper end and logarithmic mean (0: plain GGX)
   bool valid = false;
 };
 
@@ -101,6 +122,12 @@ LobeShape<T> lobe_shape(const Lobe& lobe) {
   const T var = s.len < T(1) ? (T(1) - s.len) / s.len : T(0);
   s.sigma = var > T(1e-7) ? std::sqrt(var) : T(0);
   s.alpha2 = T(lobe.alpha2);
+  s.ggx = std::clamp(T(lobe.ggx), T(0), T(1));
+  if (lobe.alpha2_hi > lobe.alpha2 * 1.0001f) {
+    s.alpha2_hi = T(lobe.alpha2_hi);
+    const T x = s.alpha2_hi / s.alpha2 - T(1);
+    s.lmean = s.alpha2 * x / std::log1p(x);
+  }
   s.valid = true;
   return s;
 }
@@ -135,19 +162,61 @@ LobeSide<T> lobe_wo_side(const LobeShape<T>& s, T c) {
   return {standard_normal_cdf(c / sd), std::max(c, T(1e-4))};
 }
 
+// D of a lobe at a half vector with n̂·h = ch and n̂×h = nxh (the shapes at the top of this file), with
+// 1 − (n·h)² written as |n×h|², which keeps its precision at the peak of sharp lobes.
+//   D_GGX = α² / (π·(|n×h|² + (n·h)²·α²)²)                    (Walter et al. 2007, eq. 33)
+//   its log-uniform mixture: ∫ α²/(α² + t)² dα²/α² over [l, h] / ln(h/l) = (1/(l + t) − 1/(h + t))/ln(h/l)
+//   with t = tan²θ, which is L(l, h)/((l + t)(h + t)) (÷ π·cos⁴θ)
+//   D_Beckmann = exp(−tan²θ/α²) / (π·α²·cos⁴θ), tan²θ = |n×h|²/(n·h)²   (Walter et al. 2007, eq. 25)
+template <class T>
+T lobe_d(const LobeShape<T>& s, T ch, const glm::vec<3, T>& nxh) {
+  constexpr T kInvPi = T(0.318309886183790671537767526745);
+  if (!(ch > 0)) return T(0);
+  const T a2 = s.alpha2, sin2 = glm::dot(nxh, nxh);
+  const T denom = sin2 + ch * ch * a2;
+  T d;
+  if (s.lmean > 0)
+    d = s.ggx * s.lmean * kInvPi / (denom * (sin2 + ch * ch * s.alpha2_hi));
+  else
+    d = s.ggx * a2 * kInvPi / (denom * denom);
+  if (s.ggx != T(1)) {
+    // Past tan²θ/α² = 60 the Beckmann share is below e⁻⁶⁰ of its peak: skipped, which also keeps
+    // 0·∞ out at grazing half vectors.
+    const T c2 = ch * ch, x = sin2 / (c2 * a2);
+    if (x < T(60)) d += (T(1) - s.ggx) * std::exp(-x) * kInvPi / (a2 * c2 * c2);
+  }
+  return d;
+}
+
 // The glTF terms of a lobe for one pair, given its two sides: 0.96·(1 − w)·ρ/π + D·V·(F0 + (1 − F0)·w).
 template <class T>
 glm::vec<3, T> lobe_brdf(const Lobe& lobe, const LobeShape<T>& s, const PairTerms<T>& p, T ci, T co) {
   using V3 = glm::vec<3, T>;
   constexpr T kInvPi = T(0.318309886183790671537767526745);
-  const T a2 = s.alpha2;
-  // GGX D with 1 − (n·h)² written as |n×h|², which keeps its precision at the peak of sharp lobes.
   const T ch = glm::dot(s.n, p.h);
-  const V3 nxh = glm::cross(s.n, p.h);
-  const T denom = glm::dot(nxh, nxh) + ch * ch * a2;
-  const T d = ch > 0 ? a2 * kInvPi / (denom * denom) : T(0);
+  const glm::vec<3, T> nxh = glm::cross(s.n, p.h);
+  const T d = lobe_d(s, ch, nxh);
   // Height-correlated Smith visibility of glTF (brdf-models.md, `gltf`).
-  const T vis = T(0.5) / (co * std::sqrt(a2 + (T(1) - a2) * ci * ci) + ci * std::sqrt(a2 + (T(1) - a2) * co * co));
+  const auto visibility = [&](T a2) {
+    return T(0.5) / (co * std::sqrt(a2 + (T(1) - a2) * ci * ci) + ci * std::sqrt(a2 + (T(1) - a2) * co * co));
+  };
+  T vis;
+  if (s.lmean > 0 && ch > 0) {
+    // A roughness mixture: V of each component weighted by its share of D at this half vector,
+    // ∫ D_a·V_a da/a / ∫ D_a da/a over log-uniform a = α², by 3-point Gauss–Legendre in ln a.
+    const T t = glm::dot(nxh, nxh) / (ch * ch), ll = std::log(s.alpha2), span = std::log(s.alpha2_hi) - ll;
+    constexpr T kX[3] = {T(0.11270166537925831), T(0.5), T(0.88729833462074169)};
+    constexpr T kW[3] = {T(5) / T(18), T(8) / T(18), T(5) / T(18)};
+    T num = 0, den = 0;
+    for (int k = 0; k < 3; ++k) {
+      const T a = std::exp(ll + kX[k] * span), dk = kW[k] * a / ((a + t) * (a + t));
+      num += dk * visibility(a);
+      den += dk;
+    }
+    vis = num / den;
+  } else {
+    vis = visibility(s.alpha2);
+  }
   const T w = p.fresnel_w;
   const V3 f0(lobe.f0), rho(lobe.diffuse);
   return (T(0.96) * (T(1) - w) * kInvPi) * rho + (vis * d) * (f0 + (V3(1) - f0) * w);

@@ -73,7 +73,12 @@ float LobeMixtureBsdf::pdf_with(const Choice& c, const glm::vec3& wi, const glm:
       if (len > 0) {
         const glm::vec3 h = hsum / len;
         const float oh = glm::dot(wo_l, h);
-        if (oh > 0) p += (1.0f - c.diffuse[i]) * ggx_visible_pdf(std::sqrt(slot(k).shape.alpha2), wo_l, h) / (4.0f * oh);
+        if (oh > 0) {
+          const LobeShape<float>& sh = slot(k).shape;
+          float vis = ggx_visible_pdf(std::sqrt(sh.alpha2), wo_l, h);
+          if (sh.lmean > 0) vis = 0.5f * (vis + ggx_visible_pdf(std::sqrt(sh.alpha2_hi), wo_l, h));
+          p += (1.0f - c.diffuse[i]) * vis / (4.0f * oh);
+        }
       }
     }
     pdf += c.lobe[i] * p;
@@ -110,7 +115,10 @@ BsdfSample LobeMixtureBsdf::sample(const glm::vec3& wo, const SampleU& u) const 
       wi = fr.to_world(sample_cosine_hemisphere(uv));
     } else {
       const glm::vec3 wo_l = fr.to_local(wo);
-      const glm::vec3 h = sample_ggx_visible(std::sqrt(slot(picked).shape.alpha2), wo_l, uv);
+      // A roughness mixture (lobe.h) is sampled half from each end of its α² range.
+      const LobeShape<float>& sh = slot(picked).shape;
+      const bool upper = sh.lmean > 0 && (ux - c.diffuse[i]) >= 0.5f * (1.0f - c.diffuse[i]);
+      const glm::vec3 h = sample_ggx_visible(std::sqrt(upper ? sh.alpha2_hi : sh.alpha2), wo_l, uv);
       wi = fr.to_world(2.0f * glm::dot(wo_l, h) * h - wo_l);
     }
   }

@@ -11,7 +11,8 @@
 // direction where f may be non-zero (including where a spread lobe reflects past its mean horizon);
 // otherwise a lobe chosen in proportion to an estimate of its albedo, then its diffuse part
 // (cosine-weighted about the lobe's normal) or its specular part (GGX visible normals about the
-// lobe's normal, Heitz 2018 via appearance/microfacet_distribution.h) in proportion to theirs. pdf()
+// lobe's normal, Heitz 2018 via appearance/microfacet_distribution.h, at the lobe's α², or half at
+// each end of a roughness mixture's range) in proportion to theirs. pdf()
 // is the density of that whole mixture; weight = f·wi.z/pdf with the whole f.
 #include <array>
 #include <span>

@@ -17,7 +17,13 @@ constexpr double kPi = 3.14159265358979323846;
 // soft fingerprint glow would be merged away to keep them apart.
 constexpr double kResolutionAlpha2 = 0.01;
 // The weight of the highlight-peak term of merge_cost (see there).
-constexpr double kPeakWeight = 1.0;
+// Small: the merges keep the peak moment exactly (merge_pair), so this only breaks ties against merging
+// lobes whose normals differ (whose union has no peak at the merged normal). At 1 it outweighed
+// everything else and kept polished sub-lobes apart while the fingerprints' rough lobes were merged
+// into them, which lost their off-specular flux (−30 % to −50 % at the coarse levels of metal-tray).
+constexpr double kPeakWeight = 1e-5;
+// The weight of the log-profile term of merge_pair (the shape between peak and tail).
+constexpr double kProfileWeight = 25.0;
 
 double mean3(const glm::vec3& c) { return (double(c.x) + c.y + c.z) / 3.0; }
 
@@ -26,11 +32,21 @@ struct Summary {
   glm::dvec3 n{0, 0, 1};  // unit normal
   double weight = 0;
   double amp = 0;     // specular amplitude: its share of the reflected flux
-  double d_z = 0;     // GGX D at h = z (the geometric normal)
+  double d_z = 0;     // D at h = z (the geometric normal)
   double rho = 0;     // mean diffuse albedo
   double f0 = 0;      // mean F0
-  double alpha2 = 1;
+  double alpha2 = 1;  // the core's width 1/P, for the Gaussian model of shape_cost
+  double ggx = 1;     // μ, the GGX share of a spread core (lobe.h)
+  double tail = 0;    // A: the tail coefficient, D ≈ A/(π t²) far out
+  double peak = 1;    // P: π·D at the lobe's own normal
 };
+
+// D at h = z (the geometric normal) of a lobe.
+double d_at_z(const LobeShape<double>& sh) {
+  if (!sh.valid) return 0.0;
+  const glm::dvec3 z(0, 0, 1);
+  return lobe_d(sh, sh.n.z, glm::cross(sh.n, z));
+}
 
 Summary summarize(const Lobe& l) {
   Summary s;
@@ -42,13 +58,17 @@ Summary summarize(const Lobe& l) {
   s.f0 = mean3(l.f0);
   // F0 plus a little for Fresnel's rise toward grazing angles; len: the lobe's cosine factor.
   s.amp = double(l.weight) * len * (s.f0 + 0.05 * (1.0 - s.f0));
-  s.alpha2 = l.alpha2;
-  const double c = s.n.z;
-  if (c > 0) {
-    const double sin2 = s.n.x * s.n.x + s.n.y * s.n.y;
-    const double d = sin2 + c * c * s.alpha2;
-    s.d_z = s.alpha2 / (kPi * d * d);
+  const LobeShape<double> sh = lobe_shape<double>(l);
+  s.ggx = sh.ggx;
+  if (sh.lmean > 0) {
+    s.tail = s.ggx * sh.lmean;
+    s.peak = s.ggx * sh.lmean / (sh.alpha2 * sh.alpha2_hi) + (1 - s.ggx) / sh.alpha2;
+  } else {
+    s.tail = s.ggx * sh.alpha2;
+    s.peak = 1 / sh.alpha2;
   }
+  s.alpha2 = 1 / s.peak;
+  s.d_z = d_at_z(sh);
   return s;
 }
 
@@ -80,12 +100,12 @@ class SpecAlbedoTable {
     static const SpecAlbedoTable t;
     return t;
   }
-  double albedo(double alpha2, double f0) const {
+  double albedo(double alpha2, double f0, double ggx) const {
     const double x = (std::log(std::clamp(alpha2, kMin, 1.0)) - std::log(kMin)) / (-std::log(kMin)) * (kSize - 1);
     const int i = std::min(kSize - 2, static_cast<int>(x));
     const double t = x - i;
     const auto at = [&](const std::array<double, kSize>& v) { return v[static_cast<std::size_t>(i)] * (1 - t) + v[static_cast<std::size_t>(i + 1)] * t; };
-    return f0 * at(a_) + (1 - f0) * at(b_);
+    return ggx * (f0 * at(a_) + (1 - f0) * at(b_)) + (1 - ggx) * (f0 * at(ba_) + (1 - f0) * at(bb_));
   }
 
  private:
@@ -95,31 +115,37 @@ class SpecAlbedoTable {
     constexpr int n = 64;
     for (int k = 0; k < kSize; ++k) {
       const double a2 = std::exp(std::log(kMin) * (1.0 - double(k) / (kSize - 1)));
-      double sa = 0, sb = 0;
+      double sa = 0, sb = 0, sba = 0, sbb = 0;
       for (double theta : {0.0, 45.0, 75.0}) {
         const glm::dvec3 wi(std::sin(theta * kPi / 180), 0, std::cos(theta * kPi / 180));
         for (int p = 0; p < n; ++p)
           for (int q = 0; q < n; ++q) {
             // h with density D(h)·cosθh: tan²θh = α²·u/(1 − u) (Walter et al. 2007); then
             // f·wo.z/pdf(wo) with pdf(wo) = D·cosθh/(4·wo·h), so D cancels.
+            // Beckmann: tan²θh = −α²·ln(1 − u) (Walter et al. 2007, eq. 28).
             const double u = (p + 0.5) / n, phi = 2 * kPi * (q + 0.5) / n;
-            const double c = 1 / std::sqrt(1 + a2 * u / (1 - u)), sn = std::sqrt(std::max(0.0, 1 - c * c));
-            const glm::dvec3 h(sn * std::cos(phi), sn * std::sin(phi), c);
-            const double oh = glm::dot(wi, h);
-            const glm::dvec3 wo = 2 * oh * h - wi;
-            if (wo.z <= 0 || oh <= 0) continue;
-            const double vis = 0.5 / (wo.z * std::sqrt(a2 + (1 - a2) * wi.z * wi.z) + wi.z * std::sqrt(a2 + (1 - a2) * wo.z * wo.z));
-            const double x = 1 - oh, w = x * x * x * x * x;
-            const double g = 4 * vis * wo.z * oh / c;
-            sa += g;      // F0 = 1: F = 1
-            sb += g * w;  // F0 = 0: F = w
+            for (int beckmann = 0; beckmann < 2; ++beckmann) {
+              const double tan2 = beckmann ? -a2 * std::log1p(-u) : a2 * u / (1 - u);
+              const double c = 1 / std::sqrt(1 + tan2), sn = std::sqrt(std::max(0.0, 1 - c * c));
+              const glm::dvec3 h(sn * std::cos(phi), sn * std::sin(phi), c);
+              const double oh = glm::dot(wi, h);
+              const glm::dvec3 wo = 2 * oh * h - wi;
+              if (wo.z <= 0 || oh <= 0) continue;
+              const double vis = 0.5 / (wo.z * std::sqrt(a2 + (1 - a2) * wi.z * wi.z) + wi.z * std::sqrt(a2 + (1 - a2) * wo.z * wo.z));
+              const double x = 1 - oh, w = x * x * x * x * x;
+              const double g = 4 * vis * wo.z * oh / c;
+              (beckmann ? sba : sa) += g;      // F0 = 1: F = 1
+              (beckmann ? sbb : sb) += g * w;  // F0 = 0: F = w
+            }
           }
       }
       a_[static_cast<std::size_t>(k)] = sa / (n * n);
       b_[static_cast<std::size_t>(k)] = sb / (n * n);
+      ba_[static_cast<std::size_t>(k)] = sba / (n * n);
+      bb_[static_cast<std::size_t>(k)] = sbb / (n * n);
     }
   }
-  std::array<double, kSize> a_{}, b_{};
+  std::array<double, kSize> a_{}, b_{}, ba_{}, bb_{};  // GGX and Beckmann columns
 };
 
 // The estimated squared error of replacing lobes a and b by m, without the peak term.
@@ -150,18 +176,26 @@ double peak_cost(const Summary& a, const Summary& b, const Summary& m) {
   const double peak = a.amp * a.d_z + b.amp * b.d_z - (a.amp + b.amp) * m.d_z;
   return kPeakWeight * peak * peak;
 }
-double full_cost(const Summary& a, const Summary& b, const Summary& m) { return shape_cost(a, b, m) + peak_cost(a, b, m); }
+// The change of the amplitude-weighted core width Σ amp·μ·α² (α² = 1/P, lobe.h). For plain GGX lobes
+// μ·α² is the tail coefficient: far from the peak D ≈ μα²/(π·t²) (t = tan²θ), so a change Δ of it
+// changes D by Δ/(π·t²), whose squared L2 over slope space (dA = π·dt) from the resolution outward,
+// ∫ Δ²/(π·t⁴) dt over t > α²_res, is Δ²/(3π·α⁶_res). It keeps rough lobes of different widths — the
+// fingerprints' glow — from being merged into narrow ones, which the peak-dominated terms above allow.
+double width_cost(const Summary& a, const Summary& b, const Summary& m) {
+  const double delta = a.amp * a.ggx * a.alpha2 + b.amp * b.ggx * b.alpha2 - m.amp * m.ggx * m.alpha2;
+  return delta * delta / (3 * kPi * kResolutionAlpha2 * kResolutionAlpha2 * kResolutionAlpha2);
+}
+double full_cost(const Summary& a, const Summary& b, const Summary& m) {
+  return shape_cost(a, b, m) + peak_cost(a, b, m) + width_cost(a, b, m);
+}
 
-// The merged lobe but for its α²: the linear parts (weight, ρ, F0, mean normal) and the spread of the
-// two normals about the merged one in slope space (α² = 2σ², LEAN), weighted by the lobes' specular
-// amplitudes (their share of the highlight).
+// The merged lobe but for its shape: the linear parts (weight, ρ, F0, mean normal).
 struct MergeBase {
   Lobe lobe;
-  Summary summary;  // all but alpha2 and d_z
-  double spread = 0;
+  Summary summary;  // all but the shape's
 };
 
-MergeBase merge_base(const Lobe& a, const Summary& sa, const Lobe& b, const Summary& sb, float spread_scale) {
+MergeBase merge_base(const Lobe& a, const Summary& sa, const Lobe& b, const Summary& sb) {
   MergeBase mb;
   Lobe& m = mb.lobe;
   const double wa = a.weight, wb = b.weight, w = wa + wb;
@@ -179,23 +213,7 @@ MergeBase merge_base(const Lobe& a, const Summary& sa, const Lobe& b, const Summ
   s.rho = ta_ * sa.rho + tb_ * sb.rho;
   s.f0 = ta_ * sa.f0 + tb_ * sb.f0;
   s.amp = w * len * (s.f0 + 0.05 * (1.0 - s.f0));
-  double ka = sa.amp, kb = sb.amp;
-  if (!(ka + kb > 0)) ka = wa, kb = wb;
-  const double ta = std::min(tan2_between(sa.n, s.n), 1e3), tb = std::min(tan2_between(sb.n, s.n), 1e3);
-  mb.spread = spread_scale * (ka * ta + kb * tb) / (ka + kb);
   return mb;
-}
-
-// Completes a merge with the α² base chosen.
-void set_alpha2(Lobe& m, Summary& s, double alpha2) {
-  m.alpha2 = static_cast<float>(std::clamp(alpha2, 1e-6, 1.0));
-  s.alpha2 = m.alpha2;
-  const double c = s.n.z;
-  s.d_z = 0;
-  if (c > 0) {
-    const double d = s.n.x * s.n.x + s.n.y * s.n.y + c * c * s.alpha2;
-    s.d_z = s.alpha2 / (kPi * d * d);
-  }
 }
 
 // Merges a and b; returns the merged lobe and its summary and cost.
@@ -205,27 +223,66 @@ struct Merged {
   double cost = 0;
 };
 
-Merged merge_pair(const Lobe& a, const Summary& sa, const Lobe& b, const Summary& sb, float spread_scale) {
-  const MergeBase mb = merge_base(a, sa, b, sb, spread_scale);
-  double ka = sa.amp, kb = sb.amp;
-  if (!(ka + kb > 0)) ka = sa.weight, kb = sb.weight;
-  const double xa = sa.alpha2, xb = sb.alpha2;
-  // Similar roughness: the amplitude-weighted harmonic mean of α² keeps the height of the highlight
-  // (a GGX peak is ∝ amplitude/α²) and the weights keep its flux. Dissimilar roughness: the harmonic
-  // mean would turn a broad lobe into a spike, so of the harmonic mean, the arithmetic mean (second
-  // moments) and the dominant lobe's α², the one with the lowest shape cost wins.
-  Merged best{mb.lobe, mb.summary, 0};
-  set_alpha2(best.lobe, best.summary, (ka + kb) / (ka / xa + kb / xb) + mb.spread);
-  double best_shape = shape_cost(sa, sb, best.summary);
-  if (std::max(xa, xb) > 4.0 * std::min(xa, xb)) {
-    for (double base : {(ka * xa + kb * xb) / (ka + kb), ka >= kb ? xa : xb}) {
-      Merged c{mb.lobe, mb.summary, 0};
-      set_alpha2(c.lobe, c.summary, base + mb.spread);
-      const double sc = shape_cost(sa, sb, c.summary);
-      if (sc < best_shape) best_shape = sc, best = c;
+// The lobe shape with tail coefficient A and peak P (lobe.h): a log-uniform α² mixture on
+// [g/r, g·r] (g = √(A/P), ln r = u with sinh(u)/u = √(AP)) when AP ≥ 1, else one core of α² = 1/P
+// whose GGX share μ = AP thins the tail (the rest Beckmann).
+void set_shape(Lobe& m, double A, double P) {
+  A = std::max(A, 1e-9);
+  P = std::max(P, 1.0);
+  const double q = A * P;
+  m.alpha2_hi = 0.0f;
+  if (q > 1.0 + 1e-7) {
+    const double target = std::sqrt(q);
+    double u = target < 1.5 ? std::sqrt(6.0 * (target - 1.0)) : std::log(2.0 * target * std::log(2.0 * target + 1.0) + 1.0);
+    for (int k = 0; k < 8; ++k) {
+      const double sh = std::sinh(u), ch = std::cosh(u);
+      const double f = sh / u - target, df = (u * ch - sh) / (u * u);
+      if (!(df > 0)) break;
+      u = std::max(1e-6, u - f / df);
+    }
+    const double g = std::sqrt(A / P);
+    m.alpha2 = static_cast<float>(std::clamp(g * std::exp(-u), 1e-6, 1.0));
+    m.alpha2_hi = static_cast<float>(std::clamp(g * std::exp(u), double(m.alpha2), 1.0));
+    m.ggx = 1.0f;
+  } else {
+    m.alpha2 = static_cast<float>(std::clamp(1.0 / P, 1e-6, 1.0));
+    m.ggx = static_cast<float>(std::clamp(q, 0.0, 1.0));
+  }
+}
+
+// The error of the merged lobe's D profile against the pair's, in log space over tan²θ from 1e-6 to
+// 10 (each lobe about its own normal): what the moments do not pin, the shape between peak and tail.
+double profile_cost(const Lobe& a, double ka, const Lobe& b, double kb, const Lobe& m) {
+  LobeShape<double> sa = lobe_shape<double>(a), sb = lobe_shape<double>(b), sm = lobe_shape<double>(m);
+  sa.n = sb.n = sm.n = glm::dvec3(0, 0, 1);
+  double e = 0;
+  constexpr int kSteps = 15;
+  for (int j = 0; j < kSteps; ++j) {
+    const double t = std::pow(10.0, -6.0 + 7.0 * j / (kSteps - 1));
+    const double c = 1 / std::sqrt(1 + t), sn = std::sqrt(t) * c;
+    const glm::dvec3 nxh(0, sn, 0);
+    const double ex = ka * lobe_d(sa, c, nxh) + kb * lobe_d(sb, c, nxh), ap = (ka + kb) * lobe_d(sm, c, nxh);
+    if (ex > 0 && ap > 0) {
+      const double r = std::log(ap / ex);
+      e += r * r;
     }
   }
-  best.cost = best_shape + peak_cost(sa, sb, best.summary);
+  return kProfileWeight * (ka + kb) * (ka + kb) * e / kSteps;
+}
+
+Merged merge_pair(const Lobe& a, const Summary& sa, const Lobe& b, const Summary& sb, float spread_scale) {
+  const MergeBase mb = merge_base(a, sa, b, sb);
+  double ka = sa.amp, kb = sb.amp;
+  if (!(ka + kb > 0)) ka = sa.weight, kb = sb.weight;
+  // Moments of the union about the merged normal: the tails add (A), and each lobe's peak, widened
+  // by its tilt to the merged normal (LEAN: α² + tan²θ), adds (P).
+  const double ta = std::min(tan2_between(sa.n, mb.summary.n), 1e3), tb = std::min(tan2_between(sb.n, mb.summary.n), 1e3);
+  const double pa = 1.0 / (1.0 / sa.peak + spread_scale * ta), pb = 1.0 / (1.0 / sb.peak + spread_scale * tb);
+  const double A = (ka * sa.tail + kb * sb.tail) / (ka + kb), P = (ka * pa + kb * pb) / (ka + kb);
+  Merged best{mb.lobe, mb.summary, 0};
+  set_shape(best.lobe, A, P);
+  best.summary = summarize(best.lobe);
+  best.cost = full_cost(sa, sb, best.summary) + profile_cost(a, ka, b, kb, best.lobe);
   return best;
 }
 
@@ -234,7 +291,18 @@ Merged merge_pair(const Lobe& a, const Summary& sa, const Lobe& b, const Summary
 // is made, not while costs are estimated (it changes them by a few percent of the amplitude only).
 void keep_specular_flux(const Lobe& a, const Lobe& b, Merged& m) {
   const SpecAlbedoTable& t = SpecAlbedoTable::get();
-  auto albedo = [&](const Lobe& l) { return double(l.weight) * glm::length(glm::dvec3(l.normal)) * t.albedo(l.alpha2, mean3(l.f0)); };
+  auto albedo = [&](const Lobe& l) {
+    double spec = 0;
+    if (l.alpha2_hi > l.alpha2) {
+      // A roughness mixture reflects the mean of its components' albedos over log-uniform α²
+      // (midpoint rule in log α², 8 points).
+      const double lo = std::log(double(l.alpha2)), step = (std::log(double(l.alpha2_hi)) - lo) / 8;
+      for (int k = 0; k < 8; ++k) spec += t.albedo(std::exp(lo + (k + 0.5) * step), mean3(l.f0), 1.0) / 8;
+    } else {
+      spec = t.albedo(l.alpha2, mean3(l.f0), l.ggx);
+    }
+    return double(l.weight) * glm::length(glm::dvec3(l.normal)) * spec;
+  };
   const double want = albedo(a) + albedo(b), have = albedo(m.lobe);
   if (have > 0 && want > 0) {
     const double scale = want / have;
@@ -268,7 +336,8 @@ double rough_distance(const Summary& a, const Summary& b) {
 // Lobes whose merge changes nothing measurable: the same normal, length and roughness.
 bool near_duplicates(const Lobe& a, const Lobe& b) {
   const glm::vec3 d = a.normal - b.normal;
-  return glm::dot(d, d) < 1e-12f && std::abs(a.alpha2 - b.alpha2) <= 1e-4f * std::min(a.alpha2, b.alpha2);
+  return glm::dot(d, d) < 1e-12f && std::abs(a.alpha2 - b.alpha2) <= 1e-4f * std::min(a.alpha2, b.alpha2) &&
+         a.alpha2_hi == b.alpha2_hi && a.ggx == b.ggx;
 }
 
 }  // namespace
@@ -296,8 +365,8 @@ int reduce_lobes(std::span<Lobe> lobes, int n, const ReductionOptions& options) 
     for (int j = 0; j < k && dup < 0; ++j)
       if (near_duplicates(L(j), L(i))) dup = j;
     if (dup >= 0) {
-      MergeBase mb = merge_base(L(dup), summarize(L(dup)), L(i), summarize(L(i)), 0.0f);
-      set_alpha2(mb.lobe, mb.summary, L(dup).alpha2);
+      MergeBase mb = merge_base(L(dup), summarize(L(dup)), L(i), summarize(L(i)));
+      mb.lobe.alpha2 = L(dup).alpha2, mb.lobe.alpha2_hi = L(dup).alpha2_hi, mb.lobe.ggx = L(dup).ggx;
       L(dup) = mb.lobe;
     }
     else

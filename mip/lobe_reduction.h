@@ -4,12 +4,15 @@
 //
 // Merging two lobes keeps everything that averages linearly exact — the diffuse amplitude weight·ρ, the
 // weighted means of F0 and of the normals, unnormalized (so the lobes' diffuse response E[ρ·n]·wi is
-// kept) — and matches the rest: the merged GGX α² is a mean of the lobes' α² (the amplitude-weighted
-// harmonic mean for similar roughness, which keeps the height of the highlight; see merge_pair) plus
-// the spread of their normals about the merged normal in slope space, α² += γ·E[tan²θ]. For Beckmann lobes
-// α² = 2σ² (σ² the per-axis slope variance) and isotropic slopes have E[tan²θ] = 2σ², so γ = 1 is the
-// LEAN-mapping composition (Olano & Baker 2010); GGX follows it to first order, and the bumpy presets'
-// figures (painted-wall, sandstone: tests/mip/pyramid_test.cpp) are the check.
+// kept) — and matches two moments of the specular shape (lobe.h): the tail coefficient A (far from the
+// peak D ≈ A/(π·tan⁴θ·cos⁴θ); A is linear in the lobes, so it adds exactly) and the peak P (π·D at
+// the normal; each lobe's peak widened by its tilt to the merged normal, α² + γ·tan²θ, as LEAN mapping
+// composes slope variances, Olano & Baker 2010, before they add). The merged lobe is the one shape of
+// lobe.h with that A and P: a log-uniform mixture of GGX roughness when A·P ≥ 1 (roughness spread:
+// heavier tails than one GGX), a GGX core with a Beckmann share when A·P < 1 (normal spread: lighter
+// tails). For two GGX lobes of α² 0.03 and 0.12 this keeps D within 1.5 % from the peak to 45° off it,
+// where any single GGX misses by 15-35 %; the metal-tray level means, which the lobes' tails carry
+// under oblique light, stay within 2 % to the coarsest level (bench/results/mip.md).
 //
 // GGX loses energy as α grows (single scattering), so a merged lobe would not reflect the flux of the
 // two it replaces; its specular part is rescaled to keep their specular albedo summed over θi = 0°,
@@ -18,7 +21,8 @@
 // Which lobes to merge: greedily the pair whose merge costs least under a closed-form estimate of the
 // squared L2 error it adds (lobe_reduction.cpp: each specular lobe seen as a Gaussian of reflected
 // directions blurred to the metric's ~6° resolution, whose L2 inner products are closed form; a term
-// for the horizons; a term for the mixture's highlight about the geometric normal), until at most
+// for the horizons; a log-space error of the merged D profile against the pair's, which the moments do
+// not pin; a small term for the mixture's highlight about the geometric normal), until at most
 // `max_lobes` remain; past that, merges continue while the accumulated estimate stays below
 // `tolerance`² of the texel's own squared norm (the lobe count is chosen per texel by the estimated
 // reduction error, up to max_lobes), so uniform regions end up with one lobe.

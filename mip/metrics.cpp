@@ -185,13 +185,6 @@ std::vector<LevelComparison> compare_levels(const MipData& mip, const CompareOpt
 
 namespace {
 
-// GGX D (brdf-models.md) about z for α².
-double ggx_d(double cos_h, double a2) {
-  const double c2 = cos_h * cos_h;
-  const double d = c2 * (a2 - 1) + 1;
-  return a2 / (3.14159265358979323846 * d * d);
-}
-
 }  // namespace
 
 glm::dvec3 directional_albedo(std::span<const Lobe> lobes, const glm::dvec3& wi, int strata) {
@@ -202,14 +195,16 @@ glm::dvec3 directional_albedo(std::span<const Lobe> lobes, const glm::dvec3& wi,
     const glm::dvec3 n = glm::normalize(glm::dvec3(l.normal));
     const Frame fr = Frame::from_normal(glm::vec3(n));
     const glm::dvec3 s(fr.s), t(fr.t);
-    const double a2 = l.alpha2;
-    // Densities over wo: cosine about the geometric normal, and wo = reflect(wi) about h ~ D(h)·(n·h).
+    const LobeShape<double> shape = lobe_shape<double>(l);
+    const double a2 = shape.alpha2;
+    // Densities over wo: cosine about the geometric normal, and wo = reflect(wi) about h ~ D(h)·(n·h),
+    // D the lobe's own (lobe.h).
     auto pdf_cos = [&](const glm::dvec3& wo) { return wo.z > 0 ? wo.z / kPi : 0.0; };
     auto pdf_spec = [&](const glm::dvec3& wo) {
       const glm::dvec3 h = glm::normalize(wi + wo);
       const double ch = glm::dot(n, h), oh = glm::dot(wo, h);
       if (ch <= 0 || oh <= 0) return 0.0;
-      return ggx_d(ch, a2) * ch / (4 * oh);
+      return lobe_d(shape, ch, glm::cross(n, h)) * ch / (4 * oh);
     };
     const int m = strata * strata;
     glm::dvec3 sum(0);
@@ -223,8 +218,18 @@ glm::dvec3 directional_albedo(std::span<const Lobe> lobes, const glm::dvec3& wi,
           const double r = std::sqrt(u1), phi = 2 * kPi * u2;
           wo = glm::dvec3(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1 - u1)));
         } else {
-          // tan²θh = α²·u/(1 − u) samples D(h)·cosθh (Walter et al. 2007, eq. 35/36).
-          const double tan2 = a2 * u1 / std::max(1e-300, 1 - u1);
+          // t = tan²θh with density D(h)·cosθh: GGX t = α²·u/(1 − u) (Walter et al. 2007, eq. 35/36),
+          // Beckmann t = −α²·ln(1 − u) (eq. 28), chosen in the lobe's shares; the log-uniform mixture by
+          // inverting its CDF ln(h(l + t)/(l(h + t)))/ln(h/l) = u.
+          double tan2;
+          if (shape.lmean > 0) {
+            const double lo = a2, hi = shape.alpha2_hi, r = std::pow(hi / lo, u1);
+            tan2 = hi * lo * (r - 1) / std::max(1e-300, hi - r * lo);
+          } else if (rng.next_double() >= shape.ggx) {
+            tan2 = -a2 * std::log1p(-std::min(u1, 1 - 1e-16));
+          } else {
+            tan2 = a2 * u1 / std::max(1e-300, 1 - u1);
+          }
           const double ch = 1 / std::sqrt(1 + tan2), sh = std::sqrt(std::max(0.0, 1 - ch * ch)), phi = 2 * kPi * u2;
           const glm::dvec3 h = sh * std::cos(phi) * s + sh * std::sin(phi) * t + ch * n;
           wo = 2 * glm::dot(wi, h) * h - wi;

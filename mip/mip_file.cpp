@@ -18,11 +18,14 @@ namespace fs = std::filesystem;
 
 const char* const kParamChannels[8] = {"param.R",         "param.G",   "param.B",   "param.metallic",
                                        "param.roughness", "param.N.X", "param.N.Y", "param.N.Z"};
-constexpr int kLobeChannels = 11;
-const char* const kLobeSuffix[kLobeChannels] = {"weight",     "diffuse.R", "diffuse.G", "diffuse.B",
-                                                "F0.R",       "F0.G",      "F0.B",      "N.X",
-                                                "N.Y",        "N.Z",       "alpha2"};
-bool lobe_channel_is_half(int c) { return c >= 1 && c <= 6; }
+constexpr int kLobeChannels = 13;
+const char* const kLobeSuffix[kLobeChannels] = {"weight", "diffuse.R", "diffuse.G", "diffuse.B", "F0.R",
+                                                "F0.G",   "F0.B",      "N.X",       "N.Y",       "N.Z",
+                                                "alpha2", "alpha2_hi", "ggx"};
+// Version 1 files have the first 11 (plain GGX lobes); the shape channels read as their defaults.
+constexpr int kLobeChannelsV1 = 11;
+bool lobe_channel_is_half(int c) { return (c >= 1 && c <= 6) || c == 12; }
+float lobe_channel_default(int c) { return c == 12 ? 1.0f : 0.0f; }
 
 std::string where(const fs::path& p) { return p.string(); }
 
@@ -45,6 +48,8 @@ void pack_lobe(const Lobe& l, float* out) {
   out[4] = l.f0.r, out[5] = l.f0.g, out[6] = l.f0.b;
   out[7] = l.normal.x, out[8] = l.normal.y, out[9] = l.normal.z;
   out[10] = l.alpha2;
+  out[11] = l.alpha2_hi;
+  out[12] = l.ggx;
 }
 Lobe unpack_lobe(const float* in) {
   Lobe l;
@@ -53,6 +58,8 @@ Lobe unpack_lobe(const float* in) {
   l.f0 = {in[4], in[5], in[6]};
   l.normal = {in[7], in[8], in[9]};
   l.alpha2 = in[10];
+  l.alpha2_hi = in[11];
+  l.ggx = in[12];
   return l;
 }
 
@@ -153,14 +160,20 @@ MipData read_mip_file(const fs::path& path) {
     std::map<std::string, int> index;
     for (int c = 0; c < s.nchannels; ++c) index[s.channelnames[static_cast<std::size_t>(c)]] = c;
     std::vector<int> order;
-    auto need = [&](const std::string& name) {
+    std::vector<float> defaults;
+    auto need = [&](const std::string& name, int lobe_channel = -1) {
+      defaults.push_back(lobe_channel >= 0 ? lobe_channel_default(lobe_channel) : 0.0f);
+      if (lobe_channel >= kLobeChannelsV1 && version < 2) {
+        order.push_back(-1);
+        return;
+      }
       const auto it = index.find(name);
       if (it == index.end()) throw input_error(where(path), "level " + std::to_string(level) + " has no channel " + name);
       order.push_back(it->second);
     };
     for (const char* c : kParamChannels) need(c);
     for (int k = 0; k < slots; ++k)
-      for (int c = 0; c < kLobeChannels; ++c) need("lobe" + std::to_string(k) + "." + kLobeSuffix[c]);
+      for (int c = 0; c < kLobeChannels; ++c) need("lobe" + std::to_string(k) + "." + kLobeSuffix[c], c);
     const std::size_t texels = static_cast<std::size_t>(e.width) * e.height;
     const int nch = s.nchannels;
     std::vector<float> buf(texels * static_cast<std::size_t>(nch));
@@ -176,7 +189,8 @@ MipData read_mip_file(const fs::path& path) {
       bl.counts.assign(texels, 0);
     }
     for (std::size_t t = 0; t < texels; ++t) {
-      for (std::size_t c = 0; c < order.size(); ++c) px[c] = buf[t * static_cast<std::size_t>(nch) + static_cast<std::size_t>(order[c])];
+      for (std::size_t c = 0; c < order.size(); ++c)
+        px[c] = order[c] < 0 ? defaults[c] : buf[t * static_cast<std::size_t>(nch) + static_cast<std::size_t>(order[c])];
       params[t] = unpack_param(px.data());
       for (int k = 0; k < slots; ++k) {
         const Lobe l = unpack_lobe(px.data() + 8 + k * kLobeChannels);

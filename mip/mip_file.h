@@ -16,18 +16,23 @@
 //   lobeK.diffuse.R/G/B         mean diffuse albedo ρ = (1 − metallic)·base color        half
 //   lobeK.F0.R/G/B              mean specular reflectance at normal incidence            half
 //   lobeK.N.X/Y/Z               mean unit normal of the lobe, unnormalized               float
-//   lobeK.alpha2                GGX α² of the lobe about normalize(N)                    float
+//   lobeK.alpha2                GGX α² of the lobe about normalize(N) (a roughness
+//                               mixture's lower end; lobe.h)                             float
+//   lobeK.alpha2_hi             a roughness mixture's upper end (0: not a mixture)       float
+//   lobeK.ggx                   the GGX share μ of a spread core (1: plain GGX)          half
 // Level 0's BRDF pyramid is its parameters (one lobe per texel) and is not stored twice.
 // Attributes on every subimage: svbrdf:mip_version (int, kMipFileVersion), svbrdf:level (int),
 // svbrdf:max_lobes (int, the --lobes the file was built with), svbrdf:slots (int, S_L).
 // A file whose version is newer than kMipFileVersion is refused: its layout may mean other things.
+// Version 1 (before the lobe shapes of lobe.h) lacks lobeK.alpha2_hi and lobeK.ggx; its lobes read as
+// plain GGX.
 #include <filesystem>
 
 #include "mip/mip_data.h"
 
 namespace svbrdf {
 
-inline constexpr int kMipFileVersion = 1;
+inline constexpr int kMipFileVersion = 2;
 
 // Throws svbrdf::Error naming the file when it cannot be written.
 void write_mip_file(const std::filesystem::path& path, const MipData& mip);
