@@ -108,6 +108,7 @@ struct LobeShape {
   T alpha2 = 1;
   T ggx = 1;  // μ, the GGX share of D
   T alpha2_hi = 0, lmean = 0;  // log-uniform α² mixture: upper end and logarithmic mean (0: plain GGX)
+  T node_a2[3] = {0, 0, 0};    // its 3-point Gauss–Legendre nodes in ln α², for V (lobe_brdf)
   bool valid = false;
 };
 
@@ -127,6 +128,9 @@ LobeShape<T> lobe_shape(const Lobe& lobe) {
     s.alpha2_hi = T(lobe.alpha2_hi);
     const T x = s.alpha2_hi / s.alpha2 - T(1);
     s.lmean = s.alpha2 * x / std::log1p(x);
+    const T ll = std::log(s.alpha2), span = std::log(s.alpha2_hi) - ll;
+    constexpr T kX[3] = {T(0.11270166537925831), T(0.5), T(0.88729833462074169)};
+    for (int k = 0; k < 3; ++k) s.node_a2[k] = std::exp(ll + kX[k] * span);
   }
   s.valid = true;
   return s;
@@ -204,12 +208,11 @@ glm::vec<3, T> lobe_brdf(const Lobe& lobe, const LobeShape<T>& s, const PairTerm
   if (s.lmean > 0 && ch > 0) {
     // A roughness mixture: V of each component weighted by its share of D at this half vector,
     // ∫ D_a·V_a da/a / ∫ D_a da/a over log-uniform a = α², by 3-point Gauss–Legendre in ln a.
-    const T t = glm::dot(nxh, nxh) / (ch * ch), ll = std::log(s.alpha2), span = std::log(s.alpha2_hi) - ll;
-    constexpr T kX[3] = {T(0.11270166537925831), T(0.5), T(0.88729833462074169)};
+    const T t = glm::dot(nxh, nxh) / (ch * ch);
     constexpr T kW[3] = {T(5) / T(18), T(8) / T(18), T(5) / T(18)};
     T num = 0, den = 0;
     for (int k = 0; k < 3; ++k) {
-      const T a = std::exp(ll + kX[k] * span), dk = kW[k] * a / ((a + t) * (a + t));
+      const T a = s.node_a2[k], dk = kW[k] * a / ((a + t) * (a + t));
       num += dk * visibility(a);
       den += dk;
     }
