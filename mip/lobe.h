@@ -112,8 +112,9 @@ struct LobeShape {
   bool valid = false;
 };
 
+// with_nodes: also the quadrature nodes lobe_brdf's V needs (not lobe_d).
 template <class T>
-LobeShape<T> lobe_shape(const Lobe& lobe) {
+LobeShape<T> lobe_shape(const Lobe& lobe, bool with_nodes = true) {
   LobeShape<T> s;
   const glm::vec<3, T> nbar(lobe.normal);
   const T len2 = glm::dot(nbar, nbar);
@@ -128,9 +129,11 @@ LobeShape<T> lobe_shape(const Lobe& lobe) {
     s.alpha2_hi = T(lobe.alpha2_hi);
     const T x = s.alpha2_hi / s.alpha2 - T(1);
     s.lmean = s.alpha2 * x / std::log1p(x);
-    const T ll = std::log(s.alpha2), span = std::log(s.alpha2_hi) - ll;
-    constexpr T kX[3] = {T(0.11270166537925831), T(0.5), T(0.88729833462074169)};
-    for (int k = 0; k < 3; ++k) s.node_a2[k] = std::exp(ll + kX[k] * span);
+    if (with_nodes) {
+      const T ll = std::log(s.alpha2), span = std::log(s.alpha2_hi) - ll;
+      constexpr T kX[3] = {T(0.11270166537925831), T(0.5), T(0.88729833462074169)};
+      for (int k = 0; k < 3; ++k) s.node_a2[k] = std::exp(ll + kX[k] * span);
+    }
   }
   s.valid = true;
   return s;

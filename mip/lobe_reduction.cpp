@@ -22,8 +22,9 @@ constexpr double kResolutionAlpha2 = 0.01;
 // everything else and kept polished sub-lobes apart while the fingerprints' rough lobes were merged
 // into them, which lost their off-specular flux (−30 % to −50 % at the coarse levels of metal-tray).
 constexpr double kPeakWeight = 1e-5;
-// The weight of the log-profile term of merge_pair (the shape between peak and tail).
+// The weight of the log-profile term of merge_pair (the shape between peak and tail), and its steps.
 constexpr double kProfileWeight = 25.0;
+constexpr std::size_t kProfileSteps = 15;
 
 double mean3(const glm::vec3& c) { return (double(c.x) + c.y + c.z) / 3.0; }
 
@@ -39,7 +40,25 @@ struct Summary {
   double ggx = 1;     // μ, the GGX share of a spread core (lobe.h)
   double tail = 0;    // A: the tail coefficient, D ≈ A/(π t²) far out
   double peak = 1;    // P: π·D at the lobe's own normal
+  std::array<double, kProfileSteps> profile{};  // D about its own normal at tan²θ = 10^-6 … 10 (profile_of)
 };
+
+// D of a lobe shape about its own normal at kProfileSteps values of tan²θ, log-spaced from 1e-6 to 10.
+void profile_of(LobeShape<double> sh, std::array<double, kProfileSteps>& out) {
+  struct Step {
+    double c, sn;
+  };
+  static const std::array<Step, kProfileSteps> steps = [] {
+    std::array<Step, kProfileSteps> st{};
+    for (std::size_t j = 0; j < kProfileSteps; ++j) {
+      const double t = std::pow(10.0, -6.0 + 7.0 * double(j) / (kProfileSteps - 1)), c = 1 / std::sqrt(1 + t);
+      st[j] = {c, std::sqrt(t) * c};
+    }
+    return st;
+  }();
+  sh.n = glm::dvec3(0, 0, 1);
+  for (std::size_t j = 0; j < kProfileSteps; ++j) out[j] = lobe_d(sh, steps[j].c, glm::dvec3(0, steps[j].sn, 0));
+}
 
 // D at h = z (the geometric normal) of a lobe.
 double d_at_z(const LobeShape<double>& sh) {
@@ -58,7 +77,7 @@ Summary summarize(const Lobe& l) {
   s.f0 = mean3(l.f0);
   // F0 plus a little for Fresnel's rise toward grazing angles; len: the lobe's cosine factor.
   s.amp = double(l.weight) * len * (s.f0 + 0.05 * (1.0 - s.f0));
-  const LobeShape<double> sh = lobe_shape<double>(l);
+  const LobeShape<double> sh = lobe_shape<double>(l, false);
   s.ggx = sh.ggx;
   if (sh.lmean > 0) {
     s.tail = s.ggx * sh.lmean;
@@ -69,6 +88,7 @@ Summary summarize(const Lobe& l) {
   }
   s.alpha2 = 1 / s.peak;
   s.d_z = d_at_z(sh);
+  profile_of(sh, s.profile);
   return s;
 }
 
@@ -235,10 +255,12 @@ void set_shape(Lobe& m, double A, double P) {
     const double target = std::sqrt(q);
     double u = target < 1.5 ? std::sqrt(6.0 * (target - 1.0)) : std::log(2.0 * target * std::log(2.0 * target + 1.0) + 1.0);
     for (int k = 0; k < 8; ++k) {
-      const double sh = std::sinh(u), ch = std::cosh(u);
+      const double e = std::exp(u), sh = 0.5 * (e - 1 / e), ch = 0.5 * (e + 1 / e);
       const double f = sh / u - target, df = (u * ch - sh) / (u * u);
       if (!(df > 0)) break;
-      u = std::max(1e-6, u - f / df);
+      const double step = f / df;
+      u = std::max(1e-6, u - step);
+      if (std::abs(step) < 1e-9 * u) break;
     }
     const double g = std::sqrt(A / P);
     m.alpha2 = static_cast<float>(std::clamp(g * std::exp(-u), 1e-6, 1.0));
@@ -250,24 +272,18 @@ void set_shape(Lobe& m, double A, double P) {
   }
 }
 
-// The error of the merged lobe's D profile against the pair's, in log space over tan²θ from 1e-6 to
-// 10 (each lobe about its own normal): what the moments do not pin, the shape between peak and tail.
-double profile_cost(const Lobe& a, double ka, const Lobe& b, double kb, const Lobe& m) {
-  LobeShape<double> sa = lobe_shape<double>(a), sb = lobe_shape<double>(b), sm = lobe_shape<double>(m);
-  sa.n = sb.n = sm.n = glm::dvec3(0, 0, 1);
+// The error of the merged lobe's D profile against the pair's, in log space over tan²θ (profile_of):
+// what the moments do not pin, the shape between peak and tail.
+double profile_cost(const Summary& a, double ka, const Summary& b, double kb, const Summary& m) {
   double e = 0;
-  constexpr int kSteps = 15;
-  for (int j = 0; j < kSteps; ++j) {
-    const double t = std::pow(10.0, -6.0 + 7.0 * j / (kSteps - 1));
-    const double c = 1 / std::sqrt(1 + t), sn = std::sqrt(t) * c;
-    const glm::dvec3 nxh(0, sn, 0);
-    const double ex = ka * lobe_d(sa, c, nxh) + kb * lobe_d(sb, c, nxh), ap = (ka + kb) * lobe_d(sm, c, nxh);
+  for (std::size_t j = 0; j < kProfileSteps; ++j) {
+    const double ex = ka * a.profile[j] + kb * b.profile[j], ap = (ka + kb) * m.profile[j];
     if (ex > 0 && ap > 0) {
       const double r = std::log(ap / ex);
       e += r * r;
     }
   }
-  return kProfileWeight * (ka + kb) * (ka + kb) * e / kSteps;
+  return kProfileWeight * (ka + kb) * (ka + kb) * e / kProfileSteps;
 }
 
 Merged merge_pair(const Lobe& a, const Summary& sa, const Lobe& b, const Summary& sb, float spread_scale) {
@@ -282,7 +298,7 @@ Merged merge_pair(const Lobe& a, const Summary& sa, const Lobe& b, const Summary
   Merged best{mb.lobe, mb.summary, 0};
   set_shape(best.lobe, A, P);
   best.summary = summarize(best.lobe);
-  best.cost = full_cost(sa, sb, best.summary) + profile_cost(a, ka, b, kb, best.lobe);
+  best.cost = full_cost(sa, sb, best.summary) + profile_cost(sa, ka, sb, kb, best.summary);
   return best;
 }
 
