@@ -1,5 +1,5 @@
 // The MIP file: a bit-identical round trip, OpenImageIO's tools list it, a newer version and foreign
-// files are refused with a clear message.
+// files are refused with a clear message, a version-1 file still reads.
 #include <gtest/gtest.h>
 
 #include <OpenImageIO/imageio.h>
@@ -121,6 +121,73 @@ TEST(MipFile, RefusesNewerVersionsForeignAndMissingFiles) {
   // A MIP file with a level cut away is inconsistent, not silently short.
   write_exr_with_version(dir / "short.exr", kMipFileVersion);
   EXPECT_NE(read_error(dir / "short.exr").find("short.exr"), std::string::npos);
+}
+
+// A version-1 file (before the lobe shapes of lobe.h: no lobeK.alpha2_hi, lobeK.ggx channels) reads
+// as plain GGX lobes with every other channel as stored. The file is made from a current one by
+// dropping those channels and stamping version 1 — what the version-1 writer wrote.
+TEST(MipFile, ReadsVersionOneAsPlainGgxLobes) {
+  testing::TempDir dir;
+  const MipData mip = build_mip(synthetic::tray(8));
+  write_mip_file(dir / "v2.exr", mip);
+  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open((dir / "v2.exr").string());
+  ASSERT_TRUE(in);
+  std::vector<OIIO::ImageSpec> specs;
+  std::vector<std::vector<float>> pixels;
+  for (int level = 0; in->seek_subimage(level, 0); ++level) {
+    const OIIO::ImageSpec& src = in->spec();
+    std::vector<float> all(static_cast<std::size_t>(src.width) * src.height * src.nchannels);
+    ASSERT_TRUE(in->read_image(level, 0, 0, src.nchannels, OIIO::TypeDesc::FLOAT, all.data()));
+    OIIO::ImageSpec dst = src;
+    dst.channelnames.clear();
+    dst.channelformats.clear();
+    std::vector<int> keep;
+    for (int c = 0; c < src.nchannels; ++c) {
+      const std::string& name = src.channelnames[static_cast<std::size_t>(c)];
+      if (name.find(".alpha2_hi") != std::string::npos || name.find(".ggx") != std::string::npos) continue;
+      keep.push_back(c);
+      dst.channelnames.push_back(name);
+      dst.channelformats.push_back(src.channelformat(c));
+    }
+    dst.nchannels = static_cast<int>(keep.size());
+    dst.attribute("svbrdf:mip_version", 1);
+    std::vector<float> kept(static_cast<std::size_t>(src.width) * src.height * keep.size());
+    for (std::size_t t = 0; t < static_cast<std::size_t>(src.width) * src.height; ++t)
+      for (std::size_t k = 0; k < keep.size(); ++k)
+        kept[t * keep.size() + k] = all[t * static_cast<std::size_t>(src.nchannels) + static_cast<std::size_t>(keep[k])];
+    specs.push_back(dst);
+    pixels.push_back(std::move(kept));
+  }
+  in->close();
+  const auto v1 = dir / "v1.exr";
+  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(v1.string());
+  ASSERT_TRUE(out);
+  ASSERT_TRUE(out->open(v1.string(), static_cast<int>(specs.size()), specs.data()));
+  for (std::size_t level = 0; level < specs.size(); ++level) {
+    if (level > 0) {
+      ASSERT_TRUE(out->open(v1.string(), specs[level], OIIO::ImageOutput::AppendSubimage));
+    }
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels[level].data()));
+  }
+  ASSERT_TRUE(out->close());
+
+  const MipData back = read_mip_file(v1);
+  ASSERT_EQ(back.levels(), mip.levels());
+  int mixtures = 0;
+  for (int level = 1; level < mip.levels(); ++level) {
+    const BrdfLevel& a = mip.brdf.level(level);
+    const BrdfLevel& b = back.brdf.level(level);
+    ASSERT_EQ(a.lobes.size(), b.lobes.size());
+    for (std::size_t k = 0; k < a.lobes.size(); ++k) {
+      EXPECT_EQ(b.lobes[k].weight, a.lobes[k].weight);
+      EXPECT_EQ(b.lobes[k].alpha2, a.lobes[k].alpha2);
+      EXPECT_EQ(b.lobes[k].normal, a.lobes[k].normal);
+      EXPECT_EQ(b.lobes[k].alpha2_hi, 0.0f);
+      EXPECT_EQ(b.lobes[k].ggx, 1.0f);
+      mixtures += a.lobes[k].alpha2_hi > 0 || a.lobes[k].ggx != 1.0f;
+    }
+  }
+  EXPECT_GT(mixtures, 0) << "the tray's pyramid should hold shaped lobes, or this test shows nothing";
 }
 
 }  // namespace
