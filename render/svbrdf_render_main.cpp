@@ -96,6 +96,10 @@ int main(int argc, char** argv) {
       setup.width = w, setup.height = h;
     }
     const fs::path scene_path = scene_file.empty() ? find_showcase(argv[0]) : fs::path(scene_file);
+    // The showcase is lit by a sun and its sky; glTF has no ratified way to carry an environment, so
+    // the recipe bakes the sky beside the scene and the default render uses it unless --env says else.
+    if (scene_file.empty() && env.empty() && fs::exists(scene_path.parent_path() / "sky.hdr"))
+      setup.env = (scene_path.parent_path() / "sky.hdr").string();
     if (out.empty()) out = (fs::path("out") / scene_path.stem()).string() + ".exr";
     if (fs::path(out).extension() != ".exr") throw svbrdf::input_error("--out " + out, "the output must be an .exr file");
 

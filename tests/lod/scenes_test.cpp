@@ -255,5 +255,21 @@ TEST(Scenes, ShowcaseCameraSeesTheTrayThePageAndTheWall) {
   for (const char* s : {"red-sandstone", "ochre-sandstone", "buff-sandstone"}) EXPECT_GT(pixels[s] / n, 0.005) << s;
 }
 
+// `svbrdf-render` with no scene renders the showcase under its sun and the sky baked beside it (glTF
+// carries no environment): the sky is what the camera sees above the wall — bluish, and brighter
+// toward the horizon, as the recipe's gradient (zenith 0.12, 0.2, 0.42; horizon 0.45, 0.5, 0.55) says.
+TEST(Scenes, DefaultRenderIsTheShowcaseUnderItsSky) {
+  testing::TempDir dir;
+  const auto out = dir / "showcase.exr";
+  const auto r = run_command(std::string(SVBRDF_RENDER) + " --res 64x36 --spp 4 --quiet --out '" + out.string() + "'",
+                             dir.path());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const Image img = read_image(out);
+  ASSERT_EQ(img.width, 64);
+  // The top-left pixel: sky, left of and above the wall.
+  EXPECT_GT(img.at(0, 0, 2), 0.1f);
+  EXPECT_GT(img.at(0, 0, 2), img.at(0, 0, 0));  // blue over red
+}
+
 }  // namespace
 }  // namespace svbrdf
