@@ -183,10 +183,6 @@ std::vector<LevelComparison> compare_levels(const MipData& mip, const CompareOpt
   return out;
 }
 
-namespace {
-
-}  // namespace
-
 glm::dvec3 directional_albedo(std::span<const Lobe> lobes, const glm::dvec3& wi, int strata) {
   constexpr double kPi = 3.14159265358979323846;
   glm::dvec3 total(0);
