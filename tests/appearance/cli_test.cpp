@@ -7,41 +7,19 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "test_models.h"
+#include "tests/common/run_command.h"
 
 namespace svbrdf::testing {
 namespace {
 
-struct CliRun {
-  int code = -1;
-  std::string out, err;
-};
+using CliRun = CommandResult;
 
 // Runs `svbrdf-brdf ARGS` through the shell with `input` on stdin.
 CliRun run(const std::string& args, const std::string& input = "") {
-  const auto dir = std::filesystem::temp_directory_path();
-  const std::string tag = std::to_string(::getpid());
-  const auto in = dir / ("svbrdf_cli_in_" + tag), out = dir / ("svbrdf_cli_out_" + tag), err = dir / ("svbrdf_cli_err_" + tag);
-  std::ofstream(in) << input;
-  const std::string cmd = std::string("'") + SVBRDF_BRDF_EXE + "' " + args + " < '" + in.string() + "' > '" + out.string() +
-                          "' 2> '" + err.string() + "'";
-  const int status = std::system(cmd.c_str());
-  CliRun r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  auto slurp = [](const std::filesystem::path& p) {
-    std::ifstream f(p);
-    std::stringstream s;
-    s << f.rdbuf();
-    return s.str();
-  };
-  r.out = slurp(out);
-  r.err = slurp(err);
-  std::error_code ec;
-  for (const auto& p : {in, out, err}) std::filesystem::remove(p, ec);
-  return r;
+  const TempDir dir;
+  return run_command(std::string("'") + SVBRDF_BRDF_EXE + "' " + args, dir.path(), input);
 }
 
 int lines(const std::string& s) {
@@ -52,7 +30,7 @@ int lines(const std::string& s) {
 
 TEST(Cli, DoneWhenValue) {
   const CliRun r = run("eval gltf --param base_color=0.5 --param roughness=0.5", "0 0 1 0 0 1\n");
-  ASSERT_EQ(r.code, 0) << r.err;
+  ASSERT_EQ(r.status, 0) << r.err;
   // α = 0.25: f = 0.96·0.5/π + 0.04·(1/4)·1/(π α²) (Appendix B at normal incidence, by hand).
   const double expected = 0.96 * 0.5 / M_PI + 0.04 * 0.25 / (M_PI * 0.0625);
   double v[3];
@@ -63,16 +41,16 @@ TEST(Cli, DoneWhenValue) {
 
 TEST(Cli, EvalPdfSampleAlbedoFormats) {
   const CliRun e = run("eval lambert --param albedo=0.2,0.4,0.6", "# comment\n\n0 0 1 0 0 1\n  0.6 0 0.8 0 0.6 0.8\n");
-  ASSERT_EQ(e.code, 0) << e.err;
+  ASSERT_EQ(e.status, 0) << e.err;
   EXPECT_EQ(lines(e.out), 2) << "blank and # lines are skipped";
   double r, g, b;
   ASSERT_EQ(std::sscanf(e.out.c_str(), "%lf %lf %lf", &r, &g, &b), 3);
   EXPECT_NEAR(g, 0.4 / M_PI, 1e-8);
   const CliRun p = run("pdf lambert --param albedo=0.5", "0 0 1 0 0 1\n");
-  ASSERT_EQ(p.code, 0) << p.err;
+  ASSERT_EQ(p.status, 0) << p.err;
   EXPECT_NEAR(std::stod(p.out), 0.5 / M_PI, 1e-8) << "scatter probability 0.5 × cos/π";
   const CliRun s = run("sample lambert --param albedo=0.2 --impulse mirror:0.4 --wo 0,0.6,0.8 --count 2000 --seed 7");
-  ASSERT_EQ(s.code, 0) << s.err;
+  ASSERT_EQ(s.status, 0) << s.err;
   EXPECT_EQ(lines(s.out), 2000);
   std::istringstream in(s.out);
   std::string line;
@@ -93,7 +71,7 @@ TEST(Cli, EvalPdfSampleAlbedoFormats) {
   EXPECT_EQ(run("sample lambert --wo 0,0,1 --count 3 --seed 7").out, run("sample lambert --wo 0,0,1 --count 3 --seed 7").out)
       << "deterministic for a seed";
   const CliRun a = run("albedo lambert --param albedo=0.3 --impulse mirror:0.4 --theta-o 30");
-  ASSERT_EQ(a.code, 0) << a.err;
+  ASSERT_EQ(a.status, 0) << a.err;
   double f[3], imp[3];
   ASSERT_EQ(std::sscanf(a.out.c_str(), "finite %lf %lf %lf\nimpulse %lf %lf %lf", &f[0], &f[1], &f[2], &imp[0], &imp[1], &imp[2]), 6)
       << a.out;
@@ -105,7 +83,7 @@ TEST(Cli, PlotsAreWrittenAsSvg) {
   const auto dir = std::filesystem::temp_directory_path() / ("svbrdf_cli_plot_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const CliRun p = run("plot gltf --param roughness=0.3 --impulse mirror:0.2 --theta-i 40 --out '" + (dir / "g.svg").string() + "'");
-  ASSERT_EQ(p.code, 0) << p.err;
+  ASSERT_EQ(p.status, 0) << p.err;
   std::ifstream f(dir / "g.svg");
   std::stringstream s;
   s << f.rdbuf();
@@ -115,18 +93,18 @@ TEST(Cli, PlotsAreWrittenAsSvg) {
   EXPECT_NE(s.str().find("<polygon"), std::string::npos) << "an impulse arrow";
   EXPECT_NE(s.str().find("</svg>"), std::string::npos);
   const CliRun fr = run("fresnel --ior 1.5 --out '" + (dir / "f.svg").string() + "'");
-  ASSERT_EQ(fr.code, 0) << fr.err;
+  ASSERT_EQ(fr.status, 0) << fr.err;
   double diff, at;
   ASSERT_EQ(std::sscanf(fr.out.c_str(), "max |exact - schlick| %lf at %lf deg", &diff, &at), 2) << fr.out;
   EXPECT_NEAR(diff, 0.0357, 2e-4);
   EXPECT_NEAR(at, 84.97, 0.05);
   EXPECT_TRUE(std::filesystem::exists(dir / "f.svg"));
-  EXPECT_EQ(run("fresnel --eta 0.2,0.92,1.1 --k 3.9,2.45,2.14 --out '" + (dir / "c.svg").string() + "'").code, 0);
+  EXPECT_EQ(run("fresnel --eta 0.2,0.92,1.1 --k 3.9,2.45,2.14 --out '" + (dir / "c.svg").string() + "'").status, 0);
   // Bad output names and bad options leave nothing behind.
-  EXPECT_EQ(run("plot lambert --theta-i 40 --out '" + (dir / "x.png").string() + "'").code, 2);
-  EXPECT_EQ(run("plot lambert --theta-i 400 --out '" + (dir / "y.svg").string() + "'").code, 2);
-  EXPECT_EQ(run("fresnel --ior 1.5 --eta 1 --k 1 --out '" + (dir / "z.svg").string() + "'").code, 2);
-  EXPECT_EQ(run("plot lambert --theta-i 40 --out '" + (dir / "missing" / "w.svg").string() + "'").code, 2);
+  EXPECT_EQ(run("plot lambert --theta-i 40 --out '" + (dir / "x.png").string() + "'").status, 2);
+  EXPECT_EQ(run("plot lambert --theta-i 400 --out '" + (dir / "y.svg").string() + "'").status, 2);
+  EXPECT_EQ(run("fresnel --ior 1.5 --eta 1 --k 1 --out '" + (dir / "z.svg").string() + "'").status, 2);
+  EXPECT_EQ(run("plot lambert --theta-i 40 --out '" + (dir / "missing" / "w.svg").string() + "'").status, 2);
   int files = 0;
   for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++files;
   EXPECT_EQ(files, 3) << "g.svg, f.svg, c.svg and no temporaries";
@@ -135,28 +113,28 @@ TEST(Cli, PlotsAreWrittenAsSvg) {
 
 TEST(Cli, BadInputExitsTwoWithOneLine) {
   const CliRun malformed = run("eval lambert", "0 0 1 0 0 1\n0 0 1 0 0\n");
-  EXPECT_EQ(malformed.code, 2);
+  EXPECT_EQ(malformed.status, 2);
   EXPECT_NE(malformed.err.find("line 2"), std::string::npos) << malformed.err;
   EXPECT_EQ(lines(malformed.err), 1) << malformed.err;
-  EXPECT_EQ(run("eval lambert", "0 0 1 0 0 1 7\n").code, 2);
-  EXPECT_EQ(run("eval lambert", "0 0 nan 0 0 1\n").code, 2);
+  EXPECT_EQ(run("eval lambert", "0 0 1 0 0 1 7\n").status, 2);
+  EXPECT_EQ(run("eval lambert", "0 0 nan 0 0 1\n").status, 2);
   const CliRun not_unit = run("pdf lambert", "\n1 0 1 0 0 1\n");
-  EXPECT_EQ(not_unit.code, 2);
+  EXPECT_EQ(not_unit.status, 2);
   EXPECT_NE(not_unit.err.find("line 2"), std::string::npos) << not_unit.err;
   const CliRun unknown = run("eval velvet", "0 0 1 0 0 1\n");
-  EXPECT_EQ(unknown.code, 2);
+  EXPECT_EQ(unknown.status, 2);
   EXPECT_NE(unknown.err.find("velvet"), std::string::npos);
   EXPECT_EQ(lines(unknown.err), 1);
-  EXPECT_EQ(run("eval gltf --param roughness=nan", "0 0 1 0 0 1\n").code, 2);
-  EXPECT_EQ(run("eval microfacet --param alpha=0", "0 0 1 0 0 1\n").code, 2);
-  EXPECT_EQ(run("eval lambert --param albedo=-0.5", "0 0 1 0 0 1\n").code, 2);
-  EXPECT_EQ(run("eval lambert --param sheen=1", "0 0 1 0 0 1\n").code, 2);
-  EXPECT_EQ(run("sample lambert --wo 0,0,2 --count 1").code, 2);
-  EXPECT_EQ(run("sample lambert --wo 0,0 --count 1").code, 2);
-  EXPECT_EQ(run("sample lambert --wo 0,0,1 --count -3").code, 2);
-  EXPECT_EQ(run("albedo lambert --theta-o 91").code, 2);
-  EXPECT_EQ(run("albedo lambert").code, 2) << "--theta-o is required";
-  EXPECT_EQ(run("").code, 2) << "a subcommand is required";
+  EXPECT_EQ(run("eval gltf --param roughness=nan", "0 0 1 0 0 1\n").status, 2);
+  EXPECT_EQ(run("eval microfacet --param alpha=0", "0 0 1 0 0 1\n").status, 2);
+  EXPECT_EQ(run("eval lambert --param albedo=-0.5", "0 0 1 0 0 1\n").status, 2);
+  EXPECT_EQ(run("eval lambert --param sheen=1", "0 0 1 0 0 1\n").status, 2);
+  EXPECT_EQ(run("sample lambert --wo 0,0,2 --count 1").status, 2);
+  EXPECT_EQ(run("sample lambert --wo 0,0 --count 1").status, 2);
+  EXPECT_EQ(run("sample lambert --wo 0,0,1 --count -3").status, 2);
+  EXPECT_EQ(run("albedo lambert --theta-o 91").status, 2);
+  EXPECT_EQ(run("albedo lambert").status, 2) << "--theta-o is required";
+  EXPECT_EQ(run("").status, 2) << "a subcommand is required";
   // A truncated MERL file: one line naming the file, exit 2.
   const auto bad = std::filesystem::temp_directory_path() / ("svbrdf_cli_trunc_" + std::to_string(::getpid()) + ".binary");
   {
@@ -166,11 +144,11 @@ TEST(Cli, BadInputExitsTwoWithOneLine) {
     std::ofstream(bad, std::ios::binary).write(head.data(), static_cast<std::streamsize>(head.size()));
   }
   const CliRun trunc = run("eval measured --param file=" + bad.string(), "0 0 1 0 0 1\n");
-  EXPECT_EQ(trunc.code, 2);
+  EXPECT_EQ(trunc.status, 2);
   EXPECT_NE(trunc.err.find("truncated"), std::string::npos) << trunc.err;
   EXPECT_EQ(lines(trunc.err), 1);
   std::filesystem::remove(bad);
-  EXPECT_EQ(run("eval measured --param file=" + gltf_merl_path(), "0 0 1 0 0 1\n").code, 0);
+  EXPECT_EQ(run("eval measured --param file=" + gltf_merl_path(), "0 0 1 0 0 1\n").status, 0);
 }
 
 }  // namespace

@@ -11,7 +11,7 @@
 #include "base/markup_escape.h"
 #include "scenes/lod_comparison.h"
 #include "scenes/lod_report.h"
-#include "tests/lod/run_command.h"
+#include "tests/common/run_command.h"
 
 namespace svbrdf {
 namespace {

@@ -20,7 +20,7 @@
 #include "scenes/recipe.h"
 #include "textures/image.h"
 #include "textures/normal_map.h"
-#include "tests/lod/run_command.h"
+#include "tests/common/run_command.h"
 
 namespace svbrdf {
 namespace {

@@ -4,15 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
 
 #include "mip/compare_report.h"
 #include "mip/mip_file.h"
 #include "tests/mip/synthetic_materials.h"
-#include "tests/common/temp_dir.h"
+#include "tests/common/run_command.h"
 #include "textures/image.h"
 #include "textures/material_loader.h"
 #include "textures/texture_set.h"
@@ -21,29 +19,11 @@
 namespace svbrdf {
 namespace {
 
-struct BakeRun {
-  int code = -1;
-  std::string out, err;
-};
+using BakeRun = testing::CommandResult;
 
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
+// Runs `svbrdf-bake ARGS` through the shell with `input` on stdin.
 BakeRun bake(const testing::TempDir& dir, const std::string& args, const std::string& input = "") {
-  const auto in = dir / "stdin.txt", out = dir / "stdout.txt", err = dir / "stderr.txt";
-  std::ofstream(in) << input;
-  const std::string cmd = std::string("'") + SVBRDF_BAKE + "' " + args + " < '" + in.string() + "' > '" + out.string() +
-                          "' 2> '" + err.string() + "'";
-  const int status = std::system(cmd.c_str());
-  BakeRun r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
+  return testing::run_command(std::string("'") + SVBRDF_BAKE + "' " + args, dir.path(), input);
 }
 
 int lines(const std::string& s) { return static_cast<int>(std::count(s.begin(), s.end(), '\n')); }
@@ -81,7 +61,7 @@ TEST(BakeCli, MipBuildsWhatTheLibraryBuilds) {
   const auto out = dir / "wall.exr";
   const BakeRun r = bake(dir, "mip --base-color " + q(s.base_color) + " --metallic-roughness " + q(s.metallic_roughness) +
                               " --normal " + q(s.normal) + " --normal-scale 0.8 --lobes 3 --out " + q(out));
-  ASSERT_EQ(r.code, 0) << r.err;
+  ASSERT_EQ(r.status, 0) << r.err;
   const MipData file = read_mip_file(out);
   MaterialFiles f;
   f.base_color = s.base_color;
@@ -111,17 +91,17 @@ TEST(BakeCli, MipFromAGltfMaterialEqualsMipFromItsImages) {
   r.size = 16;
   const TextureSetFiles files = write_texture_set(generate_material(r), dir.path());
   const BakeRun a = bake(dir, "mip " + q(files.gltf) + " --material 0 --out " + q(dir / "a.exr"));
-  ASSERT_EQ(a.code, 0) << a.err;
+  ASSERT_EQ(a.status, 0) << a.err;
   const BakeRun b = bake(dir, "mip --base-color " + q(files.base_color) + " --metallic-roughness " + q(files.metallic_roughness) +
                                   " --normal " + q(files.normal) + " --out " + q(dir / "b.exr"));
-  ASSERT_EQ(b.code, 0) << b.err;
+  ASSERT_EQ(b.status, 0) << b.err;
   const MipData ma = read_mip_file(dir / "a.exr"), mb = read_mip_file(dir / "b.exr");
   ASSERT_EQ(ma.levels(), mb.levels());
   EXPECT_EQ(ma.level0.roughness, mb.level0.roughness);
   EXPECT_EQ(ma.level0.base_color, mb.level0.base_color);
   for (int l = 1; l < ma.levels(); ++l) EXPECT_EQ(ma.brdf.level(l).counts, mb.brdf.level(l).counts);
   const BakeRun c = bake(dir, "mip " + q(files.gltf) + " --material 7 --out " + q(dir / "c.exr"));
-  EXPECT_EQ(c.code, 2);
+  EXPECT_EQ(c.status, 2);
   EXPECT_NE(c.err.find("--material"), std::string::npos) << c.err;
 }
 
@@ -131,7 +111,7 @@ TEST(BakeCli, CompareAndEvalPrintTheLibrarysNumbers) {
   const auto file = dir / "tray.exr";
   write_mip_file(file, build_mip(synthetic::tray(32)));
   const BakeRun r = bake(dir, "compare " + q(file) + " --levels 2..5");
-  ASSERT_EQ(r.code, 0) << r.err;
+  ASSERT_EQ(r.status, 0) << r.err;
   CompareOptions o;
   o.first_level = 2;
   o.last_level = 5;
@@ -163,7 +143,7 @@ TEST(BakeCli, CompareAndEvalPrintTheLibrarysNumbers) {
     }
   EXPECT_EQ(checked, 16);
   const BakeRun j = bake(dir, "compare " + q(file) + " --levels 4 --json");
-  ASSERT_EQ(j.code, 0) << j.err;
+  ASSERT_EQ(j.status, 0) << j.err;
   EXPECT_NE(j.out.find("\"brdf\": {\"e_rel_mean\""), std::string::npos) << j.out;
 
   const MipData mip = read_mip_file(file);
@@ -171,7 +151,7 @@ TEST(BakeCli, CompareAndEvalPrintTheLibrarysNumbers) {
       "# a comment, then a blank line\n\n0 0 1 0 0 1\n0.5 0 0.8660254 -0.5 0 0.8660254\n0.6 0.0 0.8 0.0 -0.6 0.8\n";
   for (MipMode mode : {MipMode::exact, MipMode::param, MipMode::toksvig, MipMode::vmf, MipMode::brdf}) {
     const BakeRun e = bake(dir, "eval " + q(file) + " --level 3 --texel 1 2 --mode " + std::string(mode_name(mode)), pairs);
-    ASSERT_EQ(e.code, 0) << e.err;
+    ASSERT_EQ(e.status, 0) << e.err;
     std::istringstream ein(e.out);
     for (const auto& [wi, wo] : {std::pair{glm::dvec3(0, 0, 1), glm::dvec3(0, 0, 1)},
                                  std::pair{glm::dvec3(0.5, 0, 0.8660254), glm::dvec3(-0.5, 0, 0.8660254)},
@@ -213,14 +193,14 @@ TEST(BakeCli, BadInputIsOneLineAndExitTwo) {
   };
   for (const auto& [args, names] : cases) {
     const BakeRun r = bake(dir, args, "0 0 1 0 0 1\n");
-    EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
     EXPECT_EQ(lines(r.err), 1) << args << "\n" << r.err;
     EXPECT_NE(r.err.find(names), std::string::npos) << args << "\n" << r.err;
     EXPECT_FALSE(std::filesystem::exists(out)) << args;
   }
   // A malformed direction line names its line number.
   const BakeRun r = bake(dir, "eval " + q(file) + " --level 1 --texel 0 0 --mode brdf", "0 0 1 0 0 1\n0 0 1 oops\n");
-  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("line 2"), std::string::npos) << r.err;
 }
 
