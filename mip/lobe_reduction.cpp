@@ -168,45 +168,84 @@ class SpecAlbedoTable {
   std::array<double, kSize> a_{}, b_{}, ba_{}, bb_{};  // GGX and Beckmann columns
 };
 
-// The estimated squared error of replacing lobes a and b by m, without the peak term.
-double shape_cost(const Summary& a, const Summary& b, const Summary& m) {
-  const double Am = a.amp + b.amp;
-  const double tab = tan2_between(a.n, b.n), tam = tan2_between(a.n, m.n), tbm = tan2_between(b.n, m.n);
-  const double spec = a.amp * a.amp * spec_inner(a.alpha2, a.alpha2, 0) + b.amp * b.amp * spec_inner(b.alpha2, b.alpha2, 0) +
-                      Am * Am * spec_inner(m.alpha2, m.alpha2, 0) + 2 * a.amp * b.amp * spec_inner(a.alpha2, b.alpha2, tab) -
-                      2 * Am * a.amp * spec_inner(m.alpha2, a.alpha2, tam) - 2 * Am * b.amp * spec_inner(m.alpha2, b.alpha2, tbm);
+// The lobes of a union being merged: each lobe with its summary.
+struct Member {
+  const Lobe* lobe;
+  const Summary* sum;
+};
+
+// Σ_ij amp_i·amp_j·⟨G_i, G_j⟩: the squared L2 norm of the union's specular lobes (spec_inner).
+double union_spec_norm2(std::span<const Member> u) {
+  double s = 0;
+  for (std::size_t i = 0; i < u.size(); ++i) {
+    const Summary& a = *u[i].sum;
+    s += a.amp * a.amp * spec_inner(a.alpha2, a.alpha2, 0);
+    for (std::size_t j = i + 1; j < u.size(); ++j) {
+      const Summary& b = *u[j].sum;
+      s += 2 * a.amp * b.amp * spec_inner(a.alpha2, b.alpha2, tan2_between(a.n, b.n));
+    }
+  }
+  return s;
+}
+
+// The estimated squared error of replacing the union u by the lobe m, whose union has specular norm²
+// `self` (union_spec_norm2): the specular L2 error of the Gaussian model, the horizons, the highlight
+// about the geometric normal, the core widths and the log profile, each below. For two lobes these
+// are the terms of the pair; for more, the pair terms summed over the pairs (horizons) or the union's
+// sums in place of the pair's.
+double union_cost(std::span<const Member> u, double self, const Summary& m, double profile_norm) {
+  double Am = 0, peak = 0, width = 0, spec = self, W = 0;
+  for (const Member& x : u) Am += x.sum->amp, W += x.sum->weight;
+  spec += Am * Am * spec_inner(m.alpha2, m.alpha2, 0);
+  for (const Member& x : u) {
+    const Summary& a = *x.sum;
+    spec -= 2 * Am * a.amp * spec_inner(m.alpha2, a.alpha2, tan2_between(a.n, m.n));
+    peak += a.amp * a.d_z;
+    width += a.amp * a.ggx * a.alpha2;
+  }
   // Horizons: the linear part of the cosine factors is kept exactly, but where the lobes' horizons
   // differ (a lune of width δ, the angle between the normals) the merged lobe's smooth horizon
   // differs from theirs; diffuse and grazing specular (Fresnel rises toward 1) both feel it. Plus
   // the coupling of color and normal (ρ̄·n̄ ≠ E[ρ·n]).
-  const double w = a.weight + b.weight, ab = a.weight * b.weight / w;
-  const double cos_ab = std::clamp(glm::dot(a.n, b.n), -1.0, 1.0);
-  const double delta = glm::length(a.n - b.n);  // the angle between the normals, to O(δ³)
   const double horizon_amp = m.rho + m.f0 + 0.2 * (1.0 - m.f0);
-  const double drho = a.rho - b.rho;
-  const double horizon = ab * 0.4 * horizon_amp * horizon_amp * delta + (4.0 / 3.0) * ab * ab * drho * drho * 2.0 * (1.0 - cos_ab);
-  return std::max(0.0, spec) + horizon;
-}
-
-// The full cost: the shape cost plus the highlight about the geometric normal. Every mirror pair of
-// the metric has h = z, and a polished surface seen from afar shows its highlight there, so a merge
-// that lowers or raises the mixture's peak at h = z is charged for it (the blurred L2 above cannot
-// see the height of narrow peaks).
-double peak_cost(const Summary& a, const Summary& b, const Summary& m) {
-  const double peak = a.amp * a.d_z + b.amp * b.d_z - (a.amp + b.amp) * m.d_z;
-  return kPeakWeight * peak * peak;
-}
-// The change of the amplitude-weighted core width Σ amp·μ·α² (α² = 1/P, lobe.h). For plain GGX lobes
-// μ·α² is the tail coefficient: far from the peak D ≈ μα²/(π·t²) (t = tan²θ), so a change Δ of it
-// changes D by Δ/(π·t²), whose squared L2 over slope space (dA = π·dt) from the resolution outward,
-// ∫ Δ²/(π·t⁴) dt over t > α²_res, is Δ²/(3π·α⁶_res). It keeps rough lobes of different widths — the
-// fingerprints' glow — from being merged into narrow ones, which the peak-dominated terms above allow.
-double width_cost(const Summary& a, const Summary& b, const Summary& m) {
-  const double delta = a.amp * a.ggx * a.alpha2 + b.amp * b.ggx * b.alpha2 - m.amp * m.ggx * m.alpha2;
-  return delta * delta / (3 * kPi * kResolutionAlpha2 * kResolutionAlpha2 * kResolutionAlpha2);
-}
-double full_cost(const Summary& a, const Summary& b, const Summary& m) {
-  return shape_cost(a, b, m) + peak_cost(a, b, m) + width_cost(a, b, m);
+  double horizon = 0;
+  for (std::size_t i = 0; i < u.size(); ++i)
+    for (std::size_t j = i + 1; j < u.size(); ++j) {
+      const Summary &a = *u[i].sum, &b = *u[j].sum;
+      const double ab = a.weight * b.weight / W;
+      const double cos_ab = std::clamp(glm::dot(a.n, b.n), -1.0, 1.0);
+      const double delta = glm::length(a.n - b.n);  // the angle between the normals, to O(δ³)
+      const double drho = a.rho - b.rho;
+      horizon += ab * 0.4 * horizon_amp * horizon_amp * delta + (4.0 / 3.0) * ab * ab * drho * drho * 2.0 * (1.0 - cos_ab);
+    }
+  // The highlight about the geometric normal. Every mirror pair of the metric has h = z, and a
+  // polished surface seen from afar shows its highlight there, so a merge that lowers or raises the
+  // mixture's peak at h = z is charged for it (the blurred L2 above cannot see the height of narrow
+  // peaks).
+  peak -= Am * m.d_z;
+  // The change of the amplitude-weighted core width Σ amp·μ·α² (α² = 1/P, lobe.h). For plain GGX
+  // lobes μ·α² is the tail coefficient: far from the peak D ≈ μα²/(π·t²) (t = tan²θ), so a change Δ
+  // of it changes D by Δ/(π·t²), whose squared L2 over slope space (dA = π·dt) from the resolution
+  // outward, ∫ Δ²/(π·t⁴) dt over t > α²_res, is Δ²/(3π·α⁶_res). It keeps rough lobes of different
+  // widths — the fingerprints' glow — from being merged into narrow ones, which the peak-dominated
+  // terms above allow.
+  width -= m.amp * m.ggx * m.alpha2;
+  // The log profile: what the moments do not pin, the shape between peak and tail (profile_of), with
+  // the lobes weighted by their amplitudes (by weight when no lobe has a specular part).
+  double e = 0;
+  for (std::size_t j = 0; j < kProfileSteps; ++j) {
+    double ex = 0;
+    for (const Member& x : u) ex += (profile_norm > 0 ? x.sum->amp : x.sum->weight) * x.sum->profile[j];
+    const double ap = (profile_norm > 0 ? Am : W) * m.profile[j];
+    if (ex > 0 && ap > 0) {
+      const double r = std::log(ap / ex);
+      e += r * r;
+    }
+  }
+  const double k = profile_norm > 0 ? Am : W;
+  return std::max(0.0, spec) + horizon + kPeakWeight * peak * peak +
+         width * width / (3 * kPi * kResolutionAlpha2 * kResolutionAlpha2 * kResolutionAlpha2) +
+         kProfileWeight * k * k * e / kProfileSteps;
 }
 
 // The merged lobe but for its shape: the linear parts (weight, ρ, F0, mean normal).
@@ -215,28 +254,35 @@ struct MergeBase {
   Summary summary;  // all but the shape's
 };
 
-MergeBase merge_base(const Lobe& a, const Summary& sa, const Lobe& b, const Summary& sb) {
+MergeBase merge_base(std::span<const Member> u) {
   MergeBase mb;
   Lobe& m = mb.lobe;
-  const double wa = a.weight, wb = b.weight, w = wa + wb;
-  // Shares instead of divisions: this runs for every candidate pair of every texel.
-  const double ta_ = wa / w, tb_ = wb / w;
+  double w = 0;
+  for (const Member& x : u) w += x.lobe->weight;
+  glm::dvec3 diffuse(0), f0(0), nbar(0);
+  Summary& s = mb.summary;
+  s.rho = s.f0 = 0;
+  for (const Member& x : u) {
+    // Shares instead of divisions: this runs for every candidate pair of every texel.
+    const double t = x.lobe->weight / w;
+    diffuse += t * glm::dvec3(x.lobe->diffuse);
+    f0 += t * glm::dvec3(x.lobe->f0);
+    nbar += t * glm::dvec3(x.lobe->normal);
+    s.rho += t * x.sum->rho;
+    s.f0 += t * x.sum->f0;
+  }
   m.weight = static_cast<float>(w);
-  m.diffuse = glm::vec3(ta_ * glm::dvec3(a.diffuse) + tb_ * glm::dvec3(b.diffuse));
-  m.f0 = glm::vec3(ta_ * glm::dvec3(a.f0) + tb_ * glm::dvec3(b.f0));
-  const glm::dvec3 nbar = ta_ * glm::dvec3(a.normal) + tb_ * glm::dvec3(b.normal);
+  m.diffuse = glm::vec3(diffuse);
+  m.f0 = glm::vec3(f0);
   m.normal = glm::vec3(nbar);
   const double len = glm::length(nbar);
-  Summary& s = mb.summary;
   s.n = len > 0 ? nbar * (1.0 / len) : glm::dvec3(0, 0, 1);
   s.weight = w;
-  s.rho = ta_ * sa.rho + tb_ * sb.rho;
-  s.f0 = ta_ * sa.f0 + tb_ * sb.f0;
   s.amp = w * len * (s.f0 + 0.05 * (1.0 - s.f0));
   return mb;
 }
 
-// Merges a and b; returns the merged lobe and its summary and cost.
+// The merged lobe of a union, with its summary and estimated cost.
 struct Merged {
   Lobe lobe;
   Summary summary;
@@ -272,40 +318,40 @@ void set_shape(Lobe& m, double A, double P) {
   }
 }
 
-// The error of the merged lobe's D profile against the pair's, in log space over tan²θ (profile_of):
-// what the moments do not pin, the shape between peak and tail.
-double profile_cost(const Summary& a, double ka, const Summary& b, double kb, const Summary& m) {
-  double e = 0;
-  for (std::size_t j = 0; j < kProfileSteps; ++j) {
-    const double ex = ka * a.profile[j] + kb * b.profile[j], ap = (ka + kb) * m.profile[j];
-    if (ex > 0 && ap > 0) {
-      const double r = std::log(ap / ex);
-      e += r * r;
-    }
-  }
-  return kProfileWeight * (ka + kb) * (ka + kb) * e / kProfileSteps;
-}
-
-Merged merge_pair(const Lobe& a, const Summary& sa, const Lobe& b, const Summary& sb, float spread_scale) {
-  const MergeBase mb = merge_base(a, sa, b, sb);
-  double ka = sa.amp, kb = sb.amp;
-  if (!(ka + kb > 0)) ka = sa.weight, kb = sb.weight;
+// Merges the union u (whose specular norm² is `self`); returns the merged lobe, its summary and cost.
+Merged merge_union(std::span<const Member> u, double self, float spread_scale) {
+  const MergeBase mb = merge_base(u);
+  double K = 0;
+  for (const Member& x : u) K += x.sum->amp;
+  const bool by_amp = K > 0;
+  if (!by_amp)
+    for (const Member& x : u) K += x.sum->weight;
   // Moments of the union about the merged normal: the tails add (A), and each lobe's peak, widened
   // by its tilt to the merged normal (LEAN: α² + tan²θ), adds (P).
-  const double ta = std::min(tan2_between(sa.n, mb.summary.n), 1e3), tb = std::min(tan2_between(sb.n, mb.summary.n), 1e3);
-  const double pa = 1.0 / (1.0 / sa.peak + spread_scale * ta), pb = 1.0 / (1.0 / sb.peak + spread_scale * tb);
-  const double A = (ka * sa.tail + kb * sb.tail) / (ka + kb), P = (ka * pa + kb * pb) / (ka + kb);
+  double A = 0, P = 0;
+  for (const Member& x : u) {
+    const Summary& a = *x.sum;
+    const double k = by_amp ? a.amp : a.weight;
+    const double t = std::min(tan2_between(a.n, mb.summary.n), 1e3);
+    A += k * a.tail;
+    P += k / (1.0 / a.peak + spread_scale * t);
+  }
   Merged best{mb.lobe, mb.summary, 0};
-  set_shape(best.lobe, A, P);
+  set_shape(best.lobe, A / K, P / K);
   best.summary = summarize(best.lobe);
-  best.cost = full_cost(sa, sb, best.summary) + profile_cost(sa, ka, sb, kb, best.summary);
+  best.cost = union_cost(u, self, best.summary, by_amp ? 1.0 : 0.0);
   return best;
 }
 
-// Keeps the pair's specular albedo: scales the merged lobe's weight (which scales its specular part)
+Merged merge_pair(const Lobe& a, const Summary& sa, const Lobe& b, const Summary& sb, float spread_scale) {
+  const std::array<Member, 2> u{Member{&a, &sa}, Member{&b, &sb}};
+  return merge_union(u, union_spec_norm2(u), spread_scale);
+}
+
+// Keeps the union's specular albedo: scales the merged lobe's weight (which scales its specular part)
 // and divides its ρ by the same factor (which leaves its diffuse part as it was). Applied when a merge
 // is made, not while costs are estimated (it changes them by a few percent of the amplitude only).
-void keep_specular_flux(const Lobe& a, const Lobe& b, Merged& m) {
+void keep_specular_flux(std::span<const Member> u, Merged& m) {
   const SpecAlbedoTable& t = SpecAlbedoTable::get();
   auto albedo = [&](const Lobe& l) {
     double spec = 0;
@@ -319,7 +365,9 @@ void keep_specular_flux(const Lobe& a, const Lobe& b, Merged& m) {
     }
     return double(l.weight) * glm::length(glm::dvec3(l.normal)) * spec;
   };
-  const double want = albedo(a) + albedo(b), have = albedo(m.lobe);
+  double want = 0;
+  for (const Member& x : u) want += albedo(*x.lobe);
+  const double have = albedo(m.lobe);
   if (have > 0 && want > 0) {
     const double scale = want / have;
     m.lobe.weight = static_cast<float>(m.lobe.weight * scale);
@@ -329,11 +377,11 @@ void keep_specular_flux(const Lobe& a, const Lobe& b, Merged& m) {
 }
 
 // For unions of rough lobes only (α² at or above the resolution, where shapes are smooth and no peak
-// needs keeping): a cheap stand-in for full_cost that orders the merges down to max_lobes the same
+// needs keeping): a cheap stand-in for union_cost that orders the merges down to max_lobes the same
 // way on the presets (bench/results/mip.md) at a tenth of the cost — Ward's criterion (the product of
 // the weights over their sum) times the squared distance of the shapes (log-roughness, the normals'
 // offset relative to the lobes' widths) scaled by the specular amplitude's L2 norm, plus the horizon
-// term of shape_cost.
+// term of union_cost.
 double rough_distance(const Summary& a, const Summary& b) {
   const double w = a.weight + b.weight;
   const double ab = a.weight * b.weight / w;
@@ -360,13 +408,10 @@ bool near_duplicates(const Lobe& a, const Lobe& b) {
 
 Lobe merge_lobes(const Lobe& a, const Lobe& b, float spread_scale) {
   if (!(double(a.weight) + b.weight > 0)) return a;
-  Merged m = merge_pair(a, summarize(a), b, summarize(b), spread_scale);
-  keep_specular_flux(a, b, m);
+  const Summary sa = summarize(a), sb = summarize(b);
+  Merged m = merge_pair(a, sa, b, sb, spread_scale);
+  keep_specular_flux(std::array<Member, 2>{Member{&a, &sa}, Member{&b, &sb}}, m);
   return m.lobe;
-}
-
-double merge_cost(const Lobe& a, const Lobe& b, const Lobe& merged) {
-  return full_cost(summarize(a), summarize(b), summarize(merged));
 }
 
 int reduce_lobes(std::span<Lobe> lobes, int n, const ReductionOptions& options) {
@@ -381,7 +426,8 @@ int reduce_lobes(std::span<Lobe> lobes, int n, const ReductionOptions& options) 
     for (int j = 0; j < k && dup < 0; ++j)
       if (near_duplicates(L(j), L(i))) dup = j;
     if (dup >= 0) {
-      MergeBase mb = merge_base(L(dup), summarize(L(dup)), L(i), summarize(L(i)));
+      const Summary sd = summarize(L(dup)), si = summarize(L(i));
+      MergeBase mb = merge_base(std::array<Member, 2>{Member{&L(dup), &sd}, Member{&L(i), &si}});
       mb.lobe.alpha2 = L(dup).alpha2, mb.lobe.alpha2_hi = L(dup).alpha2_hi, mb.lobe.ggx = L(dup).ggx;
       L(dup) = mb.lobe;
     }
@@ -398,7 +444,7 @@ int reduce_lobes(std::span<Lobe> lobes, int n, const ReductionOptions& options) 
     // (the caller recomputes bi's row).
     auto merge_into = [&](int bi, int bj, auto& M) {
       Merged m = merge_pair(L(bi), S(bi), L(bj), S(bj), options.spread_scale);
-      keep_specular_flux(L(bi), L(bj), m);
+      keep_specular_flux(std::array<Member, 2>{Member{&L(bi), &S(bi)}, Member{&L(bj), &S(bj)}}, m);
       L(bi) = m.lobe;
       sum[static_cast<std::size_t>(bi)] = m.summary;
       const int last = n - 1;
@@ -411,13 +457,24 @@ int reduce_lobes(std::span<Lobe> lobes, int n, const ReductionOptions& options) 
       --n;
     };
     // The texel's own squared norm in the units of the cost, for the relative tolerance.
-    double norm2 = 0, diffuse_amp = 0;
-    for (int i = 0; i < n; ++i) {
-      diffuse_amp += S(i).weight * glm::length(glm::dvec3(L(i).normal)) * S(i).rho;
-      for (int j = 0; j < n; ++j) norm2 += S(i).amp * S(j).amp * spec_inner(S(i).alpha2, S(j).alpha2, tan2_between(S(i).n, S(j).n));
-    }
-    norm2 += (4.0 / 3.0) * diffuse_amp * diffuse_amp;
+    std::array<Member, kCap> all;
+    for (int i = 0; i < n; ++i) all[static_cast<std::size_t>(i)] = {&L(i), &S(i)};
+    const std::span<const Member> whole(all.data(), static_cast<std::size_t>(n));
+    const double spec_norm2 = union_spec_norm2(whole);
+    double diffuse_amp = 0;
+    for (int i = 0; i < n; ++i) diffuse_amp += S(i).weight * glm::length(glm::dvec3(L(i).normal)) * S(i).rho;
+    const double norm2 = spec_norm2 + (4.0 / 3.0) * diffuse_amp * diffuse_amp;
     const double budget = double(options.tolerance) * options.tolerance * norm2;
+    // Most texels of smooth regions end as one lobe: try that first, as one merge of the whole union
+    // within the budget, before the pairwise search (which would take about n² merges to get there).
+    if (budget > 0) {
+      Merged m = merge_union(whole, spec_norm2, options.spread_scale);
+      if (m.cost <= budget) {
+        keep_specular_flux(whole, m);
+        L(0) = m.lobe;
+        return 1;
+      }
+    }
     double spent = 0;
     // Rough lobes only: the cheap distance takes the union down to max_lobes.
     bool all_rough = n > max_lobes;

@@ -18,14 +18,17 @@
 // two it replaces; its specular part is rescaled to keep their specular albedo summed over θi = 0°,
 // 45°, 75° (a tabulated quadrature), through its weight, with ρ divided by the same factor.
 //
-// Which lobes to merge: greedily the pair whose merge costs least under a closed-form estimate of the
-// squared L2 error it adds (lobe_reduction.cpp: each specular lobe seen as a Gaussian of reflected
-// directions blurred to the metric's ~6° resolution, whose L2 inner products are closed form; a term
-// for the horizons; a log-space error of the merged D profile against the pair's, which the moments do
-// not pin; a small term for the mixture's highlight about the geometric normal), until at most
-// `max_lobes` remain; past that, merges continue while the accumulated estimate stays below
-// `tolerance`² of the texel's own squared norm (the lobe count is chosen per texel by the estimated
-// reduction error, up to max_lobes), so uniform regions end up with one lobe.
+// Which lobes to merge: first the whole union into one lobe, kept when its estimated error (below)
+// is within `tolerance` of the texel's own norm — most texels of smooth regions end there, after one
+// merge instead of the ~n² of the pairwise search. Otherwise greedily the pair whose merge costs least
+// under a closed-form estimate of the squared L2 error it adds (lobe_reduction.cpp: each specular lobe
+// seen as a Gaussian of reflected directions blurred to the metric's ~6° resolution, whose L2 inner
+// products are closed form; a term for the horizons; a log-space error of the merged D profile against
+// the pair's, which the moments do not pin; a small term for the mixture's highlight about the
+// geometric normal), until at most `max_lobes` remain; past that, merges continue while the
+// accumulated estimate stays below `tolerance`² of the texel's own squared norm (the lobe count is
+// chosen per texel by the estimated reduction error, up to max_lobes), so uniform regions end up with
+// one lobe.
 #include <span>
 
 #include "mip/lobe.h"
@@ -43,9 +46,6 @@ struct ReductionOptions {
 };
 
 Lobe merge_lobes(const Lobe& a, const Lobe& b, float spread_scale = 1.0f);
-
-// The estimated squared L2 error of replacing a and b by merge_lobes(a, b).
-double merge_cost(const Lobe& a, const Lobe& b, const Lobe& merged);
 
 // Reduces lobes[0, n) in place to at most options.max_lobes lobes (n ≤ 9·kMaxLobes), sorted by weight,
 // largest first, and returns their count. Allocation-free.
