@@ -16,12 +16,35 @@
 
 namespace svbrdf {
 
-void round_colors_to_half(Lobe& lobe) {
-  for (int c = 0; c < 3; ++c) {
-    lobe.diffuse[c] = glm::unpackHalf1x16(glm::packHalf1x16(lobe.diffuse[c]));
-    lobe.f0[c] = glm::unpackHalf1x16(glm::packHalf1x16(lobe.f0[c]));
+namespace {
+float to_half(float x) { return glm::unpackHalf1x16(glm::packHalf1x16(x)); }
+}  // namespace
+
+float lobe_shape_code(const Lobe& lobe) {
+  if (lobe.alpha2_hi > lobe.alpha2 * 1.001f)
+    return to_half(static_cast<float>(std::log(double(lobe.alpha2_hi) / double(lobe.alpha2))));
+  return to_half(-std::clamp(lobe.ggx, 0.0f, 1.0f));
+}
+
+void set_lobe_shape_code(Lobe& lobe, float code) {
+  if (code > 0) {
+    // In double, so that writing the lobe again gives back the same half (the float rounding of
+    // alpha2_hi moves the logarithm by 6e-8, far below a half's spacing at the smallest code, 1e-3).
+    lobe.alpha2_hi = static_cast<float>(double(lobe.alpha2) * std::exp(double(code)));
+    lobe.ggx = 1.0f;
+  } else {
+    lobe.alpha2_hi = 0.0f;
+    lobe.ggx = std::min(1.0f, -code);
   }
-  lobe.ggx = glm::unpackHalf1x16(glm::packHalf1x16(lobe.ggx));
+}
+
+void round_to_stored(Lobe& lobe) {
+  lobe.weight = to_half(lobe.weight);
+  for (int c = 0; c < 3; ++c) {
+    lobe.diffuse[c] = to_half(lobe.diffuse[c]);
+    lobe.f0[c] = to_half(lobe.f0[c]);
+  }
+  set_lobe_shape_code(lobe, lobe_shape_code(lobe));
 }
 
 namespace {
@@ -85,12 +108,15 @@ BrdfLevel level_from_below(Extent level0, int level, const BrdfLevel& fine, cons
     for (int j = r.begin(); j < r.end(); ++j)
       for (int i = 0; i < e.width; ++i) {
         const int n = gather_children(level0, level, i, j, fine, buf);
-        const int kept = reduce_lobes(buf, n, options.reduction);
+        const int reduced = reduce_lobes(buf, n, options.reduction);
         const std::size_t t = static_cast<std::size_t>(j) * e.width + i;
-        for (int k = 0; k < kept; ++k) {
+        int kept = 0;
+        for (int k = 0; k < reduced; ++k) {
           Lobe l = buf[static_cast<std::size_t>(k)];
-          round_colors_to_half(l);
-          wide[t * max_lobes + static_cast<std::size_t>(k)] = l;
+          round_to_stored(l);
+          // A lobe below a half float's smallest weight (6e-8 of the texel) is dropped: the file
+          // could not tell it from an empty slot.
+          if (l.weight > 0) wide[t * max_lobes + static_cast<std::size_t>(kept++)] = l;
         }
         out.counts[t] = static_cast<std::uint8_t>(kept);
       }

@@ -45,12 +45,22 @@ struct BrdfBuildOptions {
   int stats_samples = 0;  // texels per level whose reduction error is measured (0: none)
 };
 
-// Rounds a lobe's colors and GGX share to what a half float holds (what the MIP file stores).
-void round_colors_to_half(Lobe& lobe);
+// A lobe's shape (lobe.h) in one number: ln(alpha2_hi/alpha2) > 0 for a roughness mixture, −μ ∈ [−1, 0]
+// for a GGX core with a Beckmann share μ (−1: plain GGX). The two kinds never mix (a roughness mixture
+// has μ = 1), so one channel of the MIP file holds either, as a half float: 5e-4 relative on μ, and on
+// the mixture's span, which moves its tail and peak moments by less than that. Mixtures spanning less
+// than 0.1 % of α² store as plain GGX (lobe_shape treats them so below 0.01 %).
+float lobe_shape_code(const Lobe& lobe);
+void set_lobe_shape_code(Lobe& lobe, float code);
 
-// Bytes a stored lobe takes: weight, normal (3), α² and its mixture's upper end as 32-bit floats, ρ,
-// F0 and the GGX share as half floats.
-inline constexpr int kBytesPerLobe = 6 * 4 + 7 * 2;
+// Rounds a lobe to what the MIP file stores: weight, colors and shape code as half floats, normal and
+// α² as 32-bit floats. The BRDF pyramid holds its lobes so rounded, which is what makes the file's
+// round trip bit-identical and what its figures measure.
+void round_to_stored(Lobe& lobe);
+
+// Bytes a stored lobe takes: normal (3) and α² as 32-bit floats; weight, ρ (3), F0 (3) and the shape
+// code as half floats.
+inline constexpr int kBytesPerLobe = 4 * 4 + 8 * 2;
 
 class BrdfPyramid {
  public:

@@ -18,14 +18,20 @@ namespace fs = std::filesystem;
 
 const char* const kParamChannels[8] = {"param.R",         "param.G",   "param.B",   "param.metallic",
                                        "param.roughness", "param.N.X", "param.N.Y", "param.N.Z"};
-constexpr int kLobeChannels = 13;
-const char* const kLobeSuffix[kLobeChannels] = {"weight", "diffuse.R", "diffuse.G", "diffuse.B", "F0.R",
-                                                "F0.G",   "F0.B",      "N.X",       "N.Y",       "N.Z",
-                                                "alpha2", "alpha2_hi", "ggx"};
-// Version 1 files have the first 11 (plain GGX lobes); the shape channels read as their defaults.
-constexpr int kLobeChannelsV1 = 11;
-bool lobe_channel_is_half(int c) { return (c >= 1 && c <= 6) || c == 12; }
-float lobe_channel_default(int c) { return c == 12 ? 1.0f : 0.0f; }
+// Version 3: 32 bytes a lobe (kBytesPerLobe).
+constexpr int kLobeChannels = 12;
+const char* const kLobeSuffix[kLobeChannels] = {"weight", "diffuse.R", "diffuse.G", "diffuse.B", "F0.R", "F0.G",
+                                                "F0.B",   "N.X",       "N.Y",       "N.Z",       "alpha2", "shape"};
+bool lobe_channel_is_half(int c) { return c <= 6 || c == 11; }
+// Versions 1 and 2 have the first 11 (weight as a float); version 2 then the shape as two channels,
+// version 1 nothing (plain GGX lobes).
+constexpr int kCommonLobeChannels = 11;
+const char* const kShapeSuffixV2[2] = {"alpha2_hi", "ggx"};
+int lobe_channels(int version) { return version >= 3 ? kLobeChannels : version == 2 ? kCommonLobeChannels + 2 : kCommonLobeChannels; }
+std::string lobe_suffix(int version, int c) {
+  if (c < kCommonLobeChannels) return kLobeSuffix[c];
+  return version >= 3 ? kLobeSuffix[c] : kShapeSuffixV2[c - kCommonLobeChannels];
+}
 
 std::string where(const fs::path& p) { return p.string(); }
 
@@ -48,18 +54,21 @@ void pack_lobe(const Lobe& l, float* out) {
   out[4] = l.f0.r, out[5] = l.f0.g, out[6] = l.f0.b;
   out[7] = l.normal.x, out[8] = l.normal.y, out[9] = l.normal.z;
   out[10] = l.alpha2;
-  out[11] = l.alpha2_hi;
-  out[12] = l.ggx;
+  out[11] = lobe_shape_code(l);
 }
-Lobe unpack_lobe(const float* in) {
+Lobe unpack_lobe(int version, const float* in) {
   Lobe l;
   l.weight = in[0];
   l.diffuse = {in[1], in[2], in[3]};
   l.f0 = {in[4], in[5], in[6]};
   l.normal = {in[7], in[8], in[9]};
   l.alpha2 = in[10];
-  l.alpha2_hi = in[11];
-  l.ggx = in[12];
+  if (version >= 3) {
+    set_lobe_shape_code(l, in[11]);
+  } else if (version == 2) {
+    l.alpha2_hi = in[11];
+    l.ggx = in[12];
+  }
   return l;
 }
 
@@ -160,20 +169,15 @@ MipData read_mip_file(const fs::path& path) {
     std::map<std::string, int> index;
     for (int c = 0; c < s.nchannels; ++c) index[s.channelnames[static_cast<std::size_t>(c)]] = c;
     std::vector<int> order;
-    std::vector<float> defaults;
-    auto need = [&](const std::string& name, int lobe_channel = -1) {
-      defaults.push_back(lobe_channel >= 0 ? lobe_channel_default(lobe_channel) : 0.0f);
-      if (lobe_channel >= kLobeChannelsV1 && version < 2) {
-        order.push_back(-1);
-        return;
-      }
+    auto need = [&](const std::string& name) {
       const auto it = index.find(name);
       if (it == index.end()) throw input_error(where(path), "level " + std::to_string(level) + " has no channel " + name);
       order.push_back(it->second);
     };
     for (const char* c : kParamChannels) need(c);
+    const int lobe_nch = lobe_channels(version);
     for (int k = 0; k < slots; ++k)
-      for (int c = 0; c < kLobeChannels; ++c) need("lobe" + std::to_string(k) + "." + kLobeSuffix[c], c);
+      for (int c = 0; c < lobe_nch; ++c) need("lobe" + std::to_string(k) + "." + lobe_suffix(version, c));
     const std::size_t texels = static_cast<std::size_t>(e.width) * e.height;
     const int nch = s.nchannels;
     std::vector<float> buf(texels * static_cast<std::size_t>(nch));
@@ -189,11 +193,10 @@ MipData read_mip_file(const fs::path& path) {
       bl.counts.assign(texels, 0);
     }
     for (std::size_t t = 0; t < texels; ++t) {
-      for (std::size_t c = 0; c < order.size(); ++c)
-        px[c] = order[c] < 0 ? defaults[c] : buf[t * static_cast<std::size_t>(nch) + static_cast<std::size_t>(order[c])];
+      for (std::size_t c = 0; c < order.size(); ++c) px[c] = buf[t * static_cast<std::size_t>(nch) + static_cast<std::size_t>(order[c])];
       params[t] = unpack_param(px.data());
       for (int k = 0; k < slots; ++k) {
-        const Lobe l = unpack_lobe(px.data() + 8 + k * kLobeChannels);
+        const Lobe l = unpack_lobe(version, px.data() + 8 + k * lobe_nch);
         bl.lobes[t * slots + static_cast<std::size_t>(k)] = l;
         if (l.weight > 0) bl.counts[t] = static_cast<std::uint8_t>(k + 1);
       }

@@ -10,29 +10,30 @@
 //   param.N.X, param.N.Y, param.N.Z  mean of the unit shading normals in the tangent frame,
 //                               unnormalized (its length < 1 says how much they spread); at
 //                               level 0 the texel's unit normal                          float
-// and, for L ≥ 1, for each lobe slot k = 0 .. S_L − 1 (lobe.h for the meaning):
-//   lobeK.weight                fraction of the texel's area (0: empty slot; slots are packed
-//                               from 0)                                                  float
+// and, for L ≥ 1, for each lobe slot k = 0 .. S_L − 1 (lobe.h for the meaning), 32 bytes:
+//   lobeK.weight                fraction of the texel's area, times the lobe's specular-flux
+//                               factor (0: empty slot; slots are packed from 0)          half
 //   lobeK.diffuse.R/G/B         mean diffuse albedo ρ = (1 − metallic)·base color        half
 //   lobeK.F0.R/G/B              mean specular reflectance at normal incidence            half
 //   lobeK.N.X/Y/Z               mean unit normal of the lobe, unnormalized               float
 //   lobeK.alpha2                GGX α² of the lobe about normalize(N) (a roughness
 //                               mixture's lower end; lobe.h)                             float
-//   lobeK.alpha2_hi             a roughness mixture's upper end (0: not a mixture)       float
-//   lobeK.ggx                   the GGX share μ of a spread core (1: plain GGX)          half
+//   lobeK.shape                 ln(α² upper end / α²) > 0 for a roughness mixture, −μ for
+//                               a GGX core with Beckmann share 1 − μ (−1: plain GGX)      half
 // Level 0's BRDF pyramid is its parameters (one lobe per texel) and is not stored twice.
 // Attributes on every subimage: svbrdf:mip_version (int, kMipFileVersion), svbrdf:level (int),
 // svbrdf:max_lobes (int, the --lobes the file was built with), svbrdf:slots (int, S_L).
 // A file whose version is newer than kMipFileVersion is refused: its layout may mean other things.
-// Version 1 (before the lobe shapes of lobe.h) lacks lobeK.alpha2_hi and lobeK.ggx; its lobes read as
-// plain GGX.
+// Older versions still read: version 2 stored the shape as lobeK.alpha2_hi (float, 0: not a mixture)
+// and lobeK.ggx (half, μ) and the weight as a float (38 bytes a lobe); version 1 (before the lobe
+// shapes of lobe.h) lacks both shape channels, and its lobes read as plain GGX.
 #include <filesystem>
 
 #include "mip/mip_data.h"
 
 namespace svbrdf {
 
-inline constexpr int kMipFileVersion = 2;
+inline constexpr int kMipFileVersion = 3;
 
 // Throws svbrdf::Error naming the file when it cannot be written.
 void write_mip_file(const std::filesystem::path& path, const MipData& mip);

@@ -1,9 +1,10 @@
 // The MIP file: a bit-identical round trip, OpenImageIO's tools list it, a newer version and foreign
-// files are refused with a clear message, a version-1 file still reads.
+// files are refused with a clear message, files of older versions still read.
 #include <gtest/gtest.h>
 
 #include <OpenImageIO/imageio.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -123,71 +124,116 @@ TEST(MipFile, RefusesNewerVersionsForeignAndMissingFiles) {
   EXPECT_NE(read_error(dir / "short.exr").find("short.exr"), std::string::npos);
 }
 
-// A version-1 file (before the lobe shapes of lobe.h: no lobeK.alpha2_hi, lobeK.ggx channels) reads
-// as plain GGX lobes with every other channel as stored. The file is made from a current one by
-// dropping those channels and stamping version 1 — what the version-1 writer wrote.
-TEST(MipFile, ReadsVersionOneAsPlainGgxLobes) {
-  testing::TempDir dir;
-  const MipData mip = build_mip(synthetic::tray(8));
-  write_mip_file(dir / "v2.exr", mip);
-  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open((dir / "v2.exr").string());
+// Rewrites a current MIP file as an older version wrote it: version 2 stored a lobe's shape as
+// lobeK.alpha2_hi (float, 0: not a mixture) and lobeK.ggx (half, μ), version 1 had neither. The shape
+// code is decoded here as mip_file.h documents it: > 0 is ln(α² upper end / α²), else −μ.
+void write_as_older_version(const std::filesystem::path& from, const std::filesystem::path& to, int version) {
+  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(from.string());
   ASSERT_TRUE(in);
   std::vector<OIIO::ImageSpec> specs;
   std::vector<std::vector<float>> pixels;
   for (int level = 0; in->seek_subimage(level, 0); ++level) {
     const OIIO::ImageSpec& src = in->spec();
-    std::vector<float> all(static_cast<std::size_t>(src.width) * src.height * src.nchannels);
+    const std::size_t texels = static_cast<std::size_t>(src.width) * src.height;
+    std::vector<float> all(texels * static_cast<std::size_t>(src.nchannels));
     ASSERT_TRUE(in->read_image(level, 0, 0, src.nchannels, OIIO::TypeDesc::FLOAT, all.data()));
     OIIO::ImageSpec dst = src;
     dst.channelnames.clear();
     dst.channelformats.clear();
-    std::vector<int> keep;
+    // Each output channel: a source channel, or (for version 2) a shape code's α² upper end or μ.
+    struct Out {
+      int from;
+      int alpha2 = -1;  // ≥ 0: the α² channel, and `from` is the shape code: write the upper end
+      bool ggx = false;  // write μ from the shape code `from`
+    };
+    std::vector<Out> outs;
     for (int c = 0; c < src.nchannels; ++c) {
       const std::string& name = src.channelnames[static_cast<std::size_t>(c)];
-      if (name.find(".alpha2_hi") != std::string::npos || name.find(".ggx") != std::string::npos) continue;
-      keep.push_back(c);
+      if (name.size() > 6 && name.compare(name.size() - 6, 6, ".shape") == 0) {
+        if (version == 2) {
+          const std::string lobe = name.substr(0, name.size() - 6);
+          int a2 = -1;
+          for (int k = 0; k < src.nchannels; ++k)
+            if (src.channelnames[static_cast<std::size_t>(k)] == lobe + ".alpha2") a2 = k;
+          ASSERT_GE(a2, 0);
+          outs.push_back({c, a2, false});
+          dst.channelnames.push_back(lobe + ".alpha2_hi");
+          dst.channelformats.push_back(OIIO::TypeDesc::FLOAT);
+          outs.push_back({c, -1, true});
+          dst.channelnames.push_back(lobe + ".ggx");
+          dst.channelformats.push_back(OIIO::TypeDesc::HALF);
+        }
+        continue;
+      }
+      outs.push_back({c});
       dst.channelnames.push_back(name);
       dst.channelformats.push_back(src.channelformat(c));
     }
-    dst.nchannels = static_cast<int>(keep.size());
-    dst.attribute("svbrdf:mip_version", 1);
-    std::vector<float> kept(static_cast<std::size_t>(src.width) * src.height * keep.size());
-    for (std::size_t t = 0; t < static_cast<std::size_t>(src.width) * src.height; ++t)
-      for (std::size_t k = 0; k < keep.size(); ++k)
-        kept[t * keep.size() + k] = all[t * static_cast<std::size_t>(src.nchannels) + static_cast<std::size_t>(keep[k])];
+    dst.nchannels = static_cast<int>(outs.size());
+    dst.attribute("svbrdf:mip_version", version);
+    std::vector<float> kept(texels * outs.size());
+    for (std::size_t t = 0; t < texels; ++t)
+      for (std::size_t k = 0; k < outs.size(); ++k) {
+        const float* px = all.data() + t * static_cast<std::size_t>(src.nchannels);
+        const float v = px[outs[k].from];
+        float& o = kept[t * outs.size() + k];
+        if (outs[k].alpha2 >= 0)
+          o = v > 0 ? static_cast<float>(double(px[outs[k].alpha2]) * std::exp(double(v))) : 0.0f;
+        else if (outs[k].ggx)
+          o = v > 0 ? 1.0f : -v;
+        else
+          o = v;
+      }
     specs.push_back(dst);
     pixels.push_back(std::move(kept));
   }
   in->close();
-  const auto v1 = dir / "v1.exr";
-  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(v1.string());
+  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(to.string());
   ASSERT_TRUE(out);
-  ASSERT_TRUE(out->open(v1.string(), static_cast<int>(specs.size()), specs.data()));
+  ASSERT_TRUE(out->open(to.string(), static_cast<int>(specs.size()), specs.data()));
   for (std::size_t level = 0; level < specs.size(); ++level) {
     if (level > 0) {
-      ASSERT_TRUE(out->open(v1.string(), specs[level], OIIO::ImageOutput::AppendSubimage));
+      ASSERT_TRUE(out->open(to.string(), specs[level], OIIO::ImageOutput::AppendSubimage));
     }
     ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels[level].data()));
   }
   ASSERT_TRUE(out->close());
+}
 
-  const MipData back = read_mip_file(v1);
-  ASSERT_EQ(back.levels(), mip.levels());
-  int mixtures = 0;
-  for (int level = 1; level < mip.levels(); ++level) {
-    const BrdfLevel& a = mip.brdf.level(level);
-    const BrdfLevel& b = back.brdf.level(level);
-    ASSERT_EQ(a.lobes.size(), b.lobes.size());
-    for (std::size_t k = 0; k < a.lobes.size(); ++k) {
-      EXPECT_EQ(b.lobes[k].weight, a.lobes[k].weight);
-      EXPECT_EQ(b.lobes[k].alpha2, a.lobes[k].alpha2);
-      EXPECT_EQ(b.lobes[k].normal, a.lobes[k].normal);
-      EXPECT_EQ(b.lobes[k].alpha2_hi, 0.0f);
-      EXPECT_EQ(b.lobes[k].ggx, 1.0f);
-      mixtures += a.lobes[k].alpha2_hi > 0 || a.lobes[k].ggx != 1.0f;
+// Version-2 files read with the lobe shapes they stored; version-1 files (before the lobe shapes of
+// lobe.h) as plain GGX lobes; every other channel as stored.
+TEST(MipFile, ReadsOlderVersions) {
+  testing::TempDir dir;
+  const MipData mip = build_mip(synthetic::tray(8));
+  write_mip_file(dir / "v3.exr", mip);
+  for (int version : {1, 2}) {
+    const auto old = dir / ("v" + std::to_string(version) + ".exr");
+    write_as_older_version(dir / "v3.exr", old, version);
+    const MipData back = read_mip_file(old);
+    ASSERT_EQ(back.levels(), mip.levels());
+    int shaped = 0;
+    for (int level = 1; level < mip.levels(); ++level) {
+      const BrdfLevel& a = mip.brdf.level(level);
+      const BrdfLevel& b = back.brdf.level(level);
+      ASSERT_EQ(a.lobes.size(), b.lobes.size());
+      for (std::size_t k = 0; k < a.lobes.size(); ++k) {
+        SCOPED_TRACE("version " + std::to_string(version) + " level " + std::to_string(level) + " lobe " + std::to_string(k));
+        EXPECT_EQ(b.lobes[k].weight, a.lobes[k].weight);
+        EXPECT_EQ(b.lobes[k].alpha2, a.lobes[k].alpha2);
+        EXPECT_EQ(b.lobes[k].normal, a.lobes[k].normal);
+        EXPECT_EQ(b.lobes[k].diffuse, a.lobes[k].diffuse);
+        if (version == 1) {
+          EXPECT_EQ(b.lobes[k].alpha2_hi, 0.0f);
+          EXPECT_EQ(b.lobes[k].ggx, 1.0f);
+        } else {
+          EXPECT_EQ(b.lobes[k].alpha2_hi, a.lobes[k].alpha2_hi);
+          EXPECT_EQ(b.lobes[k].ggx, a.lobes[k].ggx);
+        }
+        shaped += a.lobes[k].alpha2_hi > 0 || a.lobes[k].ggx != 1.0f;
+      }
     }
+    EXPECT_GT(shaped, 0) << "the tray's pyramid should hold shaped lobes, or this test shows nothing";
   }
-  EXPECT_GT(mixtures, 0) << "the tray's pyramid should hold shaped lobes, or this test shows nothing";
 }
 
 }  // namespace
