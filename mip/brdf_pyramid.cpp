@@ -49,20 +49,20 @@ void round_to_stored(Lobe& lobe) {
 
 namespace {
 
-BrdfLevel level_zero(const MaterialTexels& m) {
+// Level 0's entry: its extent only (its lobes are the level-0 texels').
+BrdfLevel level_zero(Extent e) {
   BrdfLevel l;
-  l.extent = {m.width, m.height};
+  l.extent = e;
   l.slots = 1;
-  l.lobes.resize(m.size());
-  l.counts.assign(m.size(), 1);
-  for (std::size_t k = 0; k < m.size(); ++k) l.lobes[k] = level0_lobe(m, k);
   return l;
 }
 
 constexpr int kUnionCap = 9 * kMaxLobes;
 
-// The union of texel (i, j)'s children's lobes, weights scaled by the children's area shares.
-int gather_children(Extent level0, int level, int i, int j, const BrdfLevel& fine, std::array<Lobe, kUnionCap>& out) {
+// The union of texel (i, j)'s children's lobes, weights scaled by the children's area shares; the
+// children are `fine`'s texels, or at level 1 the level-0 texels m.
+int gather_children(Extent level0, int level, int i, int j, const BrdfLevel& fine, const MaterialTexels& m,
+                    std::array<Lobe, kUnionCap>& out) {
   const Span cx = child_span(level0.width, level, i), cy = child_span(level0.height, level, j);
   const double total = static_cast<double>(level0_span(level0.width, level, i).size()) *
                        level0_span(level0.height, level, j).size();
@@ -72,8 +72,13 @@ int gather_children(Extent level0, int level, int i, int j, const BrdfLevel& fin
       const double share = static_cast<double>(level0_span(level0.width, level - 1, x).size()) *
                            level0_span(level0.height, level - 1, y).size() / total;
       const std::size_t t = static_cast<std::size_t>(y) * fine.extent.width + x;
+      if (level == 1) {
+        out[static_cast<std::size_t>(n++)] = lobe_from_texel(m.base_color[t], m.metallic[t], m.roughness[t], m.normal[t],
+                                                             static_cast<float>(share));
+        continue;
+      }
       for (int k = 0; k < fine.counts[t]; ++k) {
-        Lobe l = fine.lobes[t * fine.slots + static_cast<std::size_t>(k)];
+        Lobe l = fine.lobes[fine.first[t] + static_cast<std::size_t>(k)];
         l.weight = static_cast<float>(l.weight * share);
         out[static_cast<std::size_t>(n++)] = l;
       }
@@ -94,41 +99,55 @@ double table_erel(const BrdfTable& approx, const BrdfTable& ref) {
   return den > 0 ? std::sqrt(num / den) : 0.0;
 }
 
-BrdfLevel level_from_below(Extent level0, int level, const BrdfLevel& fine, const BrdfBuildOptions& options,
-                           BrdfLevelStats* stats) {
+BrdfLevel level_from_below(Extent level0, int level, const BrdfLevel& fine, const MaterialTexels& m,
+                           const BrdfBuildOptions& options, BrdfLevelStats* stats) {
   const Extent e = level_extent(level0, level);
   const int max_lobes = std::clamp(options.reduction.max_lobes, 1, kMaxLobes);
   BrdfLevel out;
   out.extent = e;
   const std::size_t texels = static_cast<std::size_t>(e.width) * e.height;
-  std::vector<Lobe> wide(texels * static_cast<std::size_t>(max_lobes));
+  out.first.resize(texels);
   out.counts.assign(texels, 0);
-  tbb::parallel_for(tbb::blocked_range<int>(0, e.height), [&](const tbb::blocked_range<int>& r) {
+  // Bands of rows reduce in parallel into their own packed lists, joined in row order after.
+  constexpr int kBandRows = 8;
+  const int bands = (e.height + kBandRows - 1) / kBandRows;
+  std::vector<std::vector<Lobe>> band_lobes(static_cast<std::size_t>(bands));
+  tbb::parallel_for(0, bands, [&](int b) {
     std::array<Lobe, kUnionCap> buf;
-    for (int j = r.begin(); j < r.end(); ++j)
+    std::vector<Lobe>& packed = band_lobes[static_cast<std::size_t>(b)];
+    packed.reserve(static_cast<std::size_t>(e.width) * kBandRows * 2);
+    for (int j = b * kBandRows; j < std::min(e.height, (b + 1) * kBandRows); ++j)
       for (int i = 0; i < e.width; ++i) {
-        const int n = gather_children(level0, level, i, j, fine, buf);
+        const int n = gather_children(level0, level, i, j, fine, m, buf);
         const int reduced = reduce_lobes(buf, n, options.reduction);
         const std::size_t t = static_cast<std::size_t>(j) * e.width + i;
         int kept = 0;
-        for (int k = 0; k < reduced; ++k) {
+        for (int k = 0; k < std::min(reduced, max_lobes); ++k) {
           Lobe l = buf[static_cast<std::size_t>(k)];
           round_to_stored(l);
           // A lobe below a half float's smallest weight (6e-8 of the texel) is dropped: the file
           // could not tell it from an empty slot.
-          if (l.weight > 0) wide[t * max_lobes + static_cast<std::size_t>(kept++)] = l;
+          if (l.weight > 0) packed.push_back(l), ++kept;
         }
+        out.first[t] = static_cast<std::uint32_t>(packed.size() - static_cast<std::size_t>(kept));  // within the band
         out.counts[t] = static_cast<std::uint8_t>(kept);
       }
   });
+  std::size_t total = 0;
+  for (const auto& b : band_lobes) total += b.size();
+  out.lobes.reserve(total);
+  for (int b = 0; b < bands; ++b) {
+    const std::uint32_t base = static_cast<std::uint32_t>(out.lobes.size());
+    for (int j = b * kBandRows; j < std::min(e.height, (b + 1) * kBandRows); ++j)
+      for (int i = 0; i < e.width; ++i) out.first[static_cast<std::size_t>(j) * e.width + i] += base;
+    const auto& bl = band_lobes[static_cast<std::size_t>(b)];
+    out.lobes.insert(out.lobes.end(), bl.begin(), bl.end());
+    std::vector<Lobe>().swap(band_lobes[static_cast<std::size_t>(b)]);
+  }
   int slots = 1;
   double sum = 0;
   for (std::uint8_t c : out.counts) slots = std::max<int>(slots, c), sum += c;
   out.slots = slots;
-  out.lobes.assign(texels * static_cast<std::size_t>(slots), Lobe{0.0f, glm::vec3(0), glm::vec3(0), glm::vec3(0, 0, 1), 1.0f});
-  for (std::size_t t = 0; t < texels; ++t)
-    for (int k = 0; k < out.counts[t]; ++k)
-      out.lobes[t * slots + static_cast<std::size_t>(k)] = wide[t * max_lobes + static_cast<std::size_t>(k)];
   if (stats) {
     stats->mean_lobes = sum / static_cast<double>(texels);
     stats->max_lobes = slots;
@@ -141,10 +160,10 @@ BrdfLevel level_from_below(Extent level0, int level, const BrdfLevel& fine, cons
         const std::size_t t = std::min<std::size_t>(texels - 1, static_cast<std::size_t>(rng.next_double() * texels));
         const int i = static_cast<int>(t % e.width), j = static_cast<int>(t / e.width);
         std::array<Lobe, kUnionCap> buf;
-        const int n = gather_children(level0, level, i, j, fine, buf);
+        const int n = gather_children(level0, level, i, j, fine, m, buf);
         BrdfTable ref = make_table(), approx = make_table();
         for (int k = 0; k < n; ++k) accumulate_lobe_double(buf[static_cast<std::size_t>(k)], 1.0, ref);
-        for (int k = 0; k < out.counts[t]; ++k) accumulate_lobe_double(out.lobes[t * slots + static_cast<std::size_t>(k)], 1.0, approx);
+        for (int k = 0; k < out.counts[t]; ++k) accumulate_lobe_double(out.lobes[out.first[t] + static_cast<std::size_t>(k)], 1.0, approx);
         errs[static_cast<std::size_t>(s)] = table_erel(approx, ref);
       });
       double m = 0, mx = 0;
@@ -167,9 +186,9 @@ BrdfPyramid BrdfPyramid::build(const MaterialTexels& m, const BrdfBuildOptions& 
   const int n = level_count(p.level0_);
   if (n == 0) return p;
   if (stats) stats->assign(static_cast<std::size_t>(n), BrdfLevelStats{1.0, 1, 0.0, 0.0, 0});
-  p.levels_.push_back(level_zero(m));
+  p.levels_.push_back(level_zero(p.level0_));
   for (int level = 1; level < n; ++level)
-    p.levels_.push_back(level_from_below(p.level0_, level, p.levels_.back(), options,
+    p.levels_.push_back(level_from_below(p.level0_, level, p.levels_.back(), m, options,
                                          stats ? &(*stats)[static_cast<std::size_t>(level)] : nullptr));
   return p;
 }
@@ -182,14 +201,15 @@ BrdfPyramid BrdfPyramid::from_levels(const MaterialTexels& m, int max_lobes, std
   if (static_cast<int>(coarse.size()) + 1 != n)
     throw Error("BRDF pyramid: " + std::to_string(coarse.size() + 1) + " levels for a " + std::to_string(m.width) +
                 "x" + std::to_string(m.height) + " level 0 (expected " + std::to_string(n) + ")");
-  p.levels_.push_back(level_zero(m));
+  p.levels_.push_back(level_zero(p.level0_));
   for (std::size_t l = 0; l < coarse.size(); ++l) {
     const Extent e = level_extent(p.level0_, static_cast<int>(l + 1));
     const std::size_t texels = static_cast<std::size_t>(e.width) * e.height;
     BrdfLevel& c = coarse[l];
-    if (!(c.extent == e) || c.slots < 1 || c.slots > kMaxLobes || c.lobes.size() != texels * c.slots ||
-        c.counts.size() != texels)
-      throw Error("BRDF pyramid: level " + std::to_string(l + 1) + " has the wrong shape");
+    bool packed = c.extent == e && c.slots >= 1 && c.slots <= kMaxLobes && c.counts.size() == texels && c.first.size() == texels;
+    for (std::size_t t = 0, next = 0; packed && t < texels; next += c.counts[t], ++t)
+      packed = c.first[t] == next && c.counts[t] <= c.slots && next + c.counts[t] <= c.lobes.size();
+    if (!packed) throw Error("BRDF pyramid: level " + std::to_string(l + 1) + " has the wrong shape");
     p.levels_.push_back(std::move(c));
   }
   return p;

@@ -2,15 +2,18 @@
 // The BRDF pyramid (../shared/spec/brdf-mip.md, `brdf`): every texel of every level a small mixture of
 // lobes (lobe.h) whose BRDF approximates F_L,ij, the mean of the covered level-0 texels' f_eff.
 //
-// Level 0 is one lobe per texel, exactly f_eff. Level L is built from level L − 1 only: a texel's
+// Level 0 is one lobe per texel, exactly f_eff: the level-0 texels themselves (level0_lobe), which the
+// pyramid does not hold a second time (brdf_texel in mip_data.h answers for any level). Level L is
+// built from level L − 1 only: a texel's
 // children's lobes, their weights scaled by the children's shares of its area, form the exact union
 // (the mean of the children's mixtures), which lobe_reduction.h reduces to at most `max_lobes` lobes.
 // The build is O(texels) and parallel over rows (oneTBB).
 //
-// Storage: per level a fixed number of slots per texel (the most lobes any texel of that level kept),
-// lobes packed to the front, empty slots of weight 0. The colors (ρ, F0) are rounded to half floats
-// when a level is made (they are means of values in [0, 1], where half's 11 bits suffice and the
-// MIP file stores them as half); weights, normals and α² stay 32-bit (moments cancel in half).
+// Storage: per level the texels' lobes packed one texel after another (a texel of smooth material
+// keeps one lobe, so fixed slots would waste three quarters of a level at K = 4), with each texel's
+// first lobe and count. `slots` is the most lobes any texel of the level kept: the MIP file's fixed
+// slots. The lobes are rounded to what the file stores (round_to_stored).
+#include <cassert>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -24,9 +27,10 @@ namespace svbrdf {
 
 struct BrdfLevel {
   Extent extent{};
-  int slots = 1;
-  std::vector<Lobe> lobes;            // extent.width · extent.height · slots
-  std::vector<std::uint8_t> counts;   // lobes used per texel
+  int slots = 1;                      // the most lobes a texel has
+  std::vector<Lobe> lobes;            // every texel's lobes, in row-major texel order
+  std::vector<std::uint32_t> first;   // per texel: its first lobe in `lobes`
+  std::vector<std::uint8_t> counts;   // per texel: its lobe count
 };
 
 // What the build measured, per level: the mean and max lobe count, and the reduction error (e_rel of
@@ -67,8 +71,8 @@ class BrdfPyramid {
   BrdfPyramid() = default;
   static BrdfPyramid build(const MaterialTexels& level0, const BrdfBuildOptions& options = {},
                            std::vector<BrdfLevelStats>* stats = nullptr);
-  // From stored levels ≥ 1 (the MIP file) and the level-0 texels; throws svbrdf::Error when the
-  // shapes do not form a pyramid.
+  // From stored levels ≥ 1 (the MIP file) and the level-0 texels' extent; throws svbrdf::Error when
+  // the shapes do not form a pyramid.
   static BrdfPyramid from_levels(const MaterialTexels& level0, int max_lobes, std::vector<BrdfLevel> coarse);
 
   int levels() const { return static_cast<int>(levels_.size()); }
@@ -77,13 +81,14 @@ class BrdfPyramid {
   int max_lobes() const { return max_lobes_; }
   const BrdfLevel& level(int level) const { return levels_[static_cast<std::size_t>(level)]; }
 
-  // The lobes of texel (i, j) of `level`: a view into the pyramid, valid while it lives.
+  // The lobes of texel (i, j) of `level` ≥ 1: a view into the pyramid, valid while it lives.
   std::span<const Lobe> texel(int level, int i, int j) const {
+    assert(level >= 1);
     const BrdfLevel& l = levels_[static_cast<std::size_t>(level)];
     const std::size_t t = static_cast<std::size_t>(j) * l.extent.width + i;
-    return {l.lobes.data() + t * l.slots, l.counts[t]};
+    return {l.lobes.data() + l.first[t], l.counts[t]};
   }
-  // Bytes per texel of a level as stored (fixed slots).
+  // Bytes per texel of a level as the MIP file stores it (fixed slots; memory holds fewer).
   int bytes_per_texel(int level) const { return this->level(level).slots * kBytesPerLobe; }
 
  private:

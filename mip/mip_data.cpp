@@ -55,7 +55,8 @@ glm::dvec3 mode_eval(const MipData& mip, MipMode mode, int level, int i, int j, 
   const PairTerms<float> p = pair_terms<float>(glm::vec3(wi), glm::vec3(wo));
   if (mode == MipMode::brdf) {
     glm::dvec3 sum(0);
-    for (const Lobe& l : mip.brdf.texel(level, i, j)) sum += glm::dvec3(lobe_eval<float>(l, p));
+    Lobe scratch;
+    for (const Lobe& l : brdf_texel(mip, level, i, j, scratch)) sum += glm::dvec3(lobe_eval<float>(l, p));
     return sum;
   }
   return glm::dvec3(lobe_eval<float>(param_lobe(mip.param.texel(level, i, j), baseline_of(mode)), p));
@@ -65,7 +66,8 @@ BrdfTable mode_table(const MipData& mip, MipMode mode, int level, int i, int j) 
   if (mode == MipMode::exact) return ExactReference(mip.level0).table(level, i, j);
   BrdfTable t = make_table();
   if (mode == MipMode::brdf) {
-    for (const Lobe& l : mip.brdf.texel(level, i, j)) accumulate_lobe_float(l, 1.0, t);
+    Lobe scratch;
+    for (const Lobe& l : brdf_texel(mip, level, i, j, scratch)) accumulate_lobe_float(l, 1.0, t);
   } else {
     accumulate_lobe_float(param_lobe(mip.param.texel(level, i, j), baseline_of(mode)), 1.0, t);
   }

@@ -11,6 +11,7 @@
 
 #include "mip/brdf_pyramid.h"
 #include "mip/direction_grid.h"
+#include "mip/exact_reference.h"
 #include "mip/param_pyramid.h"
 #include "textures/material_texels.h"
 
@@ -24,6 +25,15 @@ struct MipData {
   int levels() const { return param.levels(); }
   Extent extent(int level) const { return param.extent(level); }
 };
+
+// The BRDF pyramid's lobes of texel (i, j) of `level`: a view into the pyramid for levels ≥ 1, valid
+// while it lives; at level 0, which the pyramid does not hold (its lobes are the texels'), the
+// texel's one lobe, made into `scratch`.
+inline std::span<const Lobe> brdf_texel(const MipData& mip, int level, int i, int j, Lobe& scratch) {
+  if (level >= 1) return mip.brdf.texel(level, i, j);
+  scratch = level0_lobe(mip.level0, mip.level0.index(i, j));
+  return {&scratch, 1};
+}
 
 // Builds both pyramids over `level0` (moved in).
 MipData build_mip(MaterialTexels level0, const BrdfBuildOptions& options = {},

@@ -118,8 +118,12 @@ void write_mip_file(const fs::path& path, const MipData& mip) {
         float* px = buf.data() + t * static_cast<std::size_t>(nch);
         pack_param(params[t], px);
         if (level > 0) {
+          // Empty slots: weight 0 (and a plain GGX of α² 1 about the geometric normal, so every
+          // channel holds a meaningful value).
+          static const Lobe kEmpty{0.0f, glm::vec3(0), glm::vec3(0), glm::vec3(0, 0, 1), 1.0f};
           const BrdfLevel& bl = mip.brdf.level(level);
-          for (int k = 0; k < bl.slots; ++k) pack_lobe(bl.lobes[t * bl.slots + static_cast<std::size_t>(k)], px + 8 + k * kLobeChannels);
+          for (int k = 0; k < bl.slots; ++k)
+            pack_lobe(k < bl.counts[t] ? bl.lobes[bl.first[t] + static_cast<std::size_t>(k)] : kEmpty, px + 8 + k * kLobeChannels);
         }
       }
       if (!out->write_image(OIIO::TypeDesc::FLOAT, buf.data()))
@@ -189,16 +193,19 @@ MipData read_mip_file(const fs::path& path) {
     if (level > 0) {
       bl.extent = e;
       bl.slots = slots;
-      bl.lobes.resize(texels * static_cast<std::size_t>(slots));
+      bl.first.resize(texels);
       bl.counts.assign(texels, 0);
     }
     for (std::size_t t = 0; t < texels; ++t) {
       for (std::size_t c = 0; c < order.size(); ++c) px[c] = buf[t * static_cast<std::size_t>(nch) + static_cast<std::size_t>(order[c])];
       params[t] = unpack_param(px.data());
+      if (level > 0) bl.first[t] = static_cast<std::uint32_t>(bl.lobes.size());
+      // Lobes are packed from slot 0: the first empty slot (weight 0) ends the texel's.
       for (int k = 0; k < slots; ++k) {
         const Lobe l = unpack_lobe(version, px.data() + 8 + k * lobe_nch);
-        bl.lobes[t * slots + static_cast<std::size_t>(k)] = l;
-        if (l.weight > 0) bl.counts[t] = static_cast<std::uint8_t>(k + 1);
+        if (!(l.weight > 0)) break;
+        bl.lobes.push_back(l);
+        bl.counts[t] = static_cast<std::uint8_t>(k + 1);
       }
     }
     if (level == 0) {

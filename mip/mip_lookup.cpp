@@ -134,10 +134,11 @@ FilterTap select_tap(const FilterTaps& taps, float u) {
   return {};
 }
 
-LobeMixtureBsdf lookup_brdf(const BrdfPyramid& pyramid, const Footprint& footprint, float u, int max_probes) {
-  if (pyramid.levels() == 0) return {};
-  const FilterTap t = select_tap(pyramid.level0(), pyramid.levels(), footprint, u, max_probes);
-  return LobeMixtureBsdf(pyramid.texel(t.level, t.i, t.j));
+LobeMixtureBsdf lookup_brdf(const MipData& mip, const Footprint& footprint, float u, int max_probes) {
+  if (mip.brdf.levels() == 0) return {};
+  const FilterTap t = select_tap(mip.brdf.level0(), mip.brdf.levels(), footprint, u, max_probes);
+  Lobe scratch;
+  return LobeMixtureBsdf(brdf_texel(mip, t.level, t.i, t.j, scratch));
 }
 
 ParamTexel filter_params(const ParamPyramid& pyramid, const Footprint& footprint, int max_probes) {

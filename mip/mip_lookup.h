@@ -22,6 +22,7 @@
 
 #include "mip/brdf_pyramid.h"
 #include "mip/lobe_mixture_bsdf.h"
+#include "mip/mip_data.h"
 #include "mip/param_pyramid.h"
 
 namespace svbrdf {
@@ -58,8 +59,7 @@ FilterTap select_tap(const FilterTaps& taps, float u);
 FilterTap select_tap(Extent level0, int levels, const Footprint& footprint, float u, int max_probes = kMaxProbes);
 
 // (1) One texel's mixture, chosen with probability equal to its filter weight.
-LobeMixtureBsdf lookup_brdf(const BrdfPyramid& pyramid, const Footprint& footprint, float u,
-                            int max_probes = kMaxProbes);
+LobeMixtureBsdf lookup_brdf(const MipData& mip, const Footprint& footprint, float u, int max_probes = kMaxProbes);
 
 // (2) The trilinear-filtered parameters as one lobe (wrap it in LobeMixtureBsdf to shade).
 ParamTexel filter_params(const ParamPyramid& pyramid, const Footprint& footprint, int max_probes = kMaxProbes);

@@ -112,7 +112,11 @@ std::span<const Lobe> MaterialMip::lobes(TextureFilter filter, const Footprint& 
                                          Lobe& scratch) const {
   if (filter == TextureFilter::brdf && tint == Rgb(1.0f)) {
     const FilterTap t = select_tap(brdf_.level0(), brdf_.levels(), wrapped(f), u);  // O(1), mip_lookup.h
-    return brdf_.texel(t.level, t.i, t.j);
+    if (t.level >= 1) return brdf_.texel(t.level, t.i, t.j);
+    // Level 0 is the texel's own lobe (the pyramid does not hold it twice).
+    const Texel& x = texel(t.i, t.j);
+    scratch = lobe_from_texel(x.base_color, x.metallic, x.roughness, x.normal);
+    return {&scratch, 1};
   }
   if (uses_param(filter)) {
     ParamTexel t = filter_params(param_, wrapped(f));

@@ -64,6 +64,7 @@ TEST(MipFile, RoundTripIsBitIdentical) {
       const BrdfLevel &la = a.brdf.level(l), &lb = b.brdf.level(l);
       EXPECT_EQ(la.slots, lb.slots);
       EXPECT_TRUE(same_bits(la.counts, lb.counts)) << "level " << l;
+      EXPECT_TRUE(same_bits(la.first, lb.first)) << "level " << l;
       EXPECT_TRUE(same_bits(la.lobes, lb.lobes)) << "level " << l;
     }
   }
