@@ -127,11 +127,14 @@ LobeShape<T> lobe_shape(const Lobe& lobe, bool with_nodes = true) {
   if (lobe.alpha2_hi > lobe.alpha2 * 1.0001f) {
     s.alpha2_hi = T(lobe.alpha2_hi);
     const T x = s.alpha2_hi / s.alpha2 - T(1);
-    s.lmean = s.alpha2 * x / std::log1p(x);
+    const T span = std::log1p(x);  // ln(h/l)
+    s.lmean = s.alpha2 * x / span;
     if (with_nodes) {
-      const T ll = std::log(s.alpha2), span = std::log(s.alpha2_hi) - ll;
-      constexpr T kX[3] = {T(0.11270166537925831), T(0.5), T(0.88729833462074169)};
-      for (int k = 0; k < 3; ++k) s.node_a2[k] = std::exp(ll + kX[k] * span);
+      // l·(h/l)^t at t = ½ ∓ √(3/20) and ½: the outer two are l·e and h/e with e = (h/l)^0.1127.
+      const T e = std::exp(T(0.11270166537925831) * span);
+      s.node_a2[0] = s.alpha2 * e;
+      s.node_a2[1] = std::sqrt(s.alpha2 * s.alpha2_hi);
+      s.node_a2[2] = s.alpha2_hi / e;
     }
   }
   s.valid = true;
@@ -157,6 +160,9 @@ LobeSide<T> lobe_wi_side(const LobeShape<T>& s, T c) {
   if (s.sigma == 0) return c > 0 ? LobeSide<T>{c * s.len, c} : LobeSide<T>{};
   const T sd = s.sigma * std::sqrt(std::max(T(0), T(1) - c * c)) + T(1e-12);
   const T x = c / sd;
+  // Eight deviations above the horizon the clipping is nil (Φ = 1 − 6e-16, φ = 5e-15): the common
+  // case, without erfc and exp.
+  if (x > T(8)) return {c * s.len, std::max(c, T(1e-4))};
   const T factor = s.len * (c * standard_normal_cdf(x) + sd * T(0.39894228040143267794) * std::exp(T(-0.5) * x * x));
   return {factor, std::max(c, T(1e-4))};
 }
@@ -165,7 +171,9 @@ template <class T>
 LobeSide<T> lobe_wo_side(const LobeShape<T>& s, T c) {
   if (s.sigma == 0) return c > 0 ? LobeSide<T>{T(1), c} : LobeSide<T>{};
   const T sd = s.sigma * std::sqrt(std::max(T(0), T(1) - c * c)) + T(1e-12);
-  return {standard_normal_cdf(c / sd), std::max(c, T(1e-4))};
+  const T x = c / sd;
+  if (x > T(8)) return {T(1), std::max(c, T(1e-4))};  // as in lobe_wi_side
+  return {standard_normal_cdf(x), std::max(c, T(1e-4))};
 }
 
 // D of a lobe at a half vector with n̂·h = ch and n̂×h = nxh (the shapes at the top of this file), with

@@ -2,14 +2,38 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 namespace svbrdf {
 
 namespace {
 
 int wrap(int i, int n) {
+  if (static_cast<unsigned>(i) < static_cast<unsigned>(n)) return i;  // inside: no division (the common case)
   const int r = i % n;
   return r < 0 ? r + n : r;
+}
+
+// floor for |x| < 2^31 without a libm call (the release build targets SSE2, which has no rounding
+// instruction; these run several times per lookup).
+int floor_int(float x) {
+  const int i = static_cast<int>(x);
+  return x < static_cast<float>(i) ? i - 1 : i;
+}
+
+// log2 x for finite x > 0: the exponent plus log2 of the mantissa m ∈ [1, 2) by the series of
+// 2·atanh((m − 1)/(m + 1))/ln 2 to the 7th power (within 2e-5; exact at powers of two, so footprints
+// of 2^k texels select level k exactly).
+float log2_positive(float x) {
+  std::uint32_t bits;
+  std::memcpy(&bits, &x, sizeof bits);
+  const int e = static_cast<int>((bits >> 23) & 0xff) - 127;
+  bits = (bits & 0x007fffffu) | 0x3f800000u;
+  float m;
+  std::memcpy(&m, &bits, sizeof m);
+  const float t = (m - 1.0f) / (m + 1.0f), t2 = t * t;
+  return static_cast<float>(e) + 2.8853900817779268f * t * (1.0f + t2 * (1.0f / 3 + t2 * (1.0f / 5 + t2 * (1.0f / 7))));
 }
 
 // The footprint's filter: the continuous level, the number of probes and where they sit.
@@ -37,9 +61,10 @@ FilterShape filter_shape(Extent level0, int levels, const Footprint& f, int max_
   s.major_uv = mx;
   if (lb > la) std::swap(la, lb), s.major_uv = my;
   const float minor = std::max(lb, la / static_cast<float>(max_probes));
-  s.probes = minor > 0 ? std::clamp(static_cast<int>(std::ceil(la / minor - 1e-3f)), 1, max_probes) : 1;
-  s.lambda = minor > 0 ? std::clamp(std::log2(minor), 0.0f, static_cast<float>(levels - 1)) : 0.0f;
-  s.level = static_cast<int>(std::floor(s.lambda));
+  s.probes = minor > 0 ? std::clamp(-floor_int(-(la / minor - 1e-3f)), 1, max_probes) : 1;
+  // Below one texel (or a denormal) the level is 0; above 2^31 texels, the coarsest.
+  s.lambda = minor >= 1.0f ? std::min(log2_positive(std::min(minor, 2e9f)), static_cast<float>(levels - 1)) : 0.0f;
+  s.level = static_cast<int>(s.lambda);
   s.t = s.lambda - static_cast<float>(s.level);
   if (s.level >= levels - 1) s.level = levels - 1, s.t = 0.0f;
   return s;
@@ -57,7 +82,9 @@ struct Bilinear {
 };
 Bilinear bilinear(Extent e, glm::vec2 uv) {
   const float x = uv.x * static_cast<float>(e.width) - 0.5f, y = uv.y * static_cast<float>(e.height) - 0.5f;
-  const float fx0 = std::floor(x), fy0 = std::floor(y);
+  // Far from the texture (|x| ≥ 2^24) floats are integers already.
+  const float fx0 = std::abs(x) < 16777216.0f ? static_cast<float>(floor_int(x)) : x;
+  const float fy0 = std::abs(y) < 16777216.0f ? static_cast<float>(floor_int(y)) : y;
   Bilinear b;
   b.fx = x - fx0;
   b.fy = y - fy0;
@@ -67,8 +94,8 @@ Bilinear bilinear(Extent e, glm::vec2 uv) {
   };
   b.x0 = texel(fx0, e.width);
   b.y0 = texel(fy0, e.height);
-  b.x1 = wrap(b.x0 + 1, e.width);
-  b.y1 = wrap(b.y0 + 1, e.height);
+  b.x1 = b.x0 + 1 == e.width ? 0 : b.x0 + 1;
+  b.y1 = b.y0 + 1 == e.height ? 0 : b.y0 + 1;
   return b;
 }
 
