@@ -88,6 +88,14 @@ class BrdfPyramid {
     const std::size_t t = static_cast<std::size_t>(j) * l.extent.width + i;
     return {l.lobes.data() + l.first[t], l.counts[t]};
   }
+  // Asks the memory system for what texel(level, i, j) reads first (its lobe index and count), for
+  // a caller with other work to do before it reads them.
+  void prefetch(int level, int i, int j) const {
+    const BrdfLevel& l = levels_[static_cast<std::size_t>(level)];
+    const std::size_t t = static_cast<std::size_t>(j) * l.extent.width + i;
+    __builtin_prefetch(l.first.data() + t);
+    __builtin_prefetch(l.counts.data() + t);
+  }
   // Bytes per texel of a level as the MIP file stores it (fixed slots; memory holds fewer).
   int bytes_per_texel(int level) const { return this->level(level).slots * kBytesPerLobe; }
 

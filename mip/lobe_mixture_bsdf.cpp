@@ -12,7 +12,8 @@ namespace {
 float mean3(const glm::vec3& c) { return (c.x + c.y + c.z) * (1.0f / 3.0f); }
 }  // namespace
 
-LobeMixtureBsdf::LobeMixtureBsdf(std::span<const Lobe> lobes) {
+void LobeMixtureBsdf::assign(std::span<const Lobe> lobes) {
+  count_ = 0;
   for (const Lobe& l : lobes) {
     if (count_ == kMaxLobes) break;
     Slot& k = slots_[static_cast<std::size_t>(count_)].s;

@@ -74,6 +74,7 @@ PathSample trace_path(const RenderWorld& w, const IntegratorSettings& s, float f
     return w.bvh->occluded(o, d, 0.0f, tmax, sd);
   };
 
+  LobeMixtureBsdf lobe_bsdf;  // the hit's mixture under a MIP filter, reassigned at every hit
   for (int depth = 0;; ++depth) {
     const std::uint64_t hit_seed = seed();
     if (w.ray_log) w.ray_log->record(ray.origin, ray.dir, ray.tnear, ray.tfar, hit_seed, false);
@@ -112,20 +113,22 @@ PathSample trace_path(const RenderWorld& w, const IntegratorSettings& s, float f
     // filter's lobes in the geometric tangent frame (the lobes carry the normal-mapped normals);
     // any other by SurfaceBsdf in the normal-mapped shading frame.
     std::optional<SurfaceBsdf> surface_bsdf;
-    std::optional<LobeMixtureBsdf> lobe_bsdf;
     const Bsdf* bsdf = nullptr;
     Frame frame;
     Rgb emission(0.0f);
     if (mip) {
-      frame = geometric_frame(sp);
       const Footprint fp = mip->to_texture(footprint(sp, mip->uv_set(), dpdx, dpdy));
-      Lobe scratch;
-      lobe_bsdf.emplace(mip->lobes(s.filter, fp, Rgb(sp.color), u_select, scratch));
-      bsdf = &*lobe_bsdf;
+      // The texel is chosen (and its memory asked for) first; the frame and the emission are
+      // computed while it arrives.
+      const MaterialMip::Choice choice = mip->choose(s.filter, fp, Rgb(sp.color), u_select);
+      frame = geometric_frame(sp);
       emission = emission_at(sp, *w.textures);
+      Lobe scratch;
+      lobe_bsdf.assign(mip->lobes_at(choice, scratch));
+      bsdf = &lobe_bsdf;
       if (depth == 0 && s.aovs) {
         out.albedo = base_color_at(sp, *w.textures);
-        out.normal = mean_normal(*lobe_bsdf, frame);
+        out.normal = mean_normal(lobe_bsdf, frame);
       }
       if (aov_footprint) out.mip_level = mip->level(fp);
     } else {

@@ -108,28 +108,41 @@ MaterialTexels MaterialMip::texels() const {
 
 float MaterialMip::level(const Footprint& f) const { return filter_taps(extent_, level_count(extent_), wrapped(f)).level; }
 
+MaterialMip::Choice MaterialMip::choose(TextureFilter filter, const Footprint& f, const Rgb& tint, float u) const {
+  Choice c{filter, f, tint, {}};
+  if (filter == TextureFilter::brdf && tint == Rgb(1.0f)) {
+    c.tap = select_tap(brdf_.level0(), brdf_.levels(), wrapped(f), u);  // O(1), mip_lookup.h
+    if (c.tap.level >= 1) brdf_.prefetch(c.tap.level, c.tap.i, c.tap.j);
+    else __builtin_prefetch(&texel(c.tap.i, c.tap.j));
+  } else if (uses_param(filter)) {
+    c.tap.level = -1;
+  } else {
+    // level0, and brdf on a tinted hit: the nearest texel.
+    const glm::ivec2 p = nearest_texel(f.uv);
+    c.tap = {0, p.x, p.y, 1.0f};
+    __builtin_prefetch(&texel(p.x, p.y));
+  }
+  return c;
+}
+
+std::span<const Lobe> MaterialMip::lobes_at(const Choice& c, Lobe& scratch) const {
+  if (c.tap.level < 0) {
+    ParamTexel t = filter_params(param_, wrapped(c.footprint));
+    t.base_color *= c.tint;
+    scratch = param_lobe(t, baseline_of(c.filter));
+    return {&scratch, 1};
+  }
+  if (c.tap.level >= 1) return brdf_.texel(c.tap.level, c.tap.i, c.tap.j);
+  // Level 0 (the pyramid does not hold it twice): the texel's f_eff. With tint 1 the product is
+  // exact, so this is level0_lobe of the texel, the BRDF pyramid's level-0 lobe bit for bit.
+  const Texel& t = texel(c.tap.i, c.tap.j);
+  scratch = lobe_from_texel(t.base_color * c.tint, t.metallic, t.roughness, t.normal);
+  return {&scratch, 1};
+}
+
 std::span<const Lobe> MaterialMip::lobes(TextureFilter filter, const Footprint& f, const Rgb& tint, float u,
                                          Lobe& scratch) const {
-  if (filter == TextureFilter::brdf && tint == Rgb(1.0f)) {
-    const FilterTap t = select_tap(brdf_.level0(), brdf_.levels(), wrapped(f), u);  // O(1), mip_lookup.h
-    if (t.level >= 1) return brdf_.texel(t.level, t.i, t.j);
-    // Level 0 is the texel's own lobe (the pyramid does not hold it twice).
-    const Texel& x = texel(t.i, t.j);
-    scratch = lobe_from_texel(x.base_color, x.metallic, x.roughness, x.normal);
-    return {&scratch, 1};
-  }
-  if (uses_param(filter)) {
-    ParamTexel t = filter_params(param_, wrapped(f));
-    t.base_color *= tint;
-    scratch = param_lobe(t, baseline_of(filter));
-    return {&scratch, 1};
-  }
-  // level0, and brdf on a tinted hit: the nearest texel's f_eff. With tint 1 the product is exact,
-  // so this is level0_lobe of the texel, the BRDF pyramid's level-0 lobe bit for bit.
-  const glm::ivec2 p = nearest_texel(f.uv);
-  const Texel& t = texel(p.x, p.y);
-  scratch = lobe_from_texel(t.base_color * tint, t.metallic, t.roughness, t.normal);
-  return {&scratch, 1};
+  return lobes_at(choose(filter, f, tint, u), scratch);
 }
 
 SceneMips::SceneMips(const Scene& scene, const TextureSet& textures)

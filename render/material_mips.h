@@ -88,6 +88,18 @@ class MaterialMip {
   std::span<const Lobe> lobes(TextureFilter filter, const Footprint& texture_footprint, const Rgb& tint, float u,
                               Lobe& scratch) const;
 
+  // lobes() in two steps, so that a caller can do other work while the texel's memory arrives (the
+  // fetch into a large texture is most of a lookup's cost): choose() picks the texel — the brdf
+  // filter's stochastic tap, or the nearest level-0 texel — and prefetches it; lobes_at() reads it.
+  struct Choice {
+    TextureFilter filter = TextureFilter::level0;
+    Footprint footprint{};
+    Rgb tint{1.0f};
+    FilterTap tap{};  // level −1: the parameter filters' trilinear taps (read by lobes_at)
+  };
+  Choice choose(TextureFilter filter, const Footprint& texture_footprint, const Rgb& tint, float u) const;
+  std::span<const Lobe> lobes_at(const Choice& choice, Lobe& scratch) const;
+
   // The level-0 texel (column, row) nearest to a texture-space uv under the sampler's wrap modes.
   glm::ivec2 nearest_texel(glm::vec2 uv) const;
 
