@@ -1,5 +1,6 @@
 #include "mip/mip_data.h"
 
+#include <chrono>
 #include <string>
 
 #include "base/error.h"
@@ -7,11 +8,14 @@
 
 namespace svbrdf {
 
-MipData build_mip(MaterialTexels level0, const BrdfBuildOptions& options, std::vector<BrdfLevelStats>* stats) {
+MipData build_mip(MaterialTexels level0, const BrdfBuildOptions& options, std::vector<BrdfLevelStats>* stats,
+                  double* brdf_seconds) {
   MipData d;
   d.level0 = std::move(level0);
   d.param = ParamPyramid::build(d.level0);
+  const auto start = std::chrono::steady_clock::now();
   d.brdf = BrdfPyramid::build(d.level0, options, stats);
+  if (brdf_seconds) *brdf_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return d;
 }
 

@@ -35,9 +35,10 @@ inline std::span<const Lobe> brdf_texel(const MipData& mip, int level, int i, in
   return {&scratch, 1};
 }
 
-// Builds both pyramids over `level0` (moved in).
+// Builds both pyramids over `level0` (moved in); `brdf_seconds`, when given, receives the BRDF
+// pyramid's share of the time (the figure bench/results/mip.md sets against maketx).
 MipData build_mip(MaterialTexels level0, const BrdfBuildOptions& options = {},
-                  std::vector<BrdfLevelStats>* stats = nullptr);
+                  std::vector<BrdfLevelStats>* stats = nullptr, double* brdf_seconds = nullptr);
 
 // The ways to answer for a texel: the reference, the parameter pyramid and its engine baselines,
 // the BRDF pyramid.
