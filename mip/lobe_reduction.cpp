@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdint>
-#include <cstring>
+
+#include "base/series_log.h"
 
 namespace svbrdf {
 
@@ -29,21 +29,6 @@ constexpr double kProfileWeight = 25.0;
 constexpr std::size_t kProfileSteps = 15;
 
 double mean3(const glm::vec3& c) { return (double(c.x) + c.y + c.z) / 3.0; }
-
-// ln x for normal, finite x > 0, within 1e-9 of std::log (the series of 2·atanh((m − 1)/(m + 1)) to
-// s⁹ on a mantissa m in [√½, √2)), at a fraction of its cost: the profile cost takes 15 per merge.
-double quick_log(double x) {
-  if (!(x > 1e-300 && x < 1e300)) return std::log(x);
-  std::uint64_t bits;
-  std::memcpy(&bits, &x, sizeof bits);
-  int e = static_cast<int>((bits >> 52) & 0x7ff) - 1023;
-  bits = (bits & 0x000fffffffffffffull) | 0x3ff0000000000000ull;
-  double m;
-  std::memcpy(&m, &bits, sizeof m);
-  if (m > 1.4142135623730951) m *= 0.5, ++e;
-  const double t = (m - 1) / (m + 1), t2 = t * t;
-  return e * 0.69314718055994531 + 2 * t * (1 + t2 * (1.0 / 3 + t2 * (1.0 / 5 + t2 * (1.0 / 7 + t2 * (1.0 / 9)))));
-}
 
 // What the cost model needs of a lobe, computed once per lobe.
 struct Summary {
@@ -280,7 +265,7 @@ double union_cost(std::span<const Member> u, double self, const Summary& m, doub
       // (|q| < ½, a ratio within 3) the series to q⁹ (within 4e-5) in one division.
       const double q = (ap - ex) / (ap + ex), q2 = q * q;
       const double r = q2 < 0.25 ? 2 * q * (1 + q2 * (1.0 / 3 + q2 * (1.0 / 5 + q2 * (1.0 / 7 + q2 * (1.0 / 9)))))
-                                 : quick_log(ap / ex);
+                                 : series_log(ap / ex);
       e += r * r;
     }
   }
@@ -341,7 +326,7 @@ class SinhcInverse {
     return t;
   }
   double guess(double target) const {
-    const double w = quick_log(1.0 + std::sqrt(std::max(0.0, target - 1.0)));
+    const double w = series_log(1.0 + std::sqrt(std::max(0.0, target - 1.0)));
     if (!(w < kMaxW)) return std::log(2.0 * target * std::log(2.0 * target + 1.0) + 1.0);
     const double x = w / kMaxW * (kSize - 1);
     const int i = std::min(kSize - 2, static_cast<int>(x));

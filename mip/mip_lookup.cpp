@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <cstring>
+
+#include "base/series_log.h"
 
 namespace svbrdf {
 
@@ -20,20 +20,6 @@ int wrap(int i, int n) {
 int floor_int(float x) {
   const int i = static_cast<int>(x);
   return x < static_cast<float>(i) ? i - 1 : i;
-}
-
-// log2 x for finite x > 0: the exponent plus log2 of the mantissa m ∈ [1, 2) by the series of
-// 2·atanh((m − 1)/(m + 1))/ln 2 to the 7th power (within 2e-5; exact at powers of two, so footprints
-// of 2^k texels select level k exactly).
-float log2_positive(float x) {
-  std::uint32_t bits;
-  std::memcpy(&bits, &x, sizeof bits);
-  const int e = static_cast<int>((bits >> 23) & 0xff) - 127;
-  bits = (bits & 0x007fffffu) | 0x3f800000u;
-  float m;
-  std::memcpy(&m, &bits, sizeof m);
-  const float t = (m - 1.0f) / (m + 1.0f), t2 = t * t;
-  return static_cast<float>(e) + 2.8853900817779268f * t * (1.0f + t2 * (1.0f / 3 + t2 * (1.0f / 5 + t2 * (1.0f / 7))));
 }
 
 // The footprint's filter: the continuous level, the number of probes and where they sit.
@@ -57,13 +43,14 @@ FilterShape filter_shape(Extent level0, int levels, const Footprint& f, int max_
   glm::vec2 mx = f.duv_dx, my = f.duv_dy;
   if (!std::isfinite(ax.x) || !std::isfinite(ax.y)) ax = glm::vec2(0.0f), mx = glm::vec2(0.0f);
   if (!std::isfinite(ay.x) || !std::isfinite(ay.y)) ay = glm::vec2(0.0f), my = glm::vec2(0.0f);
-  float la = glm::length(ax), lb = glm::length(ay);
-  s.major_uv = mx;
-  if (lb > la) std::swap(la, lb), s.major_uv = my;
+  const float lx = glm::length(ax), ly = glm::length(ay);
+  // The longer axis is the major one (as selects: which one it is is a coin toss for round footprints).
+  const float la = std::max(lx, ly), lb = std::min(lx, ly), y_major = static_cast<float>(ly > lx);
+  s.major_uv = mx + y_major * (my - mx);
   const float minor = std::max(lb, la / static_cast<float>(max_probes));
   s.probes = minor > 0 ? std::clamp(-floor_int(-(la / minor - 1e-3f)), 1, max_probes) : 1;
   // Below one texel (or a denormal) the level is 0; above 2^31 texels, the coarsest.
-  s.lambda = minor >= 1.0f ? std::min(log2_positive(std::min(minor, 2e9f)), static_cast<float>(levels - 1)) : 0.0f;
+  s.lambda = minor >= 1.0f ? std::min(series_log2(std::min(minor, 2e9f)), static_cast<float>(levels - 1)) : 0.0f;
   s.level = static_cast<int>(s.lambda);
   s.t = s.lambda - static_cast<float>(s.level);
   if (s.level >= levels - 1) s.level = levels - 1, s.t = 0.0f;
@@ -108,15 +95,16 @@ void add_bilinear(FilterTaps& out, Extent e, int level, glm::vec2 uv, float weig
     if (w[k] > 0) out.taps[static_cast<std::size_t>(out.count++)] = {level, xs[k], ys[k], weight * w[k]};
 }
 
-// Splits u ∈ [0, 1) at p: which side, and u rescaled to [0, 1) within it. Written as selects, not
-// branches: the side is random by design, so a branch would be mispredicted half the time (three
-// splits per lookup made those most of select_tap's cost).
-// (p ∈ (0, 1] here: 1 − t and 1 − fx, and u < 1, so the side chosen never has zero width.)
+// Splits u ∈ [0, 1) at p: which side (0 or 1), and u rescaled to [0, 1) within it. The two sides'
+// reciprocals do not depend on u, so they are computed off the chain of three splits a lookup
+// makes, which then multiplies instead of dividing. (p ∈ (0, 1] here — 1 − t, 1 − fx, 1 − fy — and
+// u < 1, so the side chosen never has zero width.)
 int split(float& u, float p) {
-  const float high = static_cast<float>(u >= p);
-  const float num = u - high * p, den = p + high * (1.0f - 2.0f * p);
-  u = std::min(std::max(num, 0.0f) / std::max(den, 1e-30f), 0.99999994f);
-  return static_cast<int>(high);
+  const float inv_low = 1.0f / std::max(p, 1e-30f), inv_high = 1.0f / std::max(1.0f - p, 1e-30f);
+  const bool high = u >= p;
+  const float num = high ? u - p : u, inv = high ? inv_high : inv_low;
+  u = std::min(std::max(num, 0.0f) * inv, 0.99999994f);
+  return high ? 1 : 0;
 }
 
 }  // namespace
