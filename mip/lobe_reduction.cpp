@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <tuple>
+#include <utility>
 
 #include "base/series_log.h"
 
@@ -38,7 +40,8 @@ struct Summary {
   double d_z = 0;     // D at h = z (the geometric normal)
   double rho = 0;     // mean diffuse albedo
   double f0 = 0;      // mean F0
-  double alpha2 = 1;  // the core's width 1/P, for the Gaussian model of shape_cost
+  double alpha2 = 1;  // the core's width 1/P, for the Gaussian model of union_cost
+  double ln_alpha2 = 0;  // its logarithm (rough_distance)
   double ggx = 1;     // μ, the GGX share of a spread core (lobe.h)
   double tail = 0;    // A: the tail coefficient, D ≈ A/(π t²) far out
   double peak = 1;    // P: π·D at the lobe's own normal
@@ -89,6 +92,7 @@ Summary summarize(const Lobe& l) {
     s.peak = 1 / sh.alpha2;
   }
   s.alpha2 = 1 / s.peak;
+  s.ln_alpha2 = series_log(s.alpha2);
   s.d_z = d_at_z(sh);
   profile_of(sh, s.profile);
   return s;
@@ -380,8 +384,9 @@ void set_shape(Lobe& m, double A, double P) {
   }
 }
 
-// Merges the union u (whose specular norm² is `self`); returns the merged lobe, its summary and cost.
-Merged merge_union(std::span<const Member> u, double self, float spread_scale) {
+// Merges the union u (whose specular norm² is `self`); returns the merged lobe, its summary and, when
+// asked for (a candidate merge, not one already chosen), its cost.
+Merged merge_union(std::span<const Member> u, double self, float spread_scale, bool with_cost = true) {
   const MergeBase mb = merge_base(u);
   double K = 0;
   for (const Member& x : u) K += x.sum->amp;
@@ -401,13 +406,14 @@ Merged merge_union(std::span<const Member> u, double self, float spread_scale) {
   Merged best{mb.lobe, mb.summary, 0};
   set_shape(best.lobe, A / K, P / K);
   best.summary = summarize(best.lobe);
-  best.cost = union_cost(u, self, best.summary, by_amp ? 1.0 : 0.0);
+  if (with_cost) best.cost = union_cost(u, self, best.summary, by_amp ? 1.0 : 0.0);
   return best;
 }
 
-Merged merge_pair(const Lobe& a, const Summary& sa, const Lobe& b, const Summary& sb, float spread_scale) {
+Merged merge_pair(const Lobe& a, const Summary& sa, const Lobe& b, const Summary& sb, float spread_scale,
+                  bool with_cost = true) {
   const std::array<Member, 2> u{Member{&a, &sa}, Member{&b, &sb}};
-  return merge_union(u, union_spec_norm2(u), spread_scale);
+  return merge_union(u, with_cost ? union_spec_norm2(u) : 0.0, spread_scale, with_cost);
 }
 
 // Keeps the union's specular albedo: scales the merged lobe's weight (which scales its specular part)
@@ -456,12 +462,29 @@ double rough_distance(const Summary& a, const Summary& b) {
   const double amp = (a.amp + b.amp) / w;
   const glm::dvec3 dn = a.n - b.n;
   const double dn2 = glm::dot(dn, dn);
-  const double dl = std::log(a.alpha2 / b.alpha2);
+  const double dl = a.ln_alpha2 - b.ln_alpha2;
   const double rho = 0.5 * (a.rho + b.rho), f0 = 0.5 * (a.f0 + b.f0);
   const double horizon_amp = rho + f0 + 0.2 * (1.0 - f0);
   const double drho = a.rho - b.rho;
   return ab * (amp * amp / (2.0 * width) * (0.25 * dl * dl + dn2 / width) + 0.4 * horizon_amp * horizon_amp * std::sqrt(dn2)) +
          (4.0 / 3.0) * ab * ab * drho * drho * dn2;
+}
+
+// The pair (i < j < n) with the least M(i, j), the first of equals. Without data-dependent branches:
+// which of a texel's many near-equal costs is least is a coin toss a branch would mispredict.
+template <class M>
+std::pair<int, int> cheapest_pair(int n, M&& m) {
+  double best = INFINITY;
+  int bi = 0, bj = 1;
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n; ++j) {
+      const double v = m(i, j);
+      const bool less = v < best;
+      best = less ? v : best;
+      bi = less ? i : bi;
+      bj = less ? j : bj;
+    }
+  return {bi, bj};
 }
 
 // Lobes whose merge changes nothing measurable: the same normal, length and roughness.
@@ -476,7 +499,7 @@ bool near_duplicates(const Lobe& a, const Lobe& b) {
 Lobe merge_lobes(const Lobe& a, const Lobe& b, float spread_scale) {
   if (!(double(a.weight) + b.weight > 0)) return a;
   const Summary sa = summarize(a), sb = summarize(b);
-  Merged m = merge_pair(a, sa, b, sb, spread_scale);
+  Merged m = merge_pair(a, sa, b, sb, spread_scale, false);
   keep_specular_flux(std::array<Member, 2>{Member{&a, &sa}, Member{&b, &sb}}, m);
   return m.lobe;
 }
@@ -511,7 +534,7 @@ int reduce_lobes(std::span<Lobe> lobes, int n, const ReductionOptions& options) 
     // Merges lobe bj into lobe bi; the last lobe takes bj's place, with its row of the pair matrix M
     // (the caller recomputes bi's row).
     auto merge_into = [&](int bi, int bj, auto& M) {
-      Merged m = merge_pair(L(bi), S(bi), L(bj), S(bj), options.spread_scale);
+      Merged m = merge_pair(L(bi), S(bi), L(bj), S(bj), options.spread_scale, false);  // chosen: its cost is known
       keep_specular_flux(std::array<Member, 2>{Member{&L(bi), &S(bi)}, Member{&L(bj), &S(bj)}}, m);
       L(bi) = m.lobe;
       sum[static_cast<std::size_t>(bi)] = m.summary;
@@ -553,11 +576,7 @@ int reduce_lobes(std::span<Lobe> lobes, int n, const ReductionOptions& options) 
       for (int i = 0; i < n; ++i)
         for (int j = i + 1; j < n; ++j) D(i, j) = rough_distance(S(i), S(j));
       while (n > max_lobes) {
-        int bi = 0, bj = 1;
-        double best = INFINITY;
-        for (int i = 0; i < n; ++i)
-          for (int j = i + 1; j < n; ++j)
-            if (D(i, j) < best) best = D(i, j), bi = i, bj = j;
+        const auto [bi, bj] = cheapest_pair(n, D);
         merge_into(bi, bj, D);
         for (int i = 0; i < n; ++i)
           if (i != bi) D(i, bi) = rough_distance(S(i), S(bi));
@@ -590,10 +609,8 @@ int reduce_lobes(std::span<Lobe> lobes, int n, const ReductionOptions& options) 
       int bi = 0, bj = 1;
       double best = INFINITY;
       for (;;) {
-        best = INFINITY;
-        for (int i = 0; i < n; ++i)
-          for (int j = i + 1; j < n; ++j)
-            if (C(i, j) < best) best = C(i, j), bi = i, bj = j;
+        std::tie(bi, bj) = cheapest_pair(n, C);
+        best = C(bi, bj);
         if (exact[at(bi, bj)] || (n <= max_lobes && spent + best > budget)) break;
         C(bi, bj) = merge_pair(L(bi), S(bi), L(bj), S(bj), options.spread_scale).cost;
         exact[at(bi, bj)] = true;
