@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <string>
 
 #include <glm/gtc/packing.hpp>
@@ -17,7 +19,20 @@
 namespace svbrdf {
 
 namespace {
-float to_half(float x) { return glm::unpackHalf1x16(glm::packHalf1x16(x)); }
+// x rounded to the nearest half float (ties to even), as a float. In half's normal range by the bits:
+// drop 13 of the 23 mantissa bits with rounding (this runs for every stored number of every lobe);
+// elsewhere (zero, subnormal halves, overflow, NaN) through glm's conversion.
+float to_half(float x) {
+  const float a = std::abs(x);
+  if (!(a >= 6.103515625e-05f && a < 65504.0f)) return glm::unpackHalf1x16(glm::packHalf1x16(x));
+  std::uint32_t b;
+  std::memcpy(&b, &x, sizeof b);
+  b += 0x0fffu + ((b >> 13) & 1u);
+  b &= ~0x1fffu;
+  float r;
+  std::memcpy(&r, &b, sizeof r);
+  return r;
+}
 }  // namespace
 
 float lobe_shape_code(const Lobe& lobe) {

@@ -129,7 +129,7 @@ class SpecAlbedoTable {
     return t;
   }
   double albedo(double alpha2, double f0, double ggx) const {
-    return albedo_at_log(std::log(std::clamp(alpha2, kMin, 1.0)), f0, ggx);
+    return albedo_at_log(series_log(std::clamp(alpha2, kMin, 1.0)), f0, ggx);
   }
   // The same at ln α² (clamped to the table).
   double albedo_at_log(double ln_alpha2, double f0, double ggx) const {
