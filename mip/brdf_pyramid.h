@@ -4,10 +4,10 @@
 //
 // Level 0 is one lobe per texel, exactly f_eff: the level-0 texels themselves (level0_lobe), which the
 // pyramid does not hold a second time (brdf_texel in mip_data.h answers for any level). Level L is
-// built from level L − 1 only: a texel's
-// children's lobes, their weights scaled by the children's shares of its area, form the exact union
-// (the mean of the children's mixtures), which lobe_reduction.h reduces to at most `max_lobes` lobes.
-// The build is O(texels) and parallel over rows (oneTBB).
+// built from level L − 1 only: a texel's children's lobes, their weights scaled by the children's
+// shares of its area, form the exact union (the mean of the children's mixtures), which
+// lobe_reduction.h reduces to at most `max_lobes` lobes. The build is O(texels) and parallel over
+// bands of rows (oneTBB).
 //
 // Storage: per level the texels' lobes packed one texel after another (a texel of smooth material
 // keeps one lobe, so fixed slots would waste three quarters of a level at K = 4), with each texel's
