@@ -74,8 +74,8 @@ void accumulate(const Lobe& lobe, double scale, std::span<glm::dvec3> table) {
     root[k] = std::sqrt(a2 + (T(1) - a2) * si.c * si.c);
   }
   constexpr T kInvPi = T(0.318309886183790671537767526745);
-  const T nx = shape.n.x, ny = shape.n.y, nz = shape.n.z, ggx_a2_pi = shape.ggx * a2 * kInvPi;
-  const bool beckmann = shape.ggx != T(1);
+  // Plain GGX here (the shaped lobes took the loop above).
+  const T nx = shape.n.x, ny = shape.n.y, nz = shape.n.z, a2_pi = a2 * kInvPi;
   const T rho_r = T(0.96) * kInvPi * T(lobe.diffuse.r), rho_g = T(0.96) * kInvPi * T(lobe.diffuse.g),
           rho_b = T(0.96) * kInvPi * T(lobe.diffuse.b);
   const T f0r = lobe.f0.r, f0g = lobe.f0.g, f0b = lobe.f0.b;
@@ -100,9 +100,9 @@ void accumulate(const Lobe& lobe, double scale, std::span<glm::dvec3> table) {
       const T cx = ny * hz[o] - nz * hy[o], cy = nz * hx[o] - nx * hz[o], cz = nx * hy[o] - ny * hx[o];
       const T denom = cx * cx + cy * cy + cz * cz + ch * ch * a2;
       // denom ≥ α²·(n·h)² + |n×h|² > 0 for α² ≥ 1e-6, so the division is always safe to execute.
-      const T d = (ch > 0 ? T(1) : T(0)) * (ggx_a2_pi / (denom * denom));
+      const T d = (ch > 0 ? T(1) : T(0)) * (a2_pi / (denom * denom));
       const T vis = T(0.5) / (cosine[static_cast<std::size_t>(o)] * gi + ci * root[static_cast<std::size_t>(o)]);
-      const T w = fw[o], s = vis * (beckmann ? lobe_d(shape, ch, V3(cx, cy, cz)) : d), k = fi * wo_factor[static_cast<std::size_t>(o)];
+      const T w = fw[o], s = vis * d, k = fi * wo_factor[static_cast<std::size_t>(o)];
       out_r[static_cast<std::size_t>(o)] = k * ((T(1) - w) * rho_r + s * (f0r + (T(1) - f0r) * w));
       out_g[static_cast<std::size_t>(o)] = k * ((T(1) - w) * rho_g + s * (f0g + (T(1) - f0g) * w));
       out_b[static_cast<std::size_t>(o)] = k * ((T(1) - w) * rho_b + s * (f0b + (T(1) - f0b) * w));

@@ -32,6 +32,11 @@ constexpr std::size_t kProfileSteps = 15;
 
 double mean3(const glm::vec3& c) { return (double(c.x) + c.y + c.z) / 3.0; }
 
+// A lobe's specular amplitude, its share of the reflected flux for the cost model: F0 plus a little
+// for Fresnel's rise toward grazing angles, times its weight and cosine factor (the mean normal's
+// length).
+double specular_amp(double weight, double len, double f0) { return weight * len * (f0 + 0.05 * (1.0 - f0)); }
+
 // What the cost model needs of a lobe, computed once per lobe.
 struct Summary {
   glm::dvec3 n{0, 0, 1};  // unit normal
@@ -80,8 +85,7 @@ Summary summarize(const Lobe& l) {
   s.weight = l.weight;
   s.rho = mean3(l.diffuse);
   s.f0 = mean3(l.f0);
-  // F0 plus a little for Fresnel's rise toward grazing angles; len: the lobe's cosine factor.
-  s.amp = double(l.weight) * len * (s.f0 + 0.05 * (1.0 - s.f0));
+  s.amp = specular_amp(l.weight, len, s.f0);
   const LobeShape<double> sh = lobe_shape<double>(l, false);
   s.ggx = sh.ggx;
   if (sh.lmean > 0) {
@@ -234,7 +238,7 @@ double union_cost_bound(std::span<const Member> u) {
 // about the geometric normal, the core widths and the log profile, each below. For two lobes these
 // are the terms of the pair; for more, the pair terms summed over the pairs (horizons) or the union's
 // sums in place of the pair's.
-double union_cost(std::span<const Member> u, double self, const Summary& m, double profile_norm) {
+double union_cost(std::span<const Member> u, double self, const Summary& m, bool by_amp) {
   double Am = 0, peak = 0, width = 0, spec = self, W = 0;
   for (const Member& x : u) Am += x.sum->amp, W += x.sum->weight;
   spec += Am * Am * spec_inner(m.alpha2, m.alpha2, 0);
@@ -258,12 +262,13 @@ double union_cost(std::span<const Member> u, double self, const Summary& m, doub
   // terms above allow.
   width -= m.amp * m.ggx * m.alpha2;
   // The log profile: what the moments do not pin, the shape between peak and tail (profile_of), with
-  // the lobes weighted by their amplitudes (by weight when no lobe has a specular part).
+  // the lobes weighted by their amplitudes (by weight when no lobe has a specular part: !by_amp).
+  const double k = by_amp ? Am : W;
   double e = 0;
   for (std::size_t j = 0; j < kProfileSteps; ++j) {
     double ex = 0;
-    for (const Member& x : u) ex += (profile_norm > 0 ? x.sum->amp : x.sum->weight) * x.sum->profile[j];
-    const double ap = (profile_norm > 0 ? Am : W) * m.profile[j];
+    for (const Member& x : u) ex += (by_amp ? x.sum->amp : x.sum->weight) * x.sum->profile[j];
+    const double ap = k * m.profile[j];
     if (ex > 0 && ap > 0) {
       // ln(ap/ex) = 2·atanh(q), q = (ap − ex)/(ap + ex): for the near matches that decide merges
       // (|q| < ½, a ratio within 3) the series to q⁹ (within 4e-5) in one division.
@@ -273,7 +278,6 @@ double union_cost(std::span<const Member> u, double self, const Summary& m, doub
       e += r * r;
     }
   }
-  const double k = profile_norm > 0 ? Am : W;
   return std::max(0.0, spec) + horizon + kPeakWeight * peak * peak +
          width * width / (3 * kPi * kResolutionAlpha2 * kResolutionAlpha2 * kResolutionAlpha2) +
          kProfileWeight * k * k * e / kProfileSteps;
@@ -290,12 +294,13 @@ MergeBase merge_base(std::span<const Member> u) {
   Lobe& m = mb.lobe;
   double w = 0;
   for (const Member& x : u) w += x.lobe->weight;
+  // Shares by one reciprocal: this runs for every candidate merge of every texel.
+  const double inv_w = 1.0 / w;
   glm::dvec3 diffuse(0), f0(0), nbar(0);
   Summary& s = mb.summary;
   s.rho = s.f0 = 0;
   for (const Member& x : u) {
-    // Shares instead of divisions: this runs for every candidate pair of every texel.
-    const double t = x.lobe->weight / w;
+    const double t = x.lobe->weight * inv_w;
     diffuse += t * glm::dvec3(x.lobe->diffuse);
     f0 += t * glm::dvec3(x.lobe->f0);
     nbar += t * glm::dvec3(x.lobe->normal);
@@ -309,7 +314,7 @@ MergeBase merge_base(std::span<const Member> u) {
   const double len = glm::length(nbar);
   s.n = len > 0 ? nbar * (1.0 / len) : glm::dvec3(0, 0, 1);
   s.weight = w;
-  s.amp = w * len * (s.f0 + 0.05 * (1.0 - s.f0));
+  s.amp = specular_amp(w, len, s.f0);
   return mb;
 }
 
@@ -406,7 +411,7 @@ Merged merge_union(std::span<const Member> u, double self, float spread_scale, b
   Merged best{mb.lobe, mb.summary, 0};
   set_shape(best.lobe, A / K, P / K);
   best.summary = summarize(best.lobe);
-  if (with_cost) best.cost = union_cost(u, self, best.summary, by_amp ? 1.0 : 0.0);
+  if (with_cost) best.cost = union_cost(u, self, best.summary, by_amp);
   return best;
 }
 
@@ -445,7 +450,7 @@ void keep_specular_flux(std::span<const Member> u, Merged& m) {
     m.summary.weight = m.lobe.weight;
     m.summary.rho = mean3(m.lobe.diffuse);
     m.summary.f0 = mean3(m.lobe.f0);
-    m.summary.amp = double(m.lobe.weight) * len * (m.summary.f0 + 0.05 * (1.0 - m.summary.f0));
+    m.summary.amp = specular_amp(m.lobe.weight, len, m.summary.f0);
   }
 }
 
