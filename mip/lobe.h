@@ -81,6 +81,7 @@ template <class T>
 struct PairTerms {
   glm::vec<3, T> wi{0, 0, 1}, wo{0, 0, 1}, h{0, 0, 1};
   T fresnel_w = 0;     // (1 − |wo·h|)^5
+  T inv_wi_z = 0;      // 1/wi.z, the f_eff factor's denominator, once for all the lobes
   bool valid = false;  // both above the geometric horizon
 };
 
@@ -93,6 +94,7 @@ PairTerms<T> pair_terms(const glm::vec<3, T>& wi, const glm::vec<3, T>& wo) {
   p.h = glm::normalize(wi + wo);
   const T x = T(1) - std::abs(glm::dot(wo, p.h));
   p.fresnel_w = (x * x) * (x * x) * x;
+  p.inv_wi_z = T(1) / wi.z;
   p.valid = true;
   return p;
 }
@@ -140,7 +142,10 @@ LobeShape<T> lobe_shape(const Lobe& lobe, bool with_nodes = true) {
     s.lmean = s.alpha2 * x / span;
     if (with_nodes) {
       // l·(h/l)^t at t = ½ ∓ √(3/20) and ½: the outer two are l·e and h/e with e = (h/l)^0.1127.
-      const T e = std::exp(T(0.11270166537925831) * span);
+      const T x01 = T(0.11270166537925831) * span;
+      T e;
+      if constexpr (std::is_same_v<T, float>) e = series_exp(x01);  // every hit's lobes: no libm call
+      else e = std::exp(x01);
       s.node_a2[0] = s.alpha2 * e;
       s.node_a2[1] = std::sqrt(s.alpha2 * s.alpha2_hi);
       s.node_a2[2] = s.alpha2_hi / e;
@@ -206,7 +211,12 @@ T lobe_d(const LobeShape<T>& s, T ch, const glm::vec<3, T>& nxh) {
     // Past tan²θ/α² = 60 the Beckmann share is below e⁻⁶⁰ of its peak: skipped, which also keeps
     // 0·∞ out at grazing half vectors.
     const T c2 = ch * ch, x = sin2 / (c2 * a2);
-    if (x < T(60)) d += (T(1) - s.ggx) * std::exp(-x) * kInvPi / (a2 * c2 * c2);
+    if (x < T(60)) {
+      T ex;
+      if constexpr (std::is_same_v<T, float>) ex = series_exp(-x);
+      else ex = std::exp(-x);
+      d += (T(1) - s.ggx) * ex * kInvPi / (a2 * c2 * c2);
+    }
   }
   return d;
 }
@@ -274,7 +284,7 @@ glm::vec<3, T> lobe_eval(const Lobe& lobe, const LobeShape<T>& s, const PairTerm
   if (!(i.factor > 0)) return V3(0);
   const LobeSide<T> o = lobe_wo_side(s, glm::dot(s.n, p.wo));
   if (!(o.factor > 0)) return V3(0);
-  return (T(lobe.weight) * i.factor * o.factor / p.wi.z) * lobe_brdf(lobe, s, p, i.c, o.c);
+  return (T(lobe.weight) * i.factor * o.factor * p.inv_wi_z) * lobe_brdf(lobe, s, p, i.c, o.c);
 }
 
 template <class T>

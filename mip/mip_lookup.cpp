@@ -32,7 +32,7 @@ struct FilterShape {
   float lambda = 0.0f;
 };
 
-FilterShape filter_shape(Extent level0, int levels, const Footprint& f, int max_probes) {
+[[gnu::always_inline]] inline FilterShape filter_shape(Extent level0, int levels, const Footprint& f, int max_probes) {
   FilterShape s;
   max_probes = std::clamp(max_probes, 1, kMaxProbes);
   s.uv = f.uv;
@@ -67,7 +67,7 @@ struct Bilinear {
   int x0, x1, y0, y1;
   float fx, fy;
 };
-Bilinear bilinear(Extent e, glm::vec2 uv) {
+[[gnu::always_inline]] inline Bilinear bilinear(Extent e, glm::vec2 uv) {
   const float x = uv.x * static_cast<float>(e.width) - 0.5f, y = uv.y * static_cast<float>(e.height) - 0.5f;
   // Far from the texture (|x| ≥ 2^24) floats are integers already.
   const float fx0 = std::abs(x) < 16777216.0f ? static_cast<float>(floor_int(x)) : x;
@@ -99,12 +99,15 @@ void add_bilinear(FilterTaps& out, Extent e, int level, glm::vec2 uv, float weig
 // reciprocals do not depend on u, so they are computed off the chain of three splits a lookup
 // makes, which then multiplies instead of dividing. (p ∈ (0, 1] here — 1 − t, 1 − fx, 1 − fy — and
 // u < 1, so the side chosen never has zero width.)
+// The side is a 0/1 factor, not a branch: u is random, so a branch would be mispredicted half the
+// time (three splits a lookup).
 int split(float& u, float p) {
   const float inv_low = 1.0f / std::max(p, 1e-30f), inv_high = 1.0f / std::max(1.0f - p, 1e-30f);
-  const bool high = u >= p;
-  const float num = high ? u - p : u, inv = high ? inv_high : inv_low;
+  const int high = static_cast<int>(u >= p);
+  const float h = static_cast<float>(high);
+  const float num = u - h * p, inv = inv_low + h * (inv_high - inv_low);
   u = std::min(std::max(num, 0.0f) * inv, 0.99999994f);
-  return high ? 1 : 0;
+  return high;
 }
 
 }  // namespace
