@@ -53,41 +53,6 @@ CameraDesc Camera::framing(const glm::vec3& lo, const glm::vec3& hi) {
   return d;
 }
 
-Ray Camera::ray_at(float x, float y) const {
-  const glm::vec3 q = corner_ + x * dx_ + y * dy_;
-  Ray r;
-  if (type_ == CameraDesc::Type::perspective) {
-    const float len = std::sqrt(glm::dot(q, q));
-    r.origin = position_;
-    r.dir = q * (1.0f / len);
-    // znear/zfar are distances along −Z; along this ray they scale by len.
-    r.tnear = znear_ * len;
-    r.tfar = zfar_ > 0.0f ? zfar_ * len : 3.4e38f;
-  } else {
-    r.origin = position_ + q;
-    r.dir = forward_;
-    r.tnear = znear_;
-    r.tfar = zfar_ > 0.0f ? zfar_ : 3.4e38f;
-  }
-  return r;
-}
-
-CameraRay Camera::generate(float x, float y) const {
-  CameraRay cr;
-  cr.ray = ray_at(x, y);
-  // The offset rays through (x + 1, y) and (x, y + 1), their directions left unnormalized: only
-  // the lines matter (camera_dp intersects them with the tangent plane).
-  if (type_ == CameraDesc::Type::perspective) {
-    const glm::vec3 q = corner_ + x * dx_ + y * dy_;
-    cr.dx_origin = cr.dy_origin = position_;
-    cr.dx_dir = q + dx_, cr.dy_dir = q + dy_;
-  } else {
-    cr.dx_origin = cr.ray.origin + dx_, cr.dy_origin = cr.ray.origin + dy_;
-    cr.dx_dir = cr.dy_dir = forward_;
-  }
-  return cr;
-}
-
 void Camera::approximate_dp(const glm::vec3& p, const glm::vec3& n, glm::vec3& dpdx, glm::vec3& dpdy) const {
   // The camera's one-pixel offsets at the image centre, applied to a camera ray aimed at p.
   glm::vec3 o, d, ox, dx, oy, dy;

@@ -3,6 +3,8 @@
 // half height), placed by their node. Camera rays carry exact differentials — the rays through the
 // next pixel to the right and below — from which each hit's texture footprint follows
 // (Igehy 1999, "Tracing ray differentials"; pbrt-v4 §10.1).
+#include <cmath>
+
 #include <glm/glm.hpp>
 
 #include "render/scene.h"
@@ -58,5 +60,42 @@ class Camera {
   glm::vec3 dx_, dy_, corner_;                 // film (x, y) ↦ corner + x·dx + y·dy on the image plane
   float znear_ = 0.0f, zfar_ = 0.0f;
 };
+
+// Inline: every camera sample calls these, and a call returning the rays through memory cost the
+// sample a store-forwarding stall on each read of them (bench/results/render.md).
+inline Ray Camera::ray_at(float x, float y) const {
+  const glm::vec3 q = corner_ + x * dx_ + y * dy_;
+  Ray r;
+  if (type_ == CameraDesc::Type::perspective) {
+    const float len = std::sqrt(glm::dot(q, q));
+    r.origin = position_;
+    r.dir = q * (1.0f / len);
+    // znear/zfar are distances along −Z; along this ray they scale by len.
+    r.tnear = znear_ * len;
+    r.tfar = zfar_ > 0.0f ? zfar_ * len : 3.4e38f;
+  } else {
+    r.origin = position_ + q;
+    r.dir = forward_;
+    r.tnear = znear_;
+    r.tfar = zfar_ > 0.0f ? zfar_ : 3.4e38f;
+  }
+  return r;
+}
+
+inline CameraRay Camera::generate(float x, float y) const {
+  CameraRay cr;
+  cr.ray = ray_at(x, y);
+  // The offset rays through (x + 1, y) and (x, y + 1), their directions left unnormalized: only
+  // the lines matter (camera_dp intersects them with the tangent plane).
+  if (type_ == CameraDesc::Type::perspective) {
+    const glm::vec3 q = corner_ + x * dx_ + y * dy_;
+    cr.dx_origin = cr.dy_origin = position_;
+    cr.dx_dir = q + dx_, cr.dy_dir = q + dy_;
+  } else {
+    cr.dx_origin = cr.ray.origin + dx_, cr.dy_origin = cr.ray.origin + dy_;
+    cr.dx_dir = cr.dy_dir = forward_;
+  }
+  return cr;
+}
 
 }  // namespace svbrdf

@@ -195,7 +195,7 @@ EmbreeScene::~EmbreeScene() {
     if (s) rtcReleaseScene(s);
 }
 
-RayHit EmbreeScene::intersect(const glm::vec3& o, const glm::vec3& d, float tnear, float tfar,
+RayHit EmbreeScene::intersect(glm::vec3 o, glm::vec3 d, float tnear, float tfar,
                               std::uint64_t seed) const {
   TraceContext ctx;
   rtcInitIntersectContext(&ctx.embree);
@@ -225,7 +225,7 @@ RayHit EmbreeScene::intersect(const glm::vec3& o, const glm::vec3& d, float tnea
   return out;
 }
 
-bool EmbreeScene::occluded(const glm::vec3& o, const glm::vec3& d, float tnear, float tfar, std::uint64_t seed) const {
+bool EmbreeScene::occluded(glm::vec3 o, glm::vec3 d, float tnear, float tfar, std::uint64_t seed) const {
   TraceContext ctx;
   rtcInitIntersectContext(&ctx.embree);
   ctx.seed = seed;

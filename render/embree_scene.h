@@ -57,9 +57,9 @@ class EmbreeScene {
   EmbreeScene& operator=(const EmbreeScene&) = delete;
 
   // The closest hit in (tnear, tfar); `seed` drives stochastic opacity.
-  RayHit intersect(const glm::vec3& origin, const glm::vec3& dir, float tnear, float tfar, std::uint64_t seed) const;
+  RayHit intersect(glm::vec3 origin, glm::vec3 dir, float tnear, float tfar, std::uint64_t seed) const;
   // Whether anything blocks the segment (tnear, tfar) along the ray.
-  bool occluded(const glm::vec3& origin, const glm::vec3& dir, float tnear, float tfar, std::uint64_t seed) const;
+  bool occluded(glm::vec3 origin, glm::vec3 dir, float tnear, float tfar, std::uint64_t seed) const;
 
   RTCScene handle() const { return top_; }
   glm::vec3 bounds_min() const { return bounds_min_; }

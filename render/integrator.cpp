@@ -109,6 +109,34 @@ PathSample trace_path(const RenderWorld& w, const IntegratorSettings& s, float f
     }
     if (depth == 0) out.depth = hit.t;
 
+    // The texel the lobes come from is chosen, and its memory asked for, with the emission's; the
+    // environment's shadow ray below is traced while they arrive (a texel of a large texture is a
+    // cache miss, most of a lookup's cost).
+    Footprint fp;
+    MaterialMip::Choice choice;
+    if (mip) {
+      fp = mip->to_texture(footprint(sp, mip->uv_set(), dpdx, dpdy));
+      choice = mip->choose(s.filter, fp, Rgb(sp.color), u_select);
+      prefetch_emission(sp, *w.textures);
+    }
+
+    // Next-event estimation of the environment, its shadow ray first: the ray needs the hit's
+    // position and geometric normal only, not the BSDF (the contribution is added below, once the
+    // BSDF is known). Nothing is drawn where the path ends at this hit.
+    const bool scatters = depth < s.max_depth && (mip || !sp.material->unlit);
+    glm::vec3 env_dir(0.0f);
+    float env_pdf = 0.0f;
+    bool env_visible = false;
+    if (scatters) {
+      if (env_on && s.light_sampling != LightSampling::bsdf) {
+        env_dir = w.environment.sample({u1(), u1()}, env_pdf);
+        env_visible = env_pdf > 0.0f && glm::dot(env_dir, sp.ng) > 0.0f &&
+                      !occluded(offset_origin(sp.p, sp.ng, env_dir, w.scene_extent), env_dir, kInfinity);
+      } else {
+        u1(), u1();  // keep the random sequence's layout the same across strategies
+      }
+    }
+
     // The BSDF at the hit and the frame it works in. A material with MIP data is shaded by the
     // filter's lobes in the geometric tangent frame (the lobes carry the normal-mapped normals);
     // any other by SurfaceBsdf in the normal-mapped shading frame.
@@ -117,10 +145,6 @@ PathSample trace_path(const RenderWorld& w, const IntegratorSettings& s, float f
     Frame frame;
     Rgb emission(0.0f);
     if (mip) {
-      const Footprint fp = mip->to_texture(footprint(sp, mip->uv_set(), dpdx, dpdy));
-      // The texel is chosen (and its memory asked for) first; the frame and the emission are
-      // computed while it arrives.
-      const MaterialMip::Choice choice = mip->choose(s.filter, fp, Rgb(sp.color), u_select);
       frame = geometric_frame(sp);
       emission = emission_at(sp, *w.textures);
       Lobe scratch;
@@ -164,23 +188,14 @@ PathSample trace_path(const RenderWorld& w, const IntegratorSettings& s, float f
       const float tmax = std::isinf(a.distance) ? kInfinity : glm::length(light.position - o) * (1.0f - 1e-5f);
       if (!occluded(o, a.wi, tmax)) out.radiance += beta * f * a.irradiance * wi.z;
     }
-    // Next-event estimation: the environment.
-    if (env_on && s.light_sampling != LightSampling::bsdf) {
-      float pdf_light = 0.0f;
-      const glm::vec3 dir = w.environment.sample({u1(), u1()}, pdf_light);
-      if (pdf_light > 0.0f && glm::dot(dir, sp.ng) > 0.0f) {
-        const glm::vec3 wi = frame.to_local(dir);
-        const Rgb f = bsdf->eval(wi, wo);
-        if (max3(f) > 0.0f) {
-          if (!occluded(offset_origin(sp.p, sp.ng, dir, w.scene_extent), dir, kInfinity)) {
-            const float weight =
-                s.light_sampling == LightSampling::mis ? power_heuristic(pdf_light, bsdf->pdf(wi, wo)) : 1.0f;
-            out.radiance += beta * f * w.environment.radiance(dir) * (wi.z * weight / pdf_light);
-          }
-        }
+    // Next-event estimation: the environment, whose shadow ray was traced above.
+    if (env_visible) {
+      const glm::vec3 wi = frame.to_local(env_dir);
+      const Rgb f = bsdf->eval(wi, wo);
+      if (max3(f) > 0.0f) {
+        const float weight = s.light_sampling == LightSampling::mis ? power_heuristic(env_pdf, bsdf->pdf(wi, wo)) : 1.0f;
+        out.radiance += beta * f * w.environment.radiance(env_dir) * (wi.z * weight / env_pdf);
       }
-    } else {
-      u1(), u1();  // keep the random sequence's layout the same across strategies
     }
 
     // Continue the path by sampling the BSDF.

@@ -136,6 +136,12 @@ Rgb emission_at(const SurfacePoint& sp, const TextureSet& textures) {
   return e;
 }
 
+void prefetch_emission(const SurfacePoint& sp, const TextureSet& textures) {
+  const MaterialDesc& m = *sp.material;
+  if (m.emissive_texture.present() && m.emissive * m.emissive_strength != Rgb(0.0f))
+    textures.prefetch(m.emissive_texture, sp.uv[m.emissive_texture.uv_set()]);
+}
+
 Rgb base_color_at(const SurfacePoint& sp, const TextureSet& textures) {
   const MaterialDesc& m = *sp.material;
   Rgb c = m.base_color * Rgb(sp.color);

@@ -48,6 +48,8 @@ ShadingParams shading_params(const SurfacePoint& sp, const TextureSet& textures)
 // The parts of shading_params that the MIP filters do not cover: emission, and the base color (for
 // the albedo AOV), both at level0.
 Rgb emission_at(const SurfacePoint& sp, const TextureSet& textures);
+// Prefetches the texel emission_at will read, if it reads one.
+void prefetch_emission(const SurfacePoint& sp, const TextureSet& textures);
 Rgb base_color_at(const SurfacePoint& sp, const TextureSet& textures);
 
 // The geometric tangent frame of brdf-mip.md at a hit, in which normal maps are defined: z = the

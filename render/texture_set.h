@@ -57,6 +57,18 @@ class TextureSet {
     return sample(image, p.sampler, t);
   }
 
+  // Asks the memory system for the texel lookup(ref, uv, ·) reads (on the 8-bit path; a float image
+  // is left alone), for a caller with other work to do before the lookup.
+  void prefetch(const TextureRef& ref, glm::vec2 uv) const {
+    const Prepared& p = textures_[static_cast<std::size_t>(ref.texture)];
+    if (const Packed* k = p.packed) {
+      const glm::vec2 t = ref.transform.apply(uv);
+      const int i = nearest_texel_index(t.x, k->width, p.sampler.wrap_s, p.mask_s);
+      const int j = nearest_texel_index(t.y, k->height, p.sampler.wrap_t, p.mask_t);
+      __builtin_prefetch(&k->codes[4 * (static_cast<std::size_t>(j) * k->width + i)]);
+    }
+  }
+
   // The image a slot reads: the linearized copy when `color` and one exists, else as stored.
   const Image& image(const TextureRef& ref, bool color) const {
     const Prepared& p = textures_[static_cast<std::size_t>(ref.texture)];
