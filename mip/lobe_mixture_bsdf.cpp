@@ -10,6 +10,18 @@ namespace svbrdf {
 
 namespace {
 float mean3(const glm::vec3& c) { return (c.x + c.y + c.z) * (1.0f / 3.0f); }
+
+// The density of the specular sampler of a lobe (GGX visible normals about n, Heitz 2018) for the
+// reflected direction, from the cosines alone: D_wo(h)/(4·(wo·h)) = G1(wo)·D(h)/(4·(n·wo)) with
+// G1 = 2/(1 + √(1 + α²·tan²θo)) and D = α²/(π·(|n×h|² + (n·h)²·α²)²) (Walter et al. 2007, eqs. 33, 34;
+// Heitz 2014, eq. 2). |n×h|² rather than 1 − (n·h)² keeps the peak of sharp lobes exact.
+float ggx_reflection_pdf(float alpha2, float co, float ch, float sin2h) {
+  const float t2o = std::max(0.0f, 1.0f - co * co) / (co * co);
+  const float g1 = 2.0f / (1.0f + std::sqrt(1.0f + alpha2 * t2o));
+  const float q = sin2h + ch * ch * alpha2;
+  return g1 * alpha2 * kInvPi / (q * q * 4.0f * co);
+}
+
 }  // namespace
 
 void LobeMixtureBsdf::assign(std::span<const Lobe> lobes) {
@@ -61,25 +73,25 @@ float LobeMixtureBsdf::pdf_with(const Choice& c, const glm::vec3& wi, const glm:
   for (int k = 0; k < count_; ++k) used += c.lobe[static_cast<std::size_t>(k)];
   if (used == 0) defensive = 1.0f;  // no lobe to sample: all defensive
   pdf += defensive * cosine_hemisphere_pdf(wi.z);
+  // The half vector is every lobe's; each lobe's density needs only its cosines (no frame per lobe).
+  const glm::vec3 hsum = wi + wo;
+  const float hlen2 = glm::dot(hsum, hsum);
+  const glm::vec3 h = hlen2 > 0 ? hsum * (1.0f / std::sqrt(hlen2)) : hsum;
+  const bool h_ok = hlen2 > 0 && glm::dot(wo, h) > 0;
   for (int k = 0; k < count_; ++k) {
     const std::size_t i = static_cast<std::size_t>(k);
     if (!(c.lobe[i] > 0)) continue;
-    const glm::vec3 n = slot(k).shape.n;
-    float p = c.diffuse[i] * cosine_hemisphere_pdf(glm::dot(n, wi));
-    if (c.diffuse[i] < 1.0f) {
-      const Frame fr = Frame::from_normal(n);
-      const glm::vec3 wo_l = fr.to_local(wo), wi_l = fr.to_local(wi);
-      const glm::vec3 hsum = wi_l + wo_l;
-      const float len = glm::length(hsum);
-      if (len > 0) {
-        const glm::vec3 h = hsum / len;
-        const float oh = glm::dot(wo_l, h);
-        if (oh > 0) {
-          const LobeShape<float>& sh = slot(k).shape;
-          float vis = ggx_visible_pdf(std::sqrt(sh.alpha2), wo_l, h);
-          if (sh.lmean > 0) vis = 0.5f * (vis + ggx_visible_pdf(std::sqrt(sh.alpha2_hi), wo_l, h));
-          p += (1.0f - c.diffuse[i]) * vis / (4.0f * oh);
-        }
+    const LobeShape<float>& sh = slot(k).shape;
+    float p = c.diffuse[i] * cosine_hemisphere_pdf(glm::dot(sh.n, wi));
+    if (c.diffuse[i] < 1.0f && h_ok) {
+      const float co = glm::dot(sh.n, wo), ch = glm::dot(sh.n, h);
+      if (co > 0 && ch > 0) {
+        const glm::vec3 nxh = glm::cross(sh.n, h);
+        const float sin2h = glm::dot(nxh, nxh);
+        float vis = ggx_reflection_pdf(sh.alpha2, co, ch, sin2h);
+        // A roughness mixture is sampled half from each end of its range (sample below).
+        if (sh.lmean > 0) vis = 0.5f * (vis + ggx_reflection_pdf(sh.alpha2_hi, co, ch, sin2h));
+        p += (1.0f - c.diffuse[i]) * vis;
       }
     }
     pdf += c.lobe[i] * p;

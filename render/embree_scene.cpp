@@ -195,14 +195,14 @@ EmbreeScene::~EmbreeScene() {
     if (s) rtcReleaseScene(s);
 }
 
-RayHit EmbreeScene::intersect(glm::vec3 o, glm::vec3 d, float tnear, float tfar,
-                              std::uint64_t seed) const {
+RayHit EmbreeScene::intersect_components(float ox, float oy, float oz, float dx, float dy, float dz, float tnear,
+                                         float tfar, std::uint64_t seed) const {
   TraceContext ctx;
   rtcInitIntersectContext(&ctx.embree);
   ctx.seed = seed;
   RTCRayHit rh;
-  rh.ray.org_x = o.x, rh.ray.org_y = o.y, rh.ray.org_z = o.z;
-  rh.ray.dir_x = d.x, rh.ray.dir_y = d.y, rh.ray.dir_z = d.z;
+  rh.ray.org_x = ox, rh.ray.org_y = oy, rh.ray.org_z = oz;
+  rh.ray.dir_x = dx, rh.ray.dir_y = dy, rh.ray.dir_z = dz;
   rh.ray.tnear = tnear, rh.ray.tfar = tfar;
   rh.ray.time = 0, rh.ray.mask = ~0u, rh.ray.id = 0, rh.ray.flags = 0;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
@@ -225,13 +225,14 @@ RayHit EmbreeScene::intersect(glm::vec3 o, glm::vec3 d, float tnear, float tfar,
   return out;
 }
 
-bool EmbreeScene::occluded(glm::vec3 o, glm::vec3 d, float tnear, float tfar, std::uint64_t seed) const {
+bool EmbreeScene::occluded_components(float ox, float oy, float oz, float dx, float dy, float dz, float tnear,
+                                      float tfar, std::uint64_t seed) const {
   TraceContext ctx;
   rtcInitIntersectContext(&ctx.embree);
   ctx.seed = seed;
   RTCRay r;
-  r.org_x = o.x, r.org_y = o.y, r.org_z = o.z;
-  r.dir_x = d.x, r.dir_y = d.y, r.dir_z = d.z;
+  r.org_x = ox, r.org_y = oy, r.org_z = oz;
+  r.dir_x = dx, r.dir_y = dy, r.dir_z = dz;
   r.tnear = tnear, r.tfar = tfar;
   r.time = 0, r.mask = ~0u, r.id = 0, r.flags = 0;
   rtcOccluded1(top_, &ctx.embree, &r);

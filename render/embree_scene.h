@@ -57,9 +57,13 @@ class EmbreeScene {
   EmbreeScene& operator=(const EmbreeScene&) = delete;
 
   // The closest hit in (tnear, tfar); `seed` drives stochastic opacity.
-  RayHit intersect(glm::vec3 origin, glm::vec3 dir, float tnear, float tfar, std::uint64_t seed) const;
+  RayHit intersect(const glm::vec3& origin, const glm::vec3& dir, float tnear, float tfar, std::uint64_t seed) const {
+    return intersect_components(origin.x, origin.y, origin.z, dir.x, dir.y, dir.z, tnear, tfar, seed);
+  }
   // Whether anything blocks the segment (tnear, tfar) along the ray.
-  bool occluded(glm::vec3 origin, glm::vec3 dir, float tnear, float tfar, std::uint64_t seed) const;
+  bool occluded(const glm::vec3& origin, const glm::vec3& dir, float tnear, float tfar, std::uint64_t seed) const {
+    return occluded_components(origin.x, origin.y, origin.z, dir.x, dir.y, dir.z, tnear, tfar, seed);
+  }
 
   RTCScene handle() const { return top_; }
   glm::vec3 bounds_min() const { return bounds_min_; }
@@ -71,6 +75,13 @@ class EmbreeScene {
   const glm::mat3& normal_to_world(int instance) const { return normal_to_world_[static_cast<std::size_t>(instance)]; }
 
  private:
+  // intersect and occluded (inline, above) take the ray's components one by one: a vector passed by
+  // value is read as 8 + 4 bytes, and where the caller wrote it a float at a time that read stalls
+  // store-to-load forwarding, once per ray (bench/results/render.md).
+  RayHit intersect_components(float ox, float oy, float oz, float dx, float dy, float dz, float tnear, float tfar,
+                              std::uint64_t seed) const;
+  bool occluded_components(float ox, float oy, float oz, float dx, float dy, float dz, float tnear, float tfar,
+                           std::uint64_t seed) const;
   RTCGeometry make_triangles(const MeshPrimitive& prim, const glm::dmat4* bake, bool flip, GeometryData* data) const;
 
   RTCDevice device_;
