@@ -22,6 +22,11 @@ int floor_int(float x) {
   return x < static_cast<float>(i) ? i - 1 : i;
 }
 
+// 1/k for the probe counts k = 1..kMaxProbes (index 0 unused): multiplications where a lookup would
+// otherwise queue more divisions on the divider.
+constexpr float kInverse[kMaxProbes + 1] = {0.0f, 1.0f, 1.0f / 2, 1.0f / 3, 1.0f / 4, 1.0f / 5, 1.0f / 6, 1.0f / 7, 1.0f / 8};
+static_assert(kMaxProbes == 8, "kInverse lists 1/k up to kMaxProbes");
+
 // The footprint's filter: the continuous level, the number of probes and where they sit.
 struct FilterShape {
   glm::vec2 uv{0.0f};
@@ -47,7 +52,7 @@ struct FilterShape {
   // The longer axis is the major one (as selects: which one it is is a coin toss for round footprints).
   const float la = std::max(lx, ly), lb = std::min(lx, ly), y_major = static_cast<float>(ly > lx);
   s.major_uv = mx + y_major * (my - mx);
-  const float minor = std::max(lb, la / static_cast<float>(max_probes));
+  const float minor = std::max(lb, la * kInverse[max_probes]);
   s.probes = minor > 0 ? std::clamp(-floor_int(-(la / minor - 1e-3f)), 1, max_probes) : 1;
   // Below one texel (or a denormal) the level is 0; above 2^31 texels, the coarsest.
   s.lambda = minor >= 1.0f ? std::min(series_log2(std::min(minor, 2e9f)), static_cast<float>(levels - 1)) : 0.0f;
@@ -59,7 +64,7 @@ struct FilterShape {
 
 glm::vec2 probe_uv(const FilterShape& s, int p) {
   if (s.probes == 1) return s.uv;
-  return s.uv + ((static_cast<float>(p) + 0.5f) / static_cast<float>(s.probes) - 0.5f) * s.major_uv;
+  return s.uv + ((static_cast<float>(p) + 0.5f) * kInverse[s.probes] - 0.5f) * s.major_uv;
 }
 
 // Bilinear weights of one level at uv (wrap: repeat): columns x0, x1 with fx, rows y0, y1 with fy.
@@ -95,18 +100,15 @@ void add_bilinear(FilterTaps& out, Extent e, int level, glm::vec2 uv, float weig
     if (w[k] > 0) out.taps[static_cast<std::size_t>(out.count++)] = {level, xs[k], ys[k], weight * w[k]};
 }
 
-// Splits u ∈ [0, 1) at p: which side (0 or 1), and u rescaled to [0, 1) within it. The two sides'
-// reciprocals do not depend on u, so they are computed off the chain of three splits a lookup
-// makes, which then multiplies instead of dividing. (p ∈ (0, 1] here — 1 − t, 1 − fx, 1 − fy — and
-// u < 1, so the side chosen never has zero width.)
-// The side is a 0/1 factor, not a branch: u is random, so a branch would be mispredicted half the
-// time (three splits a lookup).
+// Splits u ∈ [0, 1) at p: which side (0 or 1), and u rescaled to [0, 1) within it. (p ∈ (0, 1] here —
+// 1 − t, 1 − fx, 1 − fy — and u < 1, so the side chosen never has zero width.) The side is a 0/1
+// factor, not a branch: u is random, so a branch would be mispredicted half the time; and one
+// division, not a reciprocal of each side: a lookup's divisions queue on the one divider.
 int split(float& u, float p) {
-  const float inv_low = 1.0f / std::max(p, 1e-30f), inv_high = 1.0f / std::max(1.0f - p, 1e-30f);
   const int high = static_cast<int>(u >= p);
   const float h = static_cast<float>(high);
-  const float num = u - h * p, inv = inv_low + h * (inv_high - inv_low);
-  u = std::min(std::max(num, 0.0f) * inv, 0.99999994f);
+  const float width = std::max(p + h * (1.0f - 2.0f * p), 1e-30f);  // p below, 1 − p above
+  u = std::min(std::max(u - h * p, 0.0f) / width, 0.99999994f);
   return high;
 }
 
@@ -117,7 +119,7 @@ FilterTaps filter_taps(Extent level0, int levels, const Footprint& f, int max_pr
   const FilterShape s = filter_shape(level0, levels, f, max_probes);
   out.level = s.lambda;
   out.probes = s.probes;
-  const float w = 1.0f / static_cast<float>(s.probes);
+  const float w = kInverse[s.probes];
   for (int p = 0; p < s.probes; ++p) {
     const glm::vec2 at = probe_uv(s, p);
     add_bilinear(out, level_extent(level0, s.level), s.level, at, w * (1.0f - s.t));
