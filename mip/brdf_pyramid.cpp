@@ -92,8 +92,7 @@ int gather_children(Extent level0, int level, int i, int j, const BrdfLevel& fin
                                                              static_cast<float>(share));
         continue;
       }
-      for (int k = 0; k < fine.counts[t]; ++k) {
-        Lobe l = fine.lobes[fine.first[t] + static_cast<std::size_t>(k)];
+      for (Lobe l : fine.texel_lobes(t)) {
         l.weight = static_cast<float>(l.weight * share);
         out[static_cast<std::size_t>(n++)] = l;
       }
@@ -119,10 +118,8 @@ BrdfLevel level_from_below(Extent level0, int level, const BrdfLevel& fine, cons
   const Extent e = level_extent(level0, level);
   const int max_lobes = std::clamp(options.reduction.max_lobes, 1, kMaxLobes);
   BrdfLevel out;
-  out.extent = e;
   const std::size_t texels = static_cast<std::size_t>(e.width) * e.height;
-  out.first.resize(texels);
-  out.counts.assign(texels, 0);
+  out.reset(e, texels);
   // Bands of rows reduce in parallel into their own packed lists, joined in row order after.
   constexpr int kBandRows = 8;
   const int bands = (e.height + kBandRows - 1) / kBandRows;
@@ -138,14 +135,16 @@ BrdfLevel level_from_below(Extent level0, int level, const BrdfLevel& fine, cons
         const std::size_t t = static_cast<std::size_t>(j) * e.width + i;
         int kept = 0;
         for (int k = 0; k < std::min(reduced, max_lobes); ++k) {
-          Lobe l = buf[static_cast<std::size_t>(k)];
+          Lobe& l = buf[static_cast<std::size_t>(k)];
           round_to_stored(l);
           // A lobe below a half float's smallest weight (6e-8 of the texel) is dropped: the file
           // could not tell it from an empty slot.
-          if (l.weight > 0) packed.push_back(l), ++kept;
+          if (l.weight > 0) buf[static_cast<std::size_t>(kept++)] = l;
         }
-        out.first[t] = static_cast<std::uint32_t>(packed.size() - static_cast<std::size_t>(kept));  // within the band
         out.counts[t] = static_cast<std::uint8_t>(kept);
+        out.first[t] = static_cast<std::uint32_t>(packed.size());  // within the band
+        if (kept == 1) out.single[t] = buf[0];
+        else packed.insert(packed.end(), buf.begin(), buf.begin() + kept);
       }
   });
   std::size_t total = 0;
@@ -178,7 +177,7 @@ BrdfLevel level_from_below(Extent level0, int level, const BrdfLevel& fine, cons
         const int n = gather_children(level0, level, i, j, fine, m, buf);
         BrdfTable ref = make_table(), approx = make_table();
         for (int k = 0; k < n; ++k) accumulate_lobe_double(buf[static_cast<std::size_t>(k)], 1.0, ref);
-        for (int k = 0; k < out.counts[t]; ++k) accumulate_lobe_double(out.lobes[out.first[t] + static_cast<std::size_t>(k)], 1.0, approx);
+        for (const Lobe& l : out.texel_lobes(t)) accumulate_lobe_double(l, 1.0, approx);
         errs[static_cast<std::size_t>(s)] = table_erel(approx, ref);
       });
       double m = 0, mx = 0;
@@ -221,9 +220,11 @@ BrdfPyramid BrdfPyramid::from_levels(const MaterialTexels& m, int max_lobes, std
     const Extent e = level_extent(p.level0_, static_cast<int>(l + 1));
     const std::size_t texels = static_cast<std::size_t>(e.width) * e.height;
     BrdfLevel& c = coarse[l];
-    bool packed = c.extent == e && c.slots >= 1 && c.slots <= kMaxLobes && c.counts.size() == texels && c.first.size() == texels;
-    for (std::size_t t = 0, next = 0; packed && t < texels; next += c.counts[t], ++t)
-      packed = c.first[t] == next && c.counts[t] <= c.slots && next + c.counts[t] <= c.lobes.size();
+    bool packed = c.extent == e && c.slots >= 1 && c.slots <= kMaxLobes && c.counts.size() == texels &&
+                  c.first.size() == texels && c.single.size() == texels;
+    for (std::size_t t = 0, next = 0; packed && t < texels; next += c.counts[t] >= 2 ? c.counts[t] : 0, ++t)
+      packed = c.counts[t] <= c.slots && c.first[t] <= c.lobes.size() &&
+               (c.counts[t] < 2 || (c.first[t] == next && next + c.counts[t] <= c.lobes.size()));
     if (!packed) throw Error("BRDF pyramid: level " + std::to_string(l + 1) + " has the wrong shape");
     p.levels_.push_back(std::move(c));
   }

@@ -9,10 +9,13 @@
 // lobe_reduction.h reduces to at most `max_lobes` lobes. The build is O(texels) and parallel over
 // bands of rows (oneTBB).
 //
-// Storage: per level the texels' lobes packed one texel after another (a texel of smooth material
-// keeps one lobe, so fixed slots would waste three quarters of a level at K = 4), with each texel's
-// first lobe and count. `slots` is the most lobes any texel of the level kept: the MIP file's fixed
-// slots. The lobes are rounded to what the file stores (round_to_stored).
+// Storage: per level, a texel with one lobe (most: smooth material keeps one) holds it in its own slot
+// of `single`, which a lookup reads with no indirection; the lobes of texels with more are packed
+// one texel after another in `lobes` (fixed slots of K would waste most of a level at K = 4), with
+// each texel's first lobe there, and every texel's count. A lookup thus waits for one memory access
+// where the packed layout alone made it wait for two in a row (the index, then the lobes). `slots`
+// is the most lobes any texel of the level kept: the MIP file's fixed slots. The lobes are rounded
+// to what the file stores (round_to_stored).
 #include <cassert>
 #include <cstdint>
 #include <span>
@@ -28,9 +31,33 @@ namespace svbrdf {
 struct BrdfLevel {
   Extent extent{};
   int slots = 1;                      // the most lobes a texel has
-  std::vector<Lobe> lobes;            // every texel's lobes, in row-major texel order
-  std::vector<std::uint32_t> first;   // per texel: its first lobe in `lobes`
   std::vector<std::uint8_t> counts;   // per texel: its lobe count
+  std::vector<Lobe> single;           // per texel: its lobe, when it has exactly one
+  std::vector<Lobe> lobes;            // the lobes of texels with two or more, in row-major texel order
+  std::vector<std::uint32_t> first;   // per texel: where its lobes start in `lobes` (texels with ≥ 2)
+
+  // Texel t's lobes: a view into the level.
+  std::span<const Lobe> texel_lobes(std::size_t t) const {
+    const int n = counts[t];
+    return n == 1 ? std::span<const Lobe>(&single[t], 1) : std::span<const Lobe>(lobes.data() + first[t], static_cast<std::size_t>(n));
+  }
+  // Every texel's lobes in texel order (a copy: for comparisons, not for lookups).
+  std::vector<Lobe> all_lobes() const {
+    std::vector<Lobe> out;
+    for (std::size_t t = 0; t < counts.size(); ++t) {
+      const std::span<const Lobe> l = texel_lobes(t);
+      out.insert(out.end(), l.begin(), l.end());
+    }
+    return out;
+  }
+  // Makes room for `texels` texels, all empty.
+  void reset(Extent e, std::size_t texels) {
+    extent = e;
+    counts.assign(texels, 0);
+    single.assign(texels, Lobe{});
+    first.assign(texels, 0);
+    lobes.clear();
+  }
 };
 
 // What the build measured, per level: the mean and max lobe count, and the reduction error (e_rel of
@@ -86,20 +113,32 @@ class BrdfPyramid {
     assert(level >= 1);
     const BrdfLevel& l = levels_[static_cast<std::size_t>(level)];
     const std::size_t t = static_cast<std::size_t>(j) * l.extent.width + i;
-    return {l.lobes.data() + l.first[t], l.counts[t]};
+    // The three reads a texel may need are issued together: the count, the single slot and the
+    // index into the packed lobes (the branch on the count would otherwise order them).
+    prefetch_single(l, t);
+    __builtin_prefetch(l.first.data() + t);
+    return l.texel_lobes(t);
   }
-  // Asks the memory system for what texel(level, i, j) reads first (its lobe index and count), for
-  // a caller with other work to do before it reads them.
+  // Asks the memory system for what texel(level, i, j) reads first, for a caller with other work to
+  // do before it reads them.
   void prefetch(int level, int i, int j) const {
     const BrdfLevel& l = levels_[static_cast<std::size_t>(level)];
     const std::size_t t = static_cast<std::size_t>(j) * l.extent.width + i;
-    __builtin_prefetch(l.first.data() + t);
     __builtin_prefetch(l.counts.data() + t);
+    prefetch_single(l, t);
+    __builtin_prefetch(l.first.data() + t);
   }
   // Bytes per texel of a level as the MIP file stores it (fixed slots; memory holds fewer).
   int bytes_per_texel(int level) const { return this->level(level).slots * kBytesPerLobe; }
 
  private:
+  // A Lobe may straddle two cache lines: both are asked for.
+  static void prefetch_single(const BrdfLevel& l, std::size_t t) {
+    const char* p = reinterpret_cast<const char*>(l.single.data() + t);
+    __builtin_prefetch(p);
+    __builtin_prefetch(p + sizeof(Lobe) - 1);
+  }
+
   Extent level0_{};
   int max_lobes_ = 1;
   std::vector<BrdfLevel> levels_;

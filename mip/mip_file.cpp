@@ -122,8 +122,9 @@ void write_mip_file(const fs::path& path, const MipData& mip) {
           // channel holds a meaningful value).
           static const Lobe kEmpty{0.0f, glm::vec3(0), glm::vec3(0), glm::vec3(0, 0, 1), 1.0f};
           const BrdfLevel& bl = mip.brdf.level(level);
+          const std::span<const Lobe> lobes = bl.texel_lobes(t);
           for (int k = 0; k < bl.slots; ++k)
-            pack_lobe(k < bl.counts[t] ? bl.lobes[bl.first[t] + static_cast<std::size_t>(k)] : kEmpty, px + 8 + k * kLobeChannels);
+            pack_lobe(k < static_cast<int>(lobes.size()) ? lobes[static_cast<std::size_t>(k)] : kEmpty, px + 8 + k * kLobeChannels);
         }
       }
       if (!out->write_image(OIIO::TypeDesc::FLOAT, buf.data()))
@@ -191,10 +192,8 @@ MipData read_mip_file(const fs::path& path) {
     std::vector<ParamTexel> params(texels);
     BrdfLevel bl;
     if (level > 0) {
-      bl.extent = e;
+      bl.reset(e, texels);
       bl.slots = slots;
-      bl.first.resize(texels);
-      bl.counts.assign(texels, 0);
     }
     for (std::size_t t = 0; t < texels; ++t) {
       for (std::size_t c = 0; c < order.size(); ++c) px[c] = buf[t * static_cast<std::size_t>(nch) + static_cast<std::size_t>(order[c])];
@@ -207,6 +206,8 @@ MipData read_mip_file(const fs::path& path) {
         bl.lobes.push_back(l);
         bl.counts[t] = static_cast<std::uint8_t>(k + 1);
       }
+      // A texel's lone lobe goes to its own slot (brdf_pyramid.h).
+      if (level > 0 && bl.counts[t] == 1) bl.single[t] = bl.lobes.back(), bl.lobes.pop_back();
     }
     if (level == 0) {
       MaterialTexels& m = mip.level0;
