@@ -169,14 +169,20 @@ inline T standard_normal_cdf(T x) {
   return T(0.5) * std::erfc(-x * T(0.70710678118654752440));
 }
 
+// Whether c lies more than eight deviations s = σ·sin θ above the horizon, where the clipping is nil
+// (Φ = 1 − 6e-16, φ = 5e-15): the common case, decided on squares (no root, no division).
+template <class T>
+bool far_above_horizon(const LobeShape<T>& s, T c) {
+  const T c2 = c * c;
+  return c > 0 && c2 > T(64) * (s.sigma * s.sigma) * (T(1) - c2);
+}
+
 template <class T>
 LobeSide<T> lobe_wi_side(const LobeShape<T>& s, T c) {
   if (s.sigma == 0) return c > 0 ? LobeSide<T>{c * s.len, c} : LobeSide<T>{};
+  if (far_above_horizon(s, c)) return {c * s.len, std::max(c, T(1e-4))};
   const T sd = s.sigma * std::sqrt(std::max(T(0), T(1) - c * c)) + T(1e-12);
   const T x = c / sd;
-  // Eight deviations above the horizon the clipping is nil (Φ = 1 − 6e-16, φ = 5e-15): the common
-  // case, without erfc and exp.
-  if (x > T(8)) return {c * s.len, std::max(c, T(1e-4))};
   const T factor = s.len * (c * standard_normal_cdf(x) + sd * T(0.39894228040143267794) * std::exp(T(-0.5) * x * x));
   return {factor, std::max(c, T(1e-4))};
 }
@@ -184,10 +190,9 @@ LobeSide<T> lobe_wi_side(const LobeShape<T>& s, T c) {
 template <class T>
 LobeSide<T> lobe_wo_side(const LobeShape<T>& s, T c) {
   if (s.sigma == 0) return c > 0 ? LobeSide<T>{T(1), c} : LobeSide<T>{};
+  if (far_above_horizon(s, c)) return {T(1), std::max(c, T(1e-4))};
   const T sd = s.sigma * std::sqrt(std::max(T(0), T(1) - c * c)) + T(1e-12);
-  const T x = c / sd;
-  if (x > T(8)) return {T(1), std::max(c, T(1e-4))};  // as in lobe_wi_side
-  return {standard_normal_cdf(x), std::max(c, T(1e-4))};
+  return {standard_normal_cdf(c / sd), std::max(c, T(1e-4))};
 }
 
 // D of a lobe at a half vector with n̂·h = ch and n̂×h = nxh (the shapes at the top of this file), with
