@@ -379,9 +379,9 @@ void set_shape(Lobe& m, double A, double P) {
       u = std::max(1e-6, u - step);
       if (std::abs(step) < 1e-9 * u) break;
     }
-    const double g = std::sqrt(A / P);
-    m.alpha2 = static_cast<float>(std::clamp(g * std::exp(-u), 1e-6, 1.0));
-    m.alpha2_hi = static_cast<float>(std::clamp(g * std::exp(u), double(m.alpha2), 1.0));
+    const double g = std::sqrt(A / P), e = std::exp(u);
+    m.alpha2 = static_cast<float>(std::clamp(g / e, 1e-6, 1.0));
+    m.alpha2_hi = static_cast<float>(std::clamp(g * e, double(m.alpha2), 1.0));
     m.ggx = 1.0f;
   } else {
     m.alpha2 = static_cast<float>(std::clamp(1.0 / P, 1e-6, 1.0));
@@ -431,7 +431,7 @@ void keep_specular_flux(std::span<const Member> u, Merged& m) {
     if (l.alpha2_hi > l.alpha2) {
       // A roughness mixture reflects the mean of its components' albedos over log-uniform α²
       // (midpoint rule in log α², 8 points).
-      const double lo = std::log(double(l.alpha2)), step = std::log(double(l.alpha2_hi) / double(l.alpha2)) / 8;
+      const double lo = series_log(double(l.alpha2)), step = series_log(double(l.alpha2_hi) / double(l.alpha2)) / 8;
       for (int k = 0; k < 8; ++k) spec += t.albedo_at_log(lo + (k + 0.5) * step, mean3(l.f0), 1.0) / 8;
     } else {
       spec = t.albedo(l.alpha2, mean3(l.f0), l.ggx);
