@@ -1,8 +1,8 @@
 #pragma once
-// Rendering an image: samples per pixel in passes over 16×16 tiles spread over oneTBB, every sample
-// seeded by (seed, pixel, sample index) so the image is bit-identical for any thread count and any
-// pass split. A pass boundary is where an interruption (Ctrl-C, --time-limit) stops; every pixel
-// then holds the mean of the samples it got.
+// Rendering an image: samples per pixel in four passes over 16×16 tiles spread over oneTBB, every
+// sample seeded by (seed, pixel, sample index) so the image is bit-identical for any thread count and
+// any pass split. An interruption (Ctrl-C, --time-limit) stops at the next tile; every pixel then
+// holds the mean of the samples it got (its tile's passes so far).
 #include <atomic>
 #include <cstdint>
 #include <functional>
