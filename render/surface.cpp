@@ -8,6 +8,11 @@ namespace svbrdf {
 
 namespace {
 
+// Whether emission_at reads the emissive texture: it has one, and a factor that is not black.
+bool reads_emission_texture(const MaterialDesc& m) {
+  return m.emissive_texture.present() && m.emissive * m.emissive_strength != Rgb(0.0f);
+}
+
 template <typename T>
 T lerp3(const std::vector<T>& a, const std::uint32_t* i, float b0, float b1, float b2) {
   return b0 * a[i[0]] + b1 * a[i[1]] + b2 * a[i[2]];
@@ -131,15 +136,13 @@ ShadingParams shading_params(const SurfacePoint& sp, const TextureSet& textures)
 Rgb emission_at(const SurfacePoint& sp, const TextureSet& textures) {
   const MaterialDesc& m = *sp.material;
   Rgb e = m.emissive * m.emissive_strength;
-  if (m.emissive_texture.present() && e != Rgb(0.0f))
-    e *= Rgb(textures.lookup(m.emissive_texture, sp.uv[m.emissive_texture.uv_set()], true));
+  if (reads_emission_texture(m)) e *= Rgb(textures.lookup(m.emissive_texture, sp.uv[m.emissive_texture.uv_set()], true));
   return e;
 }
 
 void prefetch_emission(const SurfacePoint& sp, const TextureSet& textures) {
   const MaterialDesc& m = *sp.material;
-  if (m.emissive_texture.present() && m.emissive * m.emissive_strength != Rgb(0.0f))
-    textures.prefetch(m.emissive_texture, sp.uv[m.emissive_texture.uv_set()]);
+  if (reads_emission_texture(m)) textures.prefetch(m.emissive_texture, sp.uv[m.emissive_texture.uv_set()]);
 }
 
 Rgb base_color_at(const SurfacePoint& sp, const TextureSet& textures) {
