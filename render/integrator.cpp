@@ -82,12 +82,13 @@ PathSample trace_path(const RenderWorld& w, const IntegratorSettings& s, float f
     ++out.rays;
     if (!hit.found()) {
       if (env_on) {
-        float weight = 1.0f;
-        if (!last_impulse) {
-          if (s.light_sampling == LightSampling::nee) weight = 0.0f;
-          else if (s.light_sampling == LightSampling::mis) weight = power_heuristic(last_pdf, w.environment.pdf(ray.dir));
+        const bool mis_weighted = !last_impulse && s.light_sampling == LightSampling::mis;
+        if (last_impulse || s.light_sampling != LightSampling::nee) {
+          float env_pdf = 0.0f;
+          const Rgb env = w.environment.radiance(ray.dir, mis_weighted ? &env_pdf : nullptr);
+          const float weight = mis_weighted ? power_heuristic(last_pdf, env_pdf) : 1.0f;
+          if (weight > 0.0f) out.radiance += beta * env * weight;
         }
-        if (weight > 0.0f) out.radiance += beta * w.environment.radiance(ray.dir) * weight;
       }
       break;
     }
@@ -126,10 +127,11 @@ PathSample trace_path(const RenderWorld& w, const IntegratorSettings& s, float f
     const bool scatters = depth < s.max_depth && (mip || !sp.material->unlit);
     glm::vec3 env_dir(0.0f);
     float env_pdf = 0.0f;
+    Rgb env_radiance(0.0f);
     bool env_visible = false;
     if (scatters) {
       if (env_on && s.light_sampling != LightSampling::bsdf) {
-        env_dir = w.environment.sample({u1(), u1()}, env_pdf);
+        env_dir = w.environment.sample({u1(), u1()}, env_pdf, &env_radiance);
         env_visible = env_pdf > 0.0f && glm::dot(env_dir, sp.ng) > 0.0f &&
                       !occluded(offset_origin(sp.p, sp.ng, env_dir, w.scene_extent), env_dir, kInfinity);
       } else {
@@ -194,7 +196,7 @@ PathSample trace_path(const RenderWorld& w, const IntegratorSettings& s, float f
       const Rgb f = bsdf->eval(wi, wo);
       if (max3(f) > 0.0f) {
         const float weight = s.light_sampling == LightSampling::mis ? power_heuristic(env_pdf, bsdf->pdf(wi, wo)) : 1.0f;
-        out.radiance += beta * f * w.environment.radiance(env_dir) * (wi.z * weight / env_pdf);
+        out.radiance += beta * f * env_radiance * (wi.z * weight / env_pdf);
       }
     }
 

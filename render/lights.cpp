@@ -4,17 +4,25 @@
 #include <cmath>
 
 #include "base/error.h"
+#include "base/fast_atan2.h"
 
 namespace svbrdf {
 
 namespace {
 constexpr float kPiF = 3.14159265358979323846f;
 
+// The k ∈ [0, n) with cdf[k] ≤ u < cdf[k + 1] (clamped to the ends), cdf non-decreasing with n + 1
+// entries. A branch-free bisection: where u falls is a coin toss per step for importance-sampled
+// u, which a branch would mispredict at every step.
 std::size_t upper_index(const float* cdf, std::size_t n, float u) {
-  // The k with cdf[k] ≤ u < cdf[k+1], k ∈ [0, n).
-  const float* it = std::upper_bound(cdf, cdf + n + 1, u);
-  const std::size_t k = std::size_t(std::max<std::ptrdiff_t>(it - cdf - 1, 0));
-  return std::min(k, n - 1);
+  // Invariant: cdf[base] ≤ u (or base = 0), and the answer lies in [base, base + len).
+  std::size_t base = 0, len = n;
+  while (len > 1) {
+    const std::size_t half = len / 2;
+    base = cdf[base + half] <= u ? base + half : base;
+    len -= half;
+  }
+  return base;
 }
 }  // namespace
 
@@ -106,21 +114,43 @@ Environment Environment::from_image(Image im, const std::string& where) {
   return e;
 }
 
-Rgb Environment::radiance(const glm::vec3& d) const {
-  if (image_.pixels.empty()) return uniform_;
-  const float u = 0.5f + std::atan2(d.x, -d.z) / (2.0f * kPiF);
-  const float v = std::atan2(std::sqrt(d.x * d.x + d.z * d.z), d.y) / kPiF;
-  const int i = std::clamp(int(u * float(image_.width)), 0, image_.width - 1);
-  const int j = std::clamp(int(v * float(image_.height)), 0, image_.height - 1);
-  const float* px = &image_.pixels[(std::size_t(j) * image_.width + i) * 3];
+Environment::Pixel Environment::pixel_of(const glm::vec3& d) const {
+  // θ from atan2 and sinθ from the horizontal length: accurate near the poles, where acos(d.y)
+  // and 1 − d.y² lose every digit.
+  Pixel p;
+  p.sin_theta = std::sqrt(d.x * d.x + d.z * d.z);
+  const float u = 0.5f + fast_atan2(d.x, -d.z) * (0.5f / kPiF);
+  const float v = fast_atan2(p.sin_theta, d.y) * (1.0f / kPiF);
+  p.i = std::size_t(std::clamp(int(u * float(image_.width)), 0, image_.width - 1));
+  p.j = std::size_t(std::clamp(int(v * float(image_.height)), 0, image_.height - 1));
+  return p;
+}
+
+float Environment::pixel_pdf(std::size_t i, std::size_t j, float sin_theta) const {
+  if (!(sin_theta > 0.0f)) return 0.0f;
+  // Density in (u, v) is f·w·h / total; the map (u, v) → direction has Jacobian 2π²·sinθ.
+  const float w = float(image_.width), h = float(image_.height);
+  const float p_uv = pixel_func_[j * std::size_t(image_.width) + i] * w * h / total_;
+  return p_uv / (2.0f * kPiF * kPiF * sin_theta);
+}
+
+Rgb Environment::radiance(const glm::vec3& d, float* pdf) const {
+  if (image_.pixels.empty()) {
+    if (pdf) *pdf = 1.0f / (4.0f * kPiF);
+    return uniform_;
+  }
+  const Pixel p = pixel_of(d);
+  if (pdf) *pdf = pixel_pdf(p.i, p.j, p.sin_theta);
+  const float* px = texel(p.i, p.j);
   return {px[0], px[1], px[2]};
 }
 
-glm::vec3 Environment::sample(glm::vec2 u, float& pdf) const {
+glm::vec3 Environment::sample(glm::vec2 u, float& pdf, Rgb* radiance) const {
   if (image_.pixels.empty()) {
     // Uniform on the sphere.
     const float z = 1.0f - 2.0f * u.x, r = std::sqrt(std::max(0.0f, 1.0f - z * z)), phi = 2.0f * kPiF * u.y;
     pdf = 1.0f / (4.0f * kPiF);
+    if (radiance) *radiance = uniform_;
     return {r * std::cos(phi), z, r * std::sin(phi)};
   }
   const int w = image_.width, h = image_.height;
@@ -136,24 +166,19 @@ glm::vec3 Environment::sample(glm::vec2 u, float& pdf) const {
   const float theta = vv * kPiF, phi = (uu - 0.5f) * 2.0f * kPiF;
   const float st = std::sin(theta);
   const glm::vec3 d(st * std::sin(phi), std::cos(theta), -st * std::cos(phi));
-  pdf = this->pdf(d);
+  // The pixel drawn gives the density and the radiance: d is not mapped back to the image.
+  pdf = pixel_pdf(i, j, st);
+  if (radiance) {
+    const float* px = texel(i, j);
+    *radiance = {px[0], px[1], px[2]};
+  }
   return d;
 }
 
 float Environment::pdf(const glm::vec3& d) const {
   if (image_.pixels.empty()) return 1.0f / (4.0f * kPiF);
-  const int w = image_.width, h = image_.height;
-  // θ from atan2 and sinθ from the horizontal length: accurate near the poles, where acos(d.y)
-  // and 1 − d.y² lose every digit.
-  const float sin_theta = std::sqrt(d.x * d.x + d.z * d.z);
-  const float u = 0.5f + std::atan2(d.x, -d.z) / (2.0f * kPiF);
-  const float v = std::atan2(sin_theta, d.y) / kPiF;
-  const int i = std::clamp(int(u * float(w)), 0, w - 1);
-  const int j = std::clamp(int(v * float(h)), 0, h - 1);
-  if (sin_theta <= 0.0f) return 0.0f;
-  // Density in (u, v) is f·w·h / total; the map (u, v) → direction has Jacobian 2π²·sinθ.
-  const float p_uv = pixel_func_[std::size_t(j) * w + i] * float(w) * float(h) / total_;
-  return p_uv / (2.0f * kPiF * kPiF * sin_theta);
+  const Pixel p = pixel_of(d);
+  return pixel_pdf(p.i, p.j, p.sin_theta);
 }
 
 }  // namespace svbrdf

@@ -33,14 +33,27 @@ class Environment {
   static Environment from_image(Image image, const std::string& where);
 
   bool black() const { return black_; }
-  Rgb radiance(const glm::vec3& dir) const;
-  // A direction drawn with density pdf (solid angle) roughly proportional to radiance·sinθ.
-  glm::vec3 sample(glm::vec2 u, float& pdf) const;
+  // The radiance from direction `dir` and, when `pdf` is given, sample()'s density of it (one
+  // mapping of the direction to the image for both).
+  Rgb radiance(const glm::vec3& dir, float* pdf = nullptr) const;
+  // A direction drawn with density pdf (solid angle) roughly proportional to radiance·sinθ, and
+  // when asked for its radiance (the pixel drawn: no mapping back).
+  glm::vec3 sample(glm::vec2 u, float& pdf, Rgb* radiance = nullptr) const;
   float pdf(const glm::vec3& dir) const;
 
  private:
   Rgb uniform_{0.0f};
   bool black_ = true;
+  // The pixel (i, j) that direction d falls in, and sin θ of d.
+  struct Pixel {
+    std::size_t i = 0, j = 0;
+    float sin_theta = 0.0f;
+  };
+  Pixel pixel_of(const glm::vec3& d) const;
+  // sample()'s density at a direction of pixel p with the given sin θ.
+  float pixel_pdf(std::size_t i, std::size_t j, float sin_theta) const;
+  const float* texel(std::size_t i, std::size_t j) const { return &image_.pixels[(j * std::size_t(image_.width) + i) * 3]; }
+
   Image image_;  // RGB, empty for a uniform environment
   // Piecewise-constant 2D distribution over pixels (rows then columns), the textbook construction
   // (pbrt-v4 §A.5.2 / Pharr et al. 2023 "Piecewise2D"): row CDF and per-row column CDFs.
