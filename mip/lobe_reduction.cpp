@@ -20,12 +20,20 @@ constexpr double kPi = 3.14159265358979323846;
 // mirror-like lobes (α ≈ 0.005 against 0.01) would outweigh everything else and a polished tray's
 // soft fingerprint glow would be merged away to keep them apart.
 constexpr double kResolutionAlpha2 = 0.01;
-// The weight of the highlight-peak term of merge_cost (see there).
-// Small: the merges keep the peak moment exactly (merge_pair), so this only breaks ties against merging
-// lobes whose normals differ (whose union has no peak at the merged normal). At 1 it outweighed
-// everything else and kept polished sub-lobes apart while the fingerprints' rough lobes were merged
-// into them, which lost their off-specular flux (−30 % to −50 % at the coarse levels of metal-tray).
-constexpr double kPeakWeight = 1e-5;
+// The weight of the highlight-peak term of union_cost (see there). The blurred L2 of the cost cannot
+// see a narrow lobe moved by a degree or two, but the mirror pairs can: at 1e-5 granite's mica flecks
+// (α ≈ 0.02) were merged into tilted lobes at levels 2–3, the level means falling 4–7 % at the grazing
+// mirror pairs (pink granite's e_mean 0.059; 0.019 at 2e-4). Too large and it keeps polished sub-lobes
+// apart while the fingerprints' rough lobes are merged into them: their off-specular flux goes (e_log
+// of metal-tray 0.037 at level 8 with 1e-3; −30 % to −50 % of that flux at 1). Even 2e-4 costs the
+// tray's glow at small angles: its level-8 mean at θi = 20°, θo = 0° is +12 % (+3 % at 1e-5), at 45°
+// and 75° within 1 % as before. bench/results/mip.md ("2026-11-23, second session") has the sweep.
+constexpr double kPeakWeight = 2e-4;
+// The weight for the first try of a texel's whole union as one lobe (reduce_lobes): that try asks
+// whether the texel is smooth within the L2 budget, a norm with no peak term; it keeps the small weight.
+constexpr double kWholePeakWeight = 1e-5;
+// The share of the LEAN estimate in the peak of a merged lobe that becomes a spread core (merge_union).
+constexpr double kLeanPeakShareSpread = 0.4;
 // The weight of the log-profile term of merge_pair (the shape between peak and tail), and its steps.
 constexpr double kProfileWeight = 25.0;
 constexpr std::size_t kProfileSteps = 15;
@@ -50,31 +58,47 @@ struct Summary {
   double ggx = 1;     // μ, the GGX share of a spread core (lobe.h)
   double tail = 0;    // A: the tail coefficient, D ≈ A/(π t²) far out
   double peak = 1;    // P: π·D at the lobe's own normal
+  double shape_alpha2 = 1, shape_alpha2_hi = 0, shape_lmean = 0;  // its LobeShape's, for D elsewhere (shape_of)
+  double flux = -1;   // its specular flux as keep_specular_flux measures it (< 0: not yet known)
   std::array<double, kProfileSteps> profile{};  // D about its own normal at tan²θ = 10^-6 … 10 (profile_of)
 };
 
+// D of a lobe shape at tan²θ = t from its normal: lobe_d's shapes written in t (cos²θ = 1/(1 + t)), so
+// no vectors: GGX α²/(π·cos⁴θ·(α² + t)²), the mixture's μ·L(l, h)/(π·cos⁴θ·(l + t)(h + t)), Beckmann
+// e^(−t/α²)/(π·α²·cos⁴θ), the exponential by series_exp (4e-7: the reduction compares shapes with
+// these, for every candidate merge). 0 past 90° (t infinite).
+double d_at_tan2(const LobeShape<double>& sh, double t) {
+  if (!std::isfinite(t)) return 0.0;
+  const double a2 = sh.alpha2, q = (1 + t) * (1 + t) / kPi;
+  double d = sh.lmean > 0 ? sh.ggx * sh.lmean / ((t + a2) * (t + sh.alpha2_hi)) : sh.ggx * a2 / ((t + a2) * (t + a2));
+  if (sh.ggx != 1.0) {
+    const double x = t / a2;
+    if (x < 60.0) d += (1.0 - sh.ggx) * double(series_exp(static_cast<float>(-x))) / a2;
+  }
+  return q * d;
+}
+
 // D of a lobe shape about its own normal at kProfileSteps values of tan²θ, log-spaced from 1e-6 to 10.
-void profile_of(LobeShape<double> sh, std::array<double, kProfileSteps>& out) {
-  struct Step {
-    double c, sn;
-  };
-  static const std::array<Step, kProfileSteps> steps = [] {
-    std::array<Step, kProfileSteps> st{};
-    for (std::size_t j = 0; j < kProfileSteps; ++j) {
-      const double t = std::pow(10.0, -6.0 + 7.0 * double(j) / (kProfileSteps - 1)), c = 1 / std::sqrt(1 + t);
-      st[j] = {c, std::sqrt(t) * c};
-    }
-    return st;
+void profile_of(const LobeShape<double>& sh, std::array<double, kProfileSteps>& out) {
+  static const std::array<double, kProfileSteps> steps = [] {
+    std::array<double, kProfileSteps> t{};
+    for (std::size_t j = 0; j < kProfileSteps; ++j) t[j] = std::pow(10.0, -6.0 + 7.0 * double(j) / (kProfileSteps - 1));
+    return t;
   }();
-  sh.n = glm::dvec3(0, 0, 1);
-  for (std::size_t j = 0; j < kProfileSteps; ++j) out[j] = lobe_d(sh, steps[j].c, glm::dvec3(0, steps[j].sn, 0));
+  for (std::size_t j = 0; j < kProfileSteps; ++j) out[j] = d_at_tan2(sh, steps[j]);
+}
+
+// tan²θ between two unit vectors (∞ at or past 90°).
+double tan2_between(const glm::dvec3& a, const glm::dvec3& b) {
+  const double c = glm::dot(a, b);
+  if (c <= 1e-6) return INFINITY;
+  return std::max(0.0, 1.0 / (c * c) - 1.0);
 }
 
 // D at h = z (the geometric normal) of a lobe.
 double d_at_z(const LobeShape<double>& sh) {
   if (!sh.valid) return 0.0;
-  const glm::dvec3 z(0, 0, 1);
-  return lobe_d(sh, sh.n.z, glm::cross(sh.n, z));
+  return d_at_tan2(sh, tan2_between(sh.n, glm::dvec3(0, 0, 1)));
 }
 
 Summary summarize(const Lobe& l) {
@@ -97,16 +121,22 @@ Summary summarize(const Lobe& l) {
   }
   s.alpha2 = 1 / s.peak;
   s.ln_alpha2 = series_log(s.alpha2);
+  s.shape_alpha2 = sh.alpha2, s.shape_alpha2_hi = sh.alpha2_hi, s.shape_lmean = sh.lmean;
   s.d_z = d_at_z(sh);
   profile_of(sh, s.profile);
   return s;
 }
 
-// tan²θ between two unit vectors (∞ at or past 90°).
-double tan2_between(const glm::dvec3& a, const glm::dvec3& b) {
-  const double c = glm::dot(a, b);
-  if (c <= 1e-6) return INFINITY;
-  return std::max(0.0, 1.0 / (c * c) - 1.0);
+// The shape lobe_d needs of a summarized lobe (not the horizons' fields).
+LobeShape<double> shape_of(const Summary& s) {
+  LobeShape<double> sh;
+  sh.n = s.n;
+  sh.alpha2 = s.shape_alpha2;
+  sh.ggx = s.ggx;
+  sh.alpha2_hi = s.shape_alpha2_hi;
+  sh.lmean = s.shape_lmean;
+  sh.valid = true;
+  return sh;
 }
 
 // The L2 inner product, over (wi, wo) pairs, of two specular lobes of amplitude 1: each lobe's
@@ -238,7 +268,7 @@ double union_cost_bound(std::span<const Member> u) {
 // about the geometric normal, the core widths and the log profile, each below. For two lobes these
 // are the terms of the pair; for more, the pair terms summed over the pairs (horizons) or the union's
 // sums in place of the pair's.
-double union_cost(std::span<const Member> u, double self, const Summary& m, bool by_amp) {
+double union_cost(std::span<const Member> u, double self, const Summary& m, bool by_amp, double peak_weight) {
   double Am = 0, peak = 0, width = 0, spec = self, W = 0;
   for (const Member& x : u) Am += x.sum->amp, W += x.sum->weight;
   spec += Am * Am * spec_inner(m.alpha2, m.alpha2, 0);
@@ -278,7 +308,7 @@ double union_cost(std::span<const Member> u, double self, const Summary& m, bool
       e += r * r;
     }
   }
-  return std::max(0.0, spec) + horizon + kPeakWeight * peak * peak +
+  return std::max(0.0, spec) + horizon + peak_weight * peak * peak +
          width * width / (3 * kPi * kResolutionAlpha2 * kResolutionAlpha2 * kResolutionAlpha2) +
          kProfileWeight * k * k * e / kProfileSteps;
 }
@@ -391,7 +421,8 @@ void set_shape(Lobe& m, double A, double P) {
 
 // Merges the union u (whose specular norm² is `self`); returns the merged lobe, its summary and, when
 // asked for (a candidate merge, not one already chosen), its cost.
-Merged merge_union(std::span<const Member> u, double self, float spread_scale, bool with_cost = true) {
+Merged merge_union(std::span<const Member> u, double self, float spread_scale, bool with_cost = true,
+                    double peak_weight = kPeakWeight) {
   const MergeBase mb = merge_base(u);
   double K = 0;
   for (const Member& x : u) K += x.sum->amp;
@@ -399,19 +430,36 @@ Merged merge_union(std::span<const Member> u, double self, float spread_scale, b
   if (!by_amp)
     for (const Member& x : u) K += x.sum->weight;
   // Moments of the union about the merged normal: the tails add (A), and each lobe's peak, widened
-  // by its tilt to the merged normal (LEAN: α² + tan²θ), adds (P).
-  double A = 0, P = 0;
+  // by its tilt to the merged normal (LEAN: α² + tan²θ, Olano & Baker 2010), adds (P_lean). When A and
+  // that P make a spread core (A·P < 1: narrow lobes spread by their normals), P_lean overestimates
+  // the union's centre (by about ln(2σ²/α²) for a Gaussian spread σ) and the error compounds over the
+  // levels (+8 % at granite's mirror pairs by level 8); the union's exact D at the merged normal
+  // (P_centre) alone underestimates it for the next level (−9 %: the union's core is flatter than a
+  // spread core's). The spread core takes a blend, kLeanPeakShareSpread of P_lean; a roughness
+  // mixture keeps P_lean (a blend there moved metal-tray's off-specular level means by 5–7 %).
+  // bench/results/mip.md, "2026-11-23, second session".
+  double A = 0, P_lean = 0;
+  const glm::dvec3& n = mb.summary.n;
   for (const Member& x : u) {
     const Summary& a = *x.sum;
     const double k = by_amp ? a.amp : a.weight;
-    const double t = std::min(tan2_between(a.n, mb.summary.n), 1e3);
+    const double t = std::min(tan2_between(a.n, n), 1e3);
     A += k * a.tail;
-    P += k / (1.0 / a.peak + spread_scale * t);
+    P_lean += k / (1.0 / a.peak + spread_scale * t);
+  }
+  double P = P_lean;
+  if (A * P_lean < K * K) {
+    double P_centre = 0;
+    for (const Member& x : u) {
+      const Summary& a = *x.sum;
+      P_centre += (by_amp ? a.amp : a.weight) * kPi * d_at_tan2(shape_of(a), tan2_between(a.n, n));
+    }
+    P = (1.0 - kLeanPeakShareSpread) * P_centre + kLeanPeakShareSpread * P_lean;
   }
   Merged best{mb.lobe, mb.summary, 0};
   set_shape(best.lobe, A / K, P / K);
   best.summary = summarize(best.lobe);
-  if (with_cost) best.cost = union_cost(u, self, best.summary, by_amp);
+  if (with_cost) best.cost = union_cost(u, self, best.summary, by_amp, peak_weight);
   return best;
 }
 
@@ -438,9 +486,11 @@ void keep_specular_flux(std::span<const Member> u, Merged& m) {
     }
     return double(l.weight) * glm::length(glm::dvec3(l.normal)) * spec;
   };
+  // A lobe made by an earlier merge knows its flux (it was set to keep its lobes' there).
   double want = 0;
-  for (const Member& x : u) want += albedo(*x.lobe);
+  for (const Member& x : u) want += x.sum->flux >= 0 ? x.sum->flux : albedo(*x.lobe);
   const double have = albedo(m.lobe);
+  m.summary.flux = have;
   if (have > 0 && want > 0) {
     const double scale = want / have;
     m.lobe.weight = static_cast<float>(m.lobe.weight * scale);
@@ -451,6 +501,7 @@ void keep_specular_flux(std::span<const Member> u, Merged& m) {
     m.summary.rho = mean3(m.lobe.diffuse);
     m.summary.f0 = mean3(m.lobe.f0);
     m.summary.amp = specular_amp(m.lobe.weight, len, m.summary.f0);
+    m.summary.flux = want;
   }
 }
 
@@ -564,7 +615,7 @@ int reduce_lobes(std::span<Lobe> lobes, int n, const ReductionOptions& options) 
     // Most texels of smooth regions end as one lobe: try that first, as one merge of the whole union
     // within the budget, before the pairwise search (which would take about n² merges to get there).
     if (budget > 0 && union_cost_bound(whole) <= budget) {
-      Merged m = merge_union(whole, spec_norm2, options.spread_scale);
+      Merged m = merge_union(whole, spec_norm2, options.spread_scale, true, kWholePeakWeight);
       if (m.cost <= budget) {
         keep_specular_flux(whole, m);
         L(0) = m.lobe;
