@@ -45,6 +45,12 @@ double mean3(const glm::vec3& c) { return (double(c.x) + c.y + c.z) / 3.0; }
 // length).
 double specular_amp(double weight, double len, double f0) { return weight * len * (f0 + 0.05 * (1.0 - f0)); }
 
+// What D of a lobe shape depends on (lobe_d), without the horizons' fields.
+struct DShape {
+  double alpha2 = 1, alpha2_hi = 0, lmean = 0, ggx = 1;
+  static DShape of(const LobeShape<double>& sh) { return {sh.alpha2, sh.alpha2_hi, sh.lmean, sh.ggx}; }
+};
+
 // What the cost model needs of a lobe, computed once per lobe.
 struct Summary {
   glm::dvec3 n{0, 0, 1};  // unit normal
@@ -58,7 +64,7 @@ struct Summary {
   double ggx = 1;     // μ, the GGX share of a spread core (lobe.h)
   double tail = 0;    // A: the tail coefficient, D ≈ A/(π t²) far out
   double peak = 1;    // P: π·D at the lobe's own normal
-  double shape_alpha2 = 1, shape_alpha2_hi = 0, shape_lmean = 0;  // its LobeShape's, for D elsewhere (shape_of)
+  DShape d_shape;     // its D's shape, for D away from its normal (merge_union)
   double flux = -1;   // its specular flux as keep_specular_flux measures it (< 0: not yet known)
   std::array<double, kProfileSteps> profile{};  // D about its own normal at tan²θ = 10^-6 … 10 (profile_of)
 };
@@ -67,7 +73,7 @@ struct Summary {
 // no vectors: GGX α²/(π·cos⁴θ·(α² + t)²), the mixture's μ·L(l, h)/(π·cos⁴θ·(l + t)(h + t)), Beckmann
 // e^(−t/α²)/(π·α²·cos⁴θ), the exponential by series_exp (4e-7: the reduction compares shapes with
 // these, for every candidate merge). 0 past 90° (t infinite).
-double d_at_tan2(const LobeShape<double>& sh, double t) {
+double d_at_tan2(const DShape& sh, double t) {
   if (!std::isfinite(t)) return 0.0;
   const double a2 = sh.alpha2, q = (1 + t) * (1 + t) / kPi;
   double d = sh.lmean > 0 ? sh.ggx * sh.lmean / ((t + a2) * (t + sh.alpha2_hi)) : sh.ggx * a2 / ((t + a2) * (t + a2));
@@ -79,7 +85,7 @@ double d_at_tan2(const LobeShape<double>& sh, double t) {
 }
 
 // D of a lobe shape about its own normal at kProfileSteps values of tan²θ, log-spaced from 1e-6 to 10.
-void profile_of(const LobeShape<double>& sh, std::array<double, kProfileSteps>& out) {
+void profile_of(const DShape& sh, std::array<double, kProfileSteps>& out) {
   static const std::array<double, kProfileSteps> steps = [] {
     std::array<double, kProfileSteps> t{};
     for (std::size_t j = 0; j < kProfileSteps; ++j) t[j] = std::pow(10.0, -6.0 + 7.0 * double(j) / (kProfileSteps - 1));
@@ -98,7 +104,7 @@ double tan2_between(const glm::dvec3& a, const glm::dvec3& b) {
 // D at h = z (the geometric normal) of a lobe.
 double d_at_z(const LobeShape<double>& sh) {
   if (!sh.valid) return 0.0;
-  return d_at_tan2(sh, tan2_between(sh.n, glm::dvec3(0, 0, 1)));
+  return d_at_tan2(DShape::of(sh), tan2_between(sh.n, glm::dvec3(0, 0, 1)));
 }
 
 Summary summarize(const Lobe& l) {
@@ -121,22 +127,10 @@ Summary summarize(const Lobe& l) {
   }
   s.alpha2 = 1 / s.peak;
   s.ln_alpha2 = series_log(s.alpha2);
-  s.shape_alpha2 = sh.alpha2, s.shape_alpha2_hi = sh.alpha2_hi, s.shape_lmean = sh.lmean;
+  s.d_shape = DShape::of(sh);
   s.d_z = d_at_z(sh);
-  profile_of(sh, s.profile);
+  profile_of(s.d_shape, s.profile);
   return s;
-}
-
-// The shape lobe_d needs of a summarized lobe (not the horizons' fields).
-LobeShape<double> shape_of(const Summary& s) {
-  LobeShape<double> sh;
-  sh.n = s.n;
-  sh.alpha2 = s.shape_alpha2;
-  sh.ggx = s.ggx;
-  sh.alpha2_hi = s.shape_alpha2_hi;
-  sh.lmean = s.shape_lmean;
-  sh.valid = true;
-  return sh;
 }
 
 // The L2 inner product, over (wi, wo) pairs, of two specular lobes of amplitude 1: each lobe's
@@ -452,7 +446,7 @@ Merged merge_union(std::span<const Member> u, double self, float spread_scale, b
     double P_centre = 0;
     for (const Member& x : u) {
       const Summary& a = *x.sum;
-      P_centre += (by_amp ? a.amp : a.weight) * kPi * d_at_tan2(shape_of(a), tan2_between(a.n, n));
+      P_centre += (by_amp ? a.amp : a.weight) * kPi * d_at_tan2(a.d_shape, tan2_between(a.n, n));
     }
     P = (1.0 - kLeanPeakShareSpread) * P_centre + kLeanPeakShareSpread * P_lean;
   }
