@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <tuple>
 #include <utility>
+#include <vector>
 
 #include "base/series_log.h"
 
@@ -60,7 +62,6 @@ struct Summary {
   double rho = 0;     // mean diffuse albedo
   double f0 = 0;      // mean F0
   double alpha2 = 1;  // the core's width 1/P, for the Gaussian model of union_cost
-  double ln_alpha2 = 0;  // its logarithm (rough_distance)
   double ggx = 1;     // μ, the GGX share of a spread core (lobe.h)
   double tail = 0;    // A: the tail coefficient, D ≈ A/(π t²) far out
   double peak = 1;    // P: π·D at the lobe's own normal
@@ -84,14 +85,35 @@ double d_at_tan2(const DShape& sh, double t) {
   return q * d;
 }
 
-// D of a lobe shape about its own normal at kProfileSteps values of tan²θ, log-spaced from 1e-6 to 10.
+// D of a lobe shape about its own normal at kProfileSteps values of tan²θ, log-spaced from 1e-6 to 10:
+// d_at_tan2 at each, its branches taken once for the row (this runs for every lobe summarized, and the
+// loops over the steps then vectorize); the same arithmetic, so the same numbers.
 void profile_of(const DShape& sh, std::array<double, kProfileSteps>& out) {
-  static const std::array<double, kProfileSteps> steps = [] {
-    std::array<double, kProfileSteps> t{};
-    for (std::size_t j = 0; j < kProfileSteps; ++j) t[j] = std::pow(10.0, -6.0 + 7.0 * double(j) / (kProfileSteps - 1));
-    return t;
+  struct Steps {
+    std::array<double, kProfileSteps> t{}, q{};  // tan²θ and d_at_tan2's (1 + t)²/π
+  };
+  static const Steps steps = [] {
+    Steps s;
+    for (std::size_t j = 0; j < kProfileSteps; ++j) {
+      s.t[j] = std::pow(10.0, -6.0 + 7.0 * double(j) / (kProfileSteps - 1));
+      s.q[j] = (1 + s.t[j]) * (1 + s.t[j]) / kPi;
+    }
+    return s;
   }();
-  for (std::size_t j = 0; j < kProfileSteps; ++j) out[j] = d_at_tan2(sh, steps[j]);
+  const double a2 = sh.alpha2;
+  if (sh.lmean > 0) {
+    const double c = sh.ggx * sh.lmean, hi = sh.alpha2_hi;
+    for (std::size_t j = 0; j < kProfileSteps; ++j) out[j] = c / ((steps.t[j] + a2) * (steps.t[j] + hi));
+  } else {
+    const double c = sh.ggx * a2;
+    for (std::size_t j = 0; j < kProfileSteps; ++j) out[j] = c / ((steps.t[j] + a2) * (steps.t[j] + a2));
+  }
+  if (sh.ggx != 1.0)
+    for (std::size_t j = 0; j < kProfileSteps; ++j) {
+      const double x = steps.t[j] / a2;
+      if (x < 60.0) out[j] += (1.0 - sh.ggx) * double(series_exp(static_cast<float>(-x))) / a2;
+    }
+  for (std::size_t j = 0; j < kProfileSteps; ++j) out[j] = steps.q[j] * out[j];
 }
 
 // tan²θ between two unit vectors (∞ at or past 90°).
@@ -126,7 +148,6 @@ Summary summarize(const Lobe& l) {
     s.peak = 1 / sh.alpha2;
   }
   s.alpha2 = 1 / s.peak;
-  s.ln_alpha2 = series_log(s.alpha2);
   s.d_shape = DShape::of(sh);
   s.d_z = d_at_z(sh);
   profile_of(s.d_shape, s.profile);
@@ -167,6 +188,15 @@ class SpecAlbedoTable {
     const double t = x - i;
     const auto at = [&](const std::array<double, kSize>& v) { return v[static_cast<std::size_t>(i)] * (1 - t) + v[static_cast<std::size_t>(i + 1)] * t; };
     return ggx * (f0 * at(a_) + (1 - f0) * at(b_)) + (1 - ggx) * (f0 * at(ba_) + (1 - f0) * at(bb_));
+  }
+  // The same for μ = 1 (a GGX lobe; a roughness mixture's components), without the Beckmann columns.
+  double ggx_albedo_at_log(double ln_alpha2, double f0) const {
+    const double lmin = std::log(kMin);
+    const double x = (std::clamp(ln_alpha2, lmin, 0.0) - lmin) / (-lmin) * (kSize - 1);
+    const int i = std::min(kSize - 2, static_cast<int>(x));
+    const double t = x - i;
+    const auto at = [&](const std::array<double, kSize>& v) { return v[static_cast<std::size_t>(i)] * (1 - t) + v[static_cast<std::size_t>(i + 1)] * t; };
+    return f0 * at(a_) + (1 - f0) * at(b_);
   }
 
  private:
@@ -232,29 +262,49 @@ double union_spec_norm2(std::span<const Member> u) {
 // Horizons: the linear part of the cosine factors is kept exactly, but where the lobes' horizons
 // differ (a lune of width δ, the angle between the normals) the merged lobe's smooth horizon differs
 // from theirs; diffuse and grazing specular (Fresnel rises toward 1) both feel it. Plus the coupling
-// of color and normal (ρ̄·n̄ ≠ E[ρ·n]). W: the union's weight; rho, f0: the merged lobe's.
-double horizon_cost(std::span<const Member> u, double W, double rho, double f0) {
-  const double horizon_amp = rho + f0 + 0.2 * (1.0 - f0);
-  double horizon = 0;
+// of color and normal (ρ̄·n̄ ≠ E[ρ·n]). The pairs' sums do not depend on the merged lobe, so a union's
+// are made once for its bound and its cost: horizon = 0.4·H²·lune + coupling, where H is the merged
+// lobe's amplitude at the horizon (its ρ and F0).
+struct HorizonSums {
+  double lune = 0;      // Σ w_a·w_b/W · δ_ab
+  double coupling = 0;  // Σ (4/3)·(w_a·w_b/W)²·Δρ²·2(1 − cos δ_ab)
+  double cost(double rho, double f0) const {
+    const double amp = rho + f0 + 0.2 * (1.0 - f0);
+    return 0.4 * amp * amp * lune + coupling;
+  }
+};
+
+// W: the union's weight.
+HorizonSums horizon_sums(std::span<const Member> u, double W) {
+  HorizonSums h;
+  const double inv_w = 1.0 / W;
   for (std::size_t i = 0; i < u.size(); ++i)
     for (std::size_t j = i + 1; j < u.size(); ++j) {
       const Summary &a = *u[i].sum, &b = *u[j].sum;
-      const double ab = a.weight * b.weight / W;
+      const double ab = a.weight * b.weight * inv_w;
       const double cos_ab = std::clamp(glm::dot(a.n, b.n), -1.0, 1.0);
-      const double delta = glm::length(a.n - b.n);  // the angle between the normals, to O(δ³)
+      const glm::dvec3 d = a.n - b.n;
+      const double delta = std::sqrt(glm::dot(d, d));  // the angle between the normals, to O(δ³)
       const double drho = a.rho - b.rho;
-      horizon += ab * 0.4 * horizon_amp * horizon_amp * delta + (4.0 / 3.0) * ab * ab * drho * drho * 2.0 * (1.0 - cos_ab);
+      h.lune += ab * delta;
+      h.coupling += (8.0 / 3.0) * ab * ab * drho * drho * (1.0 - cos_ab);
     }
-  return horizon;
+  return h;
+}
+
+double union_weight(std::span<const Member> u) {
+  double W = 0;
+  for (const Member& x : u) W += x.sum->weight;
+  return W;
 }
 
 // A lower bound of union_cost that needs no merge: its horizon term alone (every other term is ≥ 0),
 // with the merged ρ and F0 taken as the weighted means merge_base makes (less a relative 1e-6 for the
 // float rounding of the merged lobe's).
-double union_cost_bound(std::span<const Member> u) {
+double union_cost_bound(std::span<const Member> u, const HorizonSums& h) {
   double W = 0, rho = 0, f0 = 0;
   for (const Member& x : u) W += x.sum->weight, rho += x.sum->weight * x.sum->rho, f0 += x.sum->weight * x.sum->f0;
-  return (1.0 - 1e-6) * horizon_cost(u, W, rho / W, f0 / W);
+  return (1.0 - 1e-6) * h.cost(rho / W, f0 / W);
 }
 
 // The estimated squared error of replacing the union u by the lobe m, whose union has specular norm²
@@ -262,7 +312,8 @@ double union_cost_bound(std::span<const Member> u) {
 // about the geometric normal, the core widths and the log profile, each below. For two lobes these
 // are the terms of the pair; for more, the pair terms summed over the pairs (horizons) or the union's
 // sums in place of the pair's.
-double union_cost(std::span<const Member> u, double self, const Summary& m, bool by_amp, double peak_weight) {
+double union_cost(std::span<const Member> u, double self, const HorizonSums& hs, const Summary& m, bool by_amp,
+                  double peak_weight) {
   double Am = 0, peak = 0, width = 0, spec = self, W = 0;
   for (const Member& x : u) Am += x.sum->amp, W += x.sum->weight;
   spec += Am * Am * spec_inner(m.alpha2, m.alpha2, 0);
@@ -272,7 +323,7 @@ double union_cost(std::span<const Member> u, double self, const Summary& m, bool
     peak += a.amp * a.d_z;
     width += a.amp * a.ggx * a.alpha2;
   }
-  const double horizon = horizon_cost(u, W, m.rho, m.f0);
+  const double horizon = hs.cost(m.rho, m.f0);
   // The highlight about the geometric normal. Every mirror pair of the metric has h = z, and a
   // polished surface seen from afar shows its highlight there, so a merge that lowers or raises the
   // mixture's peak at h = z is charged for it (the blurred L2 above cannot see the height of narrow
@@ -395,15 +446,21 @@ void set_shape(Lobe& m, double A, double P) {
   if (q > 1.0 + 1e-7) {
     const double target = std::sqrt(q);
     double u = std::max(1e-6, SinhcInverse::get().guess(target));
+    double e = std::exp(u);
     for (int k = 0; k < 8; ++k) {
-      const double e = std::exp(u), sh = 0.5 * (e - 1 / e), ch = 0.5 * (e + 1 / e);
-      const double f = sh / u - target, df = (u * ch - sh) / (u * u);
-      if (!(df > 0)) break;
-      const double step = f / df;
-      u = std::max(1e-6, u - step);
+      const double inv_e = 1 / e, sh = 0.5 * (e - inv_e), ch = 0.5 * (e + inv_e);
+      // f = sinh(u)/u − T, f' = (u·cosh u − sinh u)/u², so the step f/f' = u·(sinh u − T·u)/(u·cosh u − sinh u).
+      const double den = u * ch - sh;
+      if (!(den > 0)) break;
+      const double step = u * (sh - target * u) / den;
+      const double next = std::max(1e-6, u - step), d = u - next;
+      // e^next = e^u·e^−d; the steps from the tabulated guess are small (|d| ~ 1e-5·u, then ~1e-10),
+      // where e^−d's series to d⁴ is exact to 1e-17: one exponential per shape, not one per step.
+      e = std::abs(d) < 1e-3 ? e * (1 - d * (1 - d * (0.5 - d * (1.0 / 6 - d * (1.0 / 24))))) : std::exp(next);
+      u = next;
       if (std::abs(step) < 1e-9 * u) break;
     }
-    const double g = std::sqrt(A / P), e = std::exp(u);
+    const double g = std::sqrt(A / P);
     m.alpha2 = static_cast<float>(std::clamp(g / e, 1e-6, 1.0));
     m.alpha2_hi = static_cast<float>(std::clamp(g * e, double(m.alpha2), 1.0));
     m.ggx = 1.0f;
@@ -413,10 +470,17 @@ void set_shape(Lobe& m, double A, double P) {
   }
 }
 
-// Merges the union u (whose specular norm² is `self`); returns the merged lobe, its summary and, when
-// asked for (a candidate merge, not one already chosen), its cost.
-Merged merge_union(std::span<const Member> u, double self, float spread_scale, bool with_cost = true,
-                    double peak_weight = kPeakWeight) {
+// What union_cost needs of the union alone: its specular norm² (union_spec_norm2) and horizon sums.
+struct UnionTerms {
+  double self = 0;
+  HorizonSums horizon;
+};
+
+UnionTerms union_terms(std::span<const Member> u) { return {union_spec_norm2(u), horizon_sums(u, union_weight(u))}; }
+
+// Merges the union u; returns the merged lobe, its summary and, when the union's terms are given (a
+// candidate merge, not one already chosen), its cost.
+Merged merge_union(std::span<const Member> u, const UnionTerms* terms, float spread_scale, double peak_weight = kPeakWeight) {
   const MergeBase mb = merge_base(u);
   double K = 0;
   for (const Member& x : u) K += x.sum->amp;
@@ -453,14 +517,16 @@ Merged merge_union(std::span<const Member> u, double self, float spread_scale, b
   Merged best{mb.lobe, mb.summary, 0};
   set_shape(best.lobe, A / K, P / K);
   best.summary = summarize(best.lobe);
-  if (with_cost) best.cost = union_cost(u, self, best.summary, by_amp, peak_weight);
+  if (terms) best.cost = union_cost(u, terms->self, terms->horizon, best.summary, by_amp, peak_weight);
   return best;
 }
 
 Merged merge_pair(const Lobe& a, const Summary& sa, const Lobe& b, const Summary& sb, float spread_scale,
                   bool with_cost = true) {
   const std::array<Member, 2> u{Member{&a, &sa}, Member{&b, &sb}};
-  return merge_union(u, with_cost ? union_spec_norm2(u) : 0.0, spread_scale, with_cost);
+  if (!with_cost) return merge_union(u, nullptr, spread_scale);
+  const UnionTerms terms = union_terms(u);
+  return merge_union(u, &terms, spread_scale);
 }
 
 // Keeps the union's specular albedo: scales the merged lobe's weight (which scales its specular part)
@@ -474,7 +540,8 @@ void keep_specular_flux(std::span<const Member> u, Merged& m) {
       // A roughness mixture reflects the mean of its components' albedos over log-uniform α²
       // (midpoint rule in log α², 8 points).
       const double lo = series_log(double(l.alpha2)), step = series_log(double(l.alpha2_hi) / double(l.alpha2)) / 8;
-      for (int k = 0; k < 8; ++k) spec += t.albedo_at_log(lo + (k + 0.5) * step, mean3(l.f0), 1.0) / 8;
+      const double f0 = mean3(l.f0);
+      for (int k = 0; k < 8; ++k) spec += t.ggx_albedo_at_log(lo + (k + 0.5) * step, f0) / 8;
     } else {
       spec = t.albedo(l.alpha2, mean3(l.f0), l.ggx);
     }
@@ -512,7 +579,7 @@ double rough_distance(const Summary& a, const Summary& b) {
   const double amp = (a.amp + b.amp) / w;
   const glm::dvec3 dn = a.n - b.n;
   const double dn2 = glm::dot(dn, dn);
-  const double dl = a.ln_alpha2 - b.ln_alpha2;
+  const double dl = series_log(a.alpha2 / b.alpha2);
   const double rho = 0.5 * (a.rho + b.rho), f0 = 0.5 * (a.f0 + b.f0);
   const double horizon_amp = rho + f0 + 0.2 * (1.0 - f0);
   const double drho = a.rho - b.rho;
@@ -583,8 +650,9 @@ int reduce_lobes(std::span<Lobe> lobes, int n, const ReductionOptions& options) 
     auto S = [&](int i) -> const Summary& { return sum[static_cast<std::size_t>(i)]; };
     // Merges lobe bj into lobe bi; the last lobe takes bj's place, with its row of the pair matrix M
     // (the caller recomputes bi's row).
-    auto merge_into = [&](int bi, int bj, auto& M) {
-      Merged m = merge_pair(L(bi), S(bi), L(bj), S(bj), options.spread_scale, false);  // chosen: its cost is known
+    // `known`: the pair's merge when the search made it already (its cost known), else null.
+    auto merge_into = [&](int bi, int bj, auto& M, const Merged* known) {
+      Merged m = known ? *known : merge_pair(L(bi), S(bi), L(bj), S(bj), options.spread_scale, false);
       keep_specular_flux(std::array<Member, 2>{Member{&L(bi), &S(bi)}, Member{&L(bj), &S(bj)}}, m);
       L(bi) = m.lobe;
       sum[static_cast<std::size_t>(bi)] = m.summary;
@@ -608,12 +676,15 @@ int reduce_lobes(std::span<Lobe> lobes, int n, const ReductionOptions& options) 
     const double budget = double(options.tolerance) * options.tolerance * norm2;
     // Most texels of smooth regions end as one lobe: try that first, as one merge of the whole union
     // within the budget, before the pairwise search (which would take about n² merges to get there).
-    if (budget > 0 && union_cost_bound(whole) <= budget) {
-      Merged m = merge_union(whole, spec_norm2, options.spread_scale, true, kWholePeakWeight);
-      if (m.cost <= budget) {
-        keep_specular_flux(whole, m);
-        L(0) = m.lobe;
-        return 1;
+    if (budget > 0) {
+      const UnionTerms terms{spec_norm2, horizon_sums(whole, union_weight(whole))};
+      if (union_cost_bound(whole, terms.horizon) <= budget) {
+        Merged m = merge_union(whole, &terms, options.spread_scale, kWholePeakWeight);
+        if (m.cost <= budget) {
+          keep_specular_flux(whole, m);
+          L(0) = m.lobe;
+          return 1;
+        }
       }
     }
     double spent = 0;
@@ -627,7 +698,7 @@ int reduce_lobes(std::span<Lobe> lobes, int n, const ReductionOptions& options) 
         for (int j = i + 1; j < n; ++j) D(i, j) = rough_distance(S(i), S(j));
       while (n > max_lobes) {
         const auto [bi, bj] = cheapest_pair(n, D);
-        merge_into(bi, bj, D);
+        merge_into(bi, bj, D, nullptr);
         for (int i = 0; i < n; ++i)
           if (i != bi) D(i, bi) = rough_distance(S(i), S(bi));
       }
@@ -638,11 +709,16 @@ int reduce_lobes(std::span<Lobe> lobes, int n, const ReductionOptions& options) 
     // only the merged lobe's row changes. The merges made are those of the eager greedy search.
     static thread_local std::array<double, kCap * kCap> cost;
     static thread_local std::array<bool, kCap * kCap> exact;
+    // An exact pair's merge, kept so that the merge chosen is not made twice: `made` holds them in
+    // the order made, `made_at` a pair's index into it (valid while the pair is exact).
+    static thread_local std::vector<Merged> made;
+    static thread_local std::array<std::uint16_t, kCap * kCap> made_at;
+    made.clear();
     auto at = [](int i, int j) { return static_cast<std::size_t>(std::min(i, j) * kCap + std::max(i, j)); };
     auto C = [&](int i, int j) -> double& { return cost[at(i, j)]; };
     auto bound = [&](int i, int j) {
       const std::array<Member, 2> u{Member{&L(i), &S(i)}, Member{&L(j), &S(j)}};
-      C(i, j) = union_cost_bound(u);
+      C(i, j) = union_cost_bound(u, horizon_sums(u, union_weight(u)));
       exact[at(i, j)] = false;
     };
     for (int i = 0; i < n; ++i)
@@ -650,10 +726,11 @@ int reduce_lobes(std::span<Lobe> lobes, int n, const ReductionOptions& options) 
     // merge_into moves the last lobe's row of C into bj's; its flags move with it.
     auto merge_lazy = [&](int bi, int bj) {
       const int last = n - 1;
+      const Merged* known = &made[made_at[at(bi, bj)]];
       if (bj != last)
         for (int i = 0; i < last; ++i)
-          if (i != bj) exact[at(i, bj)] = exact[at(i, last)];
-      merge_into(bi, bj, C);
+          if (i != bj) exact[at(i, bj)] = exact[at(i, last)], made_at[at(i, bj)] = made_at[at(i, last)];
+      merge_into(bi, bj, C, known);
     };
     while (n > 1) {
       int bi = 0, bj = 1;
@@ -662,7 +739,9 @@ int reduce_lobes(std::span<Lobe> lobes, int n, const ReductionOptions& options) 
         std::tie(bi, bj) = cheapest_pair(n, C);
         best = C(bi, bj);
         if (exact[at(bi, bj)] || (n <= max_lobes && spent + best > budget)) break;
-        C(bi, bj) = merge_pair(L(bi), S(bi), L(bj), S(bj), options.spread_scale).cost;
+        made.push_back(merge_pair(L(bi), S(bi), L(bj), S(bj), options.spread_scale));
+        made_at[at(bi, bj)] = static_cast<std::uint16_t>(made.size() - 1);
+        C(bi, bj) = made.back().cost;
         exact[at(bi, bj)] = true;
       }
       if (n <= max_lobes) {
