@@ -24,6 +24,21 @@ inline double series_log(double x) {
   return e * 0.69314718055994531 + 2 * t * (1 + t2 * (1.0 / 3 + t2 * (1.0 / 5 + t2 * (1.0 / 7 + t2 * (1.0 / 9)))));
 }
 
+// ln x in float for finite x ≥ 2^−126: within 5e-7 relative for x in (1, 2], 2.5e-7·max(1, |ln x|)
+// elsewhere (series_log's series to t⁹, in float: the lobes' shapes at every hit, where the double
+// division and series were a few percent of a lookup).
+inline float series_logf(float x) {
+  std::uint32_t bits;
+  std::memcpy(&bits, &x, sizeof bits);
+  int e = static_cast<int>((bits >> 23) & 0xff) - 127;
+  bits = (bits & 0x007fffffu) | 0x3f800000u;
+  float m;
+  std::memcpy(&m, &bits, sizeof m);
+  if (m > 1.41421356f) m *= 0.5f, ++e;
+  const float t = (m - 1.0f) / (m + 1.0f), t2 = t * t;
+  return static_cast<float>(e) * 0.693147181f + 2.0f * t * (1.0f + t2 * (1.0f / 3 + t2 * (1.0f / 5 + t2 * (1.0f / 7 + t2 * (1.0f / 9)))));
+}
+
 // log₂ x for finite x ≥ 2^−126, within 3e-5 (the series's 2e-5 plus the float's rounding of the
 // exponent's part), and exact at powers of two (the series to t⁷ on
 // m ∈ [1, 2), |t| ≤ ⅓; exactness at m = 1 is what lets a footprint of 2^k texels select level k).

@@ -136,9 +136,17 @@ LobeShape<T> lobe_shape(const Lobe& lobe, bool with_nodes = true) {
   s.ggx = std::clamp(T(lobe.ggx), T(0), T(1));
   if (lobe.alpha2_hi > lobe.alpha2 * 1.0001f) {
     s.alpha2_hi = T(lobe.alpha2_hi);
-    const double ratio = double(lobe.alpha2_hi) / double(lobe.alpha2);
-    const T x = T(ratio - 1.0);
-    const T span = T(series_log(ratio));  // ln(h/l), within 1e-9
+    T x, span;  // h/l − 1 and ln(h/l)
+    if constexpr (std::is_same_v<T, float>) {
+      // Both from the one float ratio, so that x/span (smooth in the ratio) keeps its precision.
+      const float ratio = lobe.alpha2_hi / lobe.alpha2;
+      x = ratio - 1.0f;
+      span = series_logf(ratio);
+    } else {
+      const double ratio = double(lobe.alpha2_hi) / double(lobe.alpha2);
+      x = T(ratio - 1.0);
+      span = T(series_log(ratio));  // within 1e-9
+    }
     s.lmean = s.alpha2 * x / span;
     if (with_nodes) {
       // l·(h/l)^t at t = ½ ∓ √(3/20) and ½: the outer two are l·e and h/e with e = (h/l)^0.1127.

@@ -2,6 +2,7 @@
 // at the edges its comments promise.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "base/series_log.h"
@@ -16,6 +17,19 @@ TEST(Series, LogWithinOneInABillion) {
 TEST(Series, Log2WithinThreeInAHundredThousandAndExactAtPowersOfTwo) {
   for (float x = 1e-30f; x < 1e30f; x *= 1.0173f) EXPECT_NEAR(series_log2(x), std::log2(x), 3e-5) << x;
   for (int k = -126; k < 128; ++k) EXPECT_EQ(series_log2(std::ldexp(1.0f, k)), static_cast<float>(k));
+}
+
+// The float logarithm the lobes' shapes take of their α² ratio: relative to ln x near 1 (a narrow
+// mixture's span, whose ratio x − 1 the shape divides by it), absolute elsewhere.
+TEST(Series, LogfRelativeNearOneAndWithinAFloatElsewhere) {
+  for (float x = 1.0f + 1.2e-7f; x <= 2.0f; x *= 1.0011f) {
+    const double want = std::log(static_cast<double>(x));
+    EXPECT_NEAR(series_logf(x) / want, 1.0, 5e-7) << x;
+  }
+  for (float x = 1e-30f; x < 1e30f; x *= 1.0173f) {
+    const double want = std::log(static_cast<double>(x));
+    EXPECT_NEAR(series_logf(x), want, 2.5e-7 * std::max(1.0, std::abs(want))) << x;
+  }
 }
 
 TEST(Series, ExpWithinFourInTenMillion) {
