@@ -182,26 +182,32 @@ class SpecAlbedoTable {
   }
   // The same at ln α² (clamped to the table).
   double albedo_at_log(double ln_alpha2, double f0, double ggx) const {
-    const double lmin = std::log(kMin);
-    const double x = (std::clamp(ln_alpha2, lmin, 0.0) - lmin) / (-lmin) * (kSize - 1);
-    const int i = std::min(kSize - 2, static_cast<int>(x));
-    const double t = x - i;
-    const auto at = [&](const std::array<double, kSize>& v) { return v[static_cast<std::size_t>(i)] * (1 - t) + v[static_cast<std::size_t>(i + 1)] * t; };
-    return ggx * (f0 * at(a_) + (1 - f0) * at(b_)) + (1 - ggx) * (f0 * at(ba_) + (1 - f0) * at(bb_));
+    const Cell c = cell(ln_alpha2);
+    return ggx * (f0 * c.at(a_) + (1 - f0) * c.at(b_)) + (1 - ggx) * (f0 * c.at(ba_) + (1 - f0) * c.at(bb_));
   }
   // The same for μ = 1 (a GGX lobe; a roughness mixture's components), without the Beckmann columns.
   double ggx_albedo_at_log(double ln_alpha2, double f0) const {
-    const double lmin = std::log(kMin);
-    const double x = (std::clamp(ln_alpha2, lmin, 0.0) - lmin) / (-lmin) * (kSize - 1);
-    const int i = std::min(kSize - 2, static_cast<int>(x));
-    const double t = x - i;
-    const auto at = [&](const std::array<double, kSize>& v) { return v[static_cast<std::size_t>(i)] * (1 - t) + v[static_cast<std::size_t>(i + 1)] * t; };
-    return f0 * at(a_) + (1 - f0) * at(b_);
+    const Cell c = cell(ln_alpha2);
+    return f0 * c.at(a_) + (1 - f0) * c.at(b_);
   }
 
  private:
   static constexpr int kSize = 128;
   static constexpr double kMin = 1e-6;
+  // Where ln α² falls in the table: entry i and the share t of entry i + 1.
+  struct Cell {
+    int i;
+    double t;
+    double at(const std::array<double, kSize>& v) const {
+      return v[static_cast<std::size_t>(i)] * (1 - t) + v[static_cast<std::size_t>(i + 1)] * t;
+    }
+  };
+  static Cell cell(double ln_alpha2) {
+    const double lmin = std::log(kMin);
+    const double x = (std::clamp(ln_alpha2, lmin, 0.0) - lmin) / (-lmin) * (kSize - 1);
+    const int i = std::min(kSize - 2, static_cast<int>(x));
+    return {i, x - i};
+  }
   SpecAlbedoTable() {
     constexpr int n = 64;
     for (int k = 0; k < kSize; ++k) {
