@@ -5,6 +5,12 @@
 // from the same frame at 8 spp (the same pixels, paths and ray mix; 1/8 of the count) and traced 8
 // times, so both sides trace the same number of rays — with rtcIntersect1 for closest-hit rays and
 // rtcOccluded1 for shadow rays, through the same Embree scene (filters included).
+//
+// ShowcaseUntextured is the showcase with every texture slot emptied and one constant rough
+// dielectric material (gray, roughness 1, metallic 0): the same geometry, lights, sky and paths with
+// the cheapest surface the renderer shades. Its ratio is the ceiling that no texture filter can
+// raise the textured showcase above — what the integrator itself (NEE to the sun and the sky, MIS,
+// the sky's importance sampling) costs against a BVH of a few hundred triangles.
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -38,19 +44,34 @@ struct Loaded {
   double setup_seconds = 0.0;                              // load_gltf + PreparedScene (textures, BVH)
 };
 
-// Loads a scene once per process; null when the file is absent.
-Loaded* load(const fs::path& file, int width, int height) {
+// Every material of `scene` made one constant rough gray dielectric with no texture.
+void strip_textures(Scene& scene) {
+  for (MaterialDesc& m : scene.materials) {
+    m.base_color_texture = m.metallic_roughness_texture = m.normal_texture = m.occlusion_texture = TextureRef{};
+    m.emissive_texture = m.specular_texture = m.specular_color_texture = TextureRef{};
+    m.transmission_texture = m.diffuse_roughness_texture = TextureRef{};
+    m.base_color = Rgb(0.5f);
+    m.metallic = 0.0f;
+    m.roughness = 1.0f;
+  }
+}
+
+// Loads a scene once per process (per file and `untextured`); null when the file is absent.
+Loaded* load(const fs::path& file, int width, int height, bool untextured = false) {
   static std::map<std::string, std::unique_ptr<Loaded>> cache;
-  auto it = cache.find(file.string());
+  const std::string key = file.string() + (untextured ? "#untextured" : "");
+  auto it = cache.find(key);
   if (it != cache.end()) return it->second.get();
   if (!fs::exists(file)) return nullptr;
   auto l = std::make_unique<Loaded>();
   SceneSetup setup;
   setup.width = width, setup.height = height;
   const auto t0 = std::chrono::steady_clock::now();
-  l->scene = std::make_unique<PreparedScene>(load_gltf(file), setup);
+  Scene scene = load_gltf(file);
+  if (untextured) strip_textures(scene);
+  l->scene = std::make_unique<PreparedScene>(std::move(scene), setup);
   l->setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return cache.emplace(file.string(), std::move(l)).first->second.get();
+  return cache.emplace(key, std::move(l)).first->second.get();
 }
 
 // The renderer's own rays of an 8-spp frame under `filter` (the same pixels, paths and ray mix as
@@ -90,11 +111,11 @@ double raw_embree_seconds(const EmbreeScene& bvh, const std::vector<RecordedRay>
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-void bench_scene(benchmark::State& state, const fs::path& file) {
+void bench_scene(benchmark::State& state, const fs::path& file, bool untextured = false) {
   const int threads = int(state.range(0));
   const TextureFilter filter = TextureFilter(state.range(1));
   constexpr int kWidth = 640, kHeight = 360, kSpp = 64, kRecordedSpp = 8;
-  Loaded* l = load(file, kWidth, kHeight);
+  Loaded* l = load(file, kWidth, kHeight, untextured);
   if (!l) {
     state.SkipWithError(("scene not found: " + file.string()).c_str());
     for (auto _ : state) {
@@ -141,6 +162,10 @@ void BM_Showcase(benchmark::State& state) {
   bench_scene(state, fs::path(SVBRDF_BINARY_DIR) / "scenes/showcase/showcase.gltf");
 }
 
+void BM_ShowcaseUntextured(benchmark::State& state) {
+  bench_scene(state, fs::path(SVBRDF_BINARY_DIR) / "scenes/showcase/showcase.gltf", true);
+}
+
 // Arguments: threads, filter (TextureFilter: 0 level0, 4 brdf, svbrdf-render's default).
 constexpr int kLevel0 = int(TextureFilter::level0), kBrdf = int(TextureFilter::brdf);
 BENCHMARK(BM_DamagedHelmet)
@@ -148,6 +173,9 @@ BENCHMARK(BM_DamagedHelmet)
     ->ArgNames({"threads", "filter"})->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
 BENCHMARK(BM_Showcase)
     ->Args({1, kLevel0})->Args({2, kLevel0})->Args({1, kBrdf})->Args({2, kBrdf})
+    ->ArgNames({"threads", "filter"})->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
+BENCHMARK(BM_ShowcaseUntextured)
+    ->Args({1, kLevel0})->Args({2, kLevel0})
     ->ArgNames({"threads", "filter"})->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
 
 }  // namespace
