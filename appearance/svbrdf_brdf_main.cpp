@@ -12,6 +12,7 @@
 #include "appearance/registry.h"
 #include "appearance/rng.h"
 #include "base/error.h"
+#include "base/message_line.h"
 
 namespace {
 
@@ -173,10 +174,10 @@ int main(int argc, char** argv) {
                     static_cast<double>(c.max_at_deg[static_cast<std::size_t>(ch)]));
     }
   } catch (const Error& e) {
-    std::fprintf(stderr, "svbrdf-brdf: %s\n", e.what());
+    std::fprintf(stderr, "svbrdf-brdf: %s\n", message_line(e.what()).c_str());
     return e.exit_code();
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "svbrdf-brdf: internal error: %s\n", e.what());
+    std::fprintf(stderr, "svbrdf-brdf: internal error: %s\n", message_line(e.what()).c_str());
     return 1;
   }
   std::fflush(stdout);

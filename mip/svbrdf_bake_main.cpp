@@ -5,6 +5,7 @@
 #include <exception>
 
 #include "base/error.h"
+#include "base/message_line.h"
 #include "mip/bake_commands.h"
 
 int main(int argc, char** argv) {
@@ -18,13 +19,13 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     // --help and --version print through CLI11; a usage error is one line, as every bad input is.
     if (e.get_exit_code() == 0) return app.exit(e);
-    std::fprintf(stderr, "svbrdf-bake: %s\n", e.what());
+    std::fprintf(stderr, "svbrdf-bake: %s\n", svbrdf::message_line(e.what()).c_str());
     return 2;
   } catch (const svbrdf::Error& e) {
-    std::fprintf(stderr, "svbrdf-bake: %s\n", e.what());
+    std::fprintf(stderr, "svbrdf-bake: %s\n", svbrdf::message_line(e.what()).c_str());
     return e.exit_code();
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "svbrdf-bake: internal error: %s\n", e.what());
+    std::fprintf(stderr, "svbrdf-bake: internal error: %s\n", svbrdf::message_line(e.what()).c_str());
     return 1;
   }
   return 0;

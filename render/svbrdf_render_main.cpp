@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "base/error.h"
+#include "base/message_line.h"
 #include "render/gltf_loader.h"
 #include "render/output.h"
 #include "render/progress.h"
@@ -106,10 +107,11 @@ int main(int argc, char** argv) {
     const svbrdf::ColorConfig color =
         svbrdf::ColorConfig::resolve(ocio.empty() ? std::nullopt : std::optional<fs::path>(ocio));
     svbrdf::Scene scene = svbrdf::load_gltf(scene_path);
-    for (const std::string& w : scene.warnings) std::fprintf(stderr, "svbrdf-render: warning: %s\n", w.c_str());
+    for (const std::string& w : scene.warnings)
+      std::fprintf(stderr, "svbrdf-render: warning: %s\n", svbrdf::message_line(w).c_str());
     const svbrdf::PreparedScene prepared(std::move(scene), setup, color);
     for (const std::string& w : prepared.mip_warnings(texture_filter))
-      std::fprintf(stderr, "svbrdf-render: warning: %s\n", w.c_str());
+      std::fprintf(stderr, "svbrdf-render: warning: %s\n", svbrdf::message_line(w).c_str());
 
     svbrdf::RenderOptions options;
     options.spp = spp;
@@ -147,10 +149,10 @@ int main(int argc, char** argv) {
     }
     return 0;
   } catch (const svbrdf::Error& e) {
-    std::fprintf(stderr, "svbrdf-render: %s\n", e.what());
+    std::fprintf(stderr, "svbrdf-render: %s\n", svbrdf::message_line(e.what()).c_str());
     return e.exit_code();
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "svbrdf-render: internal error: %s\n", e.what());
+    std::fprintf(stderr, "svbrdf-render: internal error: %s\n", svbrdf::message_line(e.what()).c_str());
     return 1;
   }
 }

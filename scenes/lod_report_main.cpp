@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "base/error.h"
+#include "base/message_line.h"
 #include "scenes/lod_comparison.h"
 #include "scenes/lod_report.h"
 #include "scenes/lod_scenes.h"
@@ -55,7 +56,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     // --help prints through CLI11; a usage error is one line, as every bad input is.
     if (e.get_exit_code() == 0) return app.exit(e);
-    std::fprintf(stderr, "svbrdf-lod-report: %s\n", e.what());
+    std::fprintf(stderr, "svbrdf-lod-report: %s\n", svbrdf::message_line(e.what()).c_str());
     return 2;
   }
   try {
@@ -78,10 +79,10 @@ int main(int argc, char** argv) {
     if (!quiet) std::fprintf(stderr, "svbrdf-lod-report: wrote %s (%.0f s)\n", index.c_str(), results.seconds);
     return 0;
   } catch (const svbrdf::Error& e) {
-    std::fprintf(stderr, "svbrdf-lod-report: %s\n", e.what());
+    std::fprintf(stderr, "svbrdf-lod-report: %s\n", svbrdf::message_line(e.what()).c_str());
     return e.exit_code();
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "svbrdf-lod-report: internal error: %s\n", e.what());
+    std::fprintf(stderr, "svbrdf-lod-report: internal error: %s\n", svbrdf::message_line(e.what()).c_str());
     return 1;
   }
 }

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <sys/wait.h>
 
+#include "base/message_line.h"
 #include "gltf_test_files.h"
 #include "textures/image.h"
 
@@ -44,6 +45,24 @@ TEST(Program, MalformedGltfIsOneLineAndExit2) {
   EXPECT_NE(r.err.find("meshes[0].primitives[0].indices"), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_FALSE(fs::exists(dir.path() / "o.exr")) << "nothing written for bad input";
+}
+
+// A corrupt file's bytes that the JSON parser quotes in its message reach the terminal as text:
+// the line stays one line of well-formed UTF-8 (base/message_line.h).
+TEST(Program, CorruptBytesInTheMessageAreEscaped) {
+  test::TempDir dir;
+  const fs::path f = dir.write("corrupt.gltf", std::string("{\"asset\": {\"version\": \"2.0\"}, \"nodes\": [\xFF\x01\x80]}"));
+  const RunResult r = run_program("'" + f.string() + "' -q -o '" + (dir.path() / "o.exr").string() + "'", dir);
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  for (std::size_t i = 0; i + 1 < r.err.size();) {
+    const std::size_t n = utf8_sequence_length(r.err, i);
+    ASSERT_GT(n, 0u) << "byte " << i << " of: " << r.err;
+    const auto c = static_cast<unsigned char>(r.err[i]);
+    ASSERT_FALSE(n == 1 && c < 0x20 && c != '\t') << "control byte " << int(c) << " at " << i << " of: " << r.err;
+    i += n;
+  }
+  EXPECT_FALSE(fs::exists(dir.path() / "o.exr"));
 }
 
 TEST(Program, BadArgumentsExit2) {
