@@ -131,11 +131,11 @@ PathSample trace_path(const RenderWorld& w, const IntegratorSettings& s, float f
     bool env_visible = false;
     if (scatters) {
       if (env_on && s.light_sampling != LightSampling::bsdf) {
-        env_dir = w.environment.sample({u1(), u1()}, env_pdf, &env_radiance);
+        env_dir = w.environment.sample({u1(), u1(), u1()}, env_pdf, &env_radiance);
         env_visible = env_pdf > 0.0f && glm::dot(env_dir, sp.ng) > 0.0f &&
                       !occluded(offset_origin(sp.p, sp.ng, env_dir, w.scene_extent), env_dir, kInfinity);
       } else {
-        u1(), u1();  // keep the random sequence's layout the same across strategies
+        u1(), u1(), u1();  // keep the random sequence's layout the same across strategies
       }
     }
 

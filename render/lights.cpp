@@ -10,20 +10,6 @@ namespace svbrdf {
 
 namespace {
 constexpr float kPiF = 3.14159265358979323846f;
-
-// The k ∈ [0, n) with cdf[k] ≤ u < cdf[k + 1] (clamped to the ends), cdf non-decreasing with n + 1
-// entries. A branch-free bisection: where u falls is a coin toss per step for importance-sampled
-// u, which a branch would mispredict at every step.
-std::size_t upper_index(const float* cdf, std::size_t n, float u) {
-  // Invariant: cdf[base] ≤ u (or base = 0), and the answer lies in [base, base + len).
-  std::size_t base = 0, len = n;
-  while (len > 1) {
-    const std::size_t half = len / 2;
-    base = cdf[base + half] <= u ? base + half : base;
-    len -= half;
-  }
-  return base;
-}
 }  // namespace
 
 LightArrival arrive(const LightDesc& l, const glm::vec3& p) {
@@ -90,27 +76,20 @@ Environment Environment::from_image(Image im, const std::string& where) {
   e.image_ = std::move(rgb);
   const int w = e.image_.width, h = e.image_.height;
   e.pixel_func_.resize(std::size_t(w) * h);
-  e.col_cdf_.resize(std::size_t(h) * (w + 1));
-  e.row_func_.resize(std::size_t(h));
-  e.row_cdf_.resize(std::size_t(h) + 1);
+  double total = 0.0;
   for (int j = 0; j < h; ++j) {
     const float sin_theta = std::sin(kPiF * (j + 0.5f) / float(h));
-    float* cdf = &e.col_cdf_[std::size_t(j) * (w + 1)];
-    cdf[0] = 0.0f;
     for (int i = 0; i < w; ++i) {
       const float* px = &e.image_.pixels[(std::size_t(j) * w + i) * 3];
       // Luminance (Rec.709) times the sphere's area element; a small floor keeps every direction
       // sampleable so MIS stays unbiased where the image is black.
       const float f = (0.2126f * px[0] + 0.7152f * px[1] + 0.0722f * px[2]) * sin_theta + 1e-8f;
       e.pixel_func_[std::size_t(j) * w + i] = f;
-      cdf[i + 1] = cdf[i] + f;
+      total += f;
     }
-    e.row_func_[std::size_t(j)] = cdf[w];
-    for (int i = 1; i <= w; ++i) cdf[i] /= cdf[w];
-    e.row_cdf_[std::size_t(j) + 1] = e.row_cdf_[std::size_t(j)] + e.row_func_[std::size_t(j)];
   }
-  e.total_ = e.row_cdf_[std::size_t(h)];
-  for (auto& c : e.row_cdf_) c /= e.total_;
+  e.total_ = float(total);
+  e.pixels_ = AliasTable(e.pixel_func_);
   return e;
 }
 
@@ -145,7 +124,7 @@ Rgb Environment::radiance(const glm::vec3& d, float* pdf) const {
   return {px[0], px[1], px[2]};
 }
 
-glm::vec3 Environment::sample(glm::vec2 u, float& pdf, Rgb* radiance) const {
+glm::vec3 Environment::sample(glm::vec3 u, float& pdf, Rgb* radiance) const {
   if (image_.pixels.empty()) {
     // Uniform on the sphere.
     const float z = 1.0f - 2.0f * u.x, r = std::sqrt(std::max(0.0f, 1.0f - z * z)), phi = 2.0f * kPiF * u.y;
@@ -153,16 +132,13 @@ glm::vec3 Environment::sample(glm::vec2 u, float& pdf, Rgb* radiance) const {
     if (radiance) *radiance = uniform_;
     return {r * std::cos(phi), z, r * std::sin(phi)};
   }
+  // A pixel in proportion to its share (pixel_func_), then a uniform point in it (u.y's rest, u.z).
   const int w = image_.width, h = image_.height;
-  const std::size_t j = upper_index(row_cdf_.data(), std::size_t(h), u.y);
-  const float row_width = row_cdf_[j + 1] - row_cdf_[j];
-  const float dv = row_width > 0.0f ? (u.y - row_cdf_[j]) / row_width : 0.5f;
-  const float* cdf = &col_cdf_[j * (w + 1)];
-  const std::size_t i = upper_index(cdf, std::size_t(w), u.x);
-  const float col_width = cdf[i + 1] - cdf[i];
-  const float du = col_width > 0.0f ? (u.x - cdf[i]) / col_width : 0.5f;
-  const float uu = (float(i) + std::clamp(du, 0.0f, 1.0f)) / float(w);
-  const float vv = (float(j) + std::clamp(dv, 0.0f, 1.0f)) / float(h);
+  float du = 0.0f;
+  const std::size_t k = pixels_.sample(u.x, u.y, du);
+  const std::size_t i = k % std::size_t(w), j = k / std::size_t(w);
+  const float uu = (float(i) + du) / float(w);
+  const float vv = (float(j) + u.z) / float(h);
   const float theta = vv * kPiF, phi = (uu - 0.5f) * 2.0f * kPiF;
   const float st = std::sin(theta);
   const glm::vec3 d(st * std::sin(phi), std::cos(theta), -st * std::cos(phi));

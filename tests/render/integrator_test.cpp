@@ -177,12 +177,17 @@ TEST(Integrator, MirrorAgainstFresnel) {
   m.base_color = Rgb(0.5f, 0.25f, 0.9f);
   m.metallic = 1.0f;
   m.roughness = 0.0f;
+  // Roughness 0 is glTF's GGX at α = 1e-3, not an impulse: a VNDF sample now and then lands in the
+  // lobe's long tail, where MIS gives most of its weight to the environment's sampling, so a single
+  // sample can be 0.2 where the mean is 0.9 (and an environment sample, rarely, 0.15 above it). The
+  // per-sample spread is ~0.05 (measured), so the mean of 8 × 8 pixels at 256 samples has σ ≈ 4e-4:
+  // 3e-3 is about seven of those. One pixel at 16 samples, as this test read before, is ±5 %.
   for (float deg : {20.0f, 60.0f, 75.0f}) {
     const float theta = glm::radians(deg), w = std::pow(1.0f - std::cos(theta), 5.0f);
-    const Image im = view_horizontal_surface(m, theta, false, env);
+    const Image im = view_horizontal_surface(m, theta, false, env, 256);
     for (int c = 0; c < 3; ++c) {
       const float expected = m.base_color[c] + (1.0f - m.base_color[c]) * w;
-      EXPECT_NEAR(pixel(im, 4, 4)[c], expected, 3e-3f) << deg << "° channel " << c;
+      EXPECT_NEAR(image_mean(im, c), expected, 3e-3f) << deg << "° channel " << c;
     }
   }
 }
@@ -445,7 +450,7 @@ TEST(Environment, ImportanceSamplingIsUnbiased) {
   double est = 0.0, pdf_integral = 0.0;
   for (int k = 0; k < n; ++k) {
     float pdf = 0.0f;
-    const glm::vec3 d = env.sample({rng.next_float(), rng.next_float()}, pdf);
+    const glm::vec3 d = env.sample({rng.next_float(), rng.next_float(), rng.next_float()}, pdf);
     ASSERT_GT(pdf, 0.0f);
     EXPECT_NEAR(pdf, env.pdf(d), 1e-3f * pdf);
     est += env.radiance(d).y / pdf;
