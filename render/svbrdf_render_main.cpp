@@ -34,9 +34,10 @@ fs::path find_showcase(const char* argv0) {
   const fs::path dir = exe.parent_path();
   for (const fs::path& p : {dir / "scenes" / "showcase" / "showcase.gltf", dir / "scenes" / "showcase.gltf"})
     if (fs::exists(p, ec)) return p;
-  throw svbrdf::input_error("svbrdf-render", "no scene given, and the showcase scene has not been built (looked for " +
-                                                 (dir / "scenes" / "showcase" / "showcase.gltf").string() +
-                                                 "); pass a glTF file");
+  // The program's name is the line's prefix already (main); the message names the file it looked for.
+  throw svbrdf::input_error((dir / "scenes" / "showcase" / "showcase.gltf").string(),
+                            "no scene given, and the showcase scene has not been built here; pass a glTF file, "
+                            "or build it (make render)");
 }
 
 }  // namespace
