@@ -109,12 +109,13 @@ struct PresetCase {
 };
 std::ostream& operator<<(std::ostream& os, const PresetCase& c) { return os << c.preset << ":" << c.variant; }
 
-// The issue's assertions for one preset bake; `size` 128 in the default suite, 256 in `long`.
-void check_preset(const PresetCase& pc, int size) {
+// The issue's assertions for one preset bake (its recipe's default seed unless given).
+void check_preset(const PresetCase& pc, int size, std::uint64_t seed = MaterialRecipe{}.seed) {
   MaterialRecipe r;
   r.preset = pc.preset;
   r.variant = pc.variant;
   r.size = size;
+  r.seed = seed;
   const MipData mip = build_mip(generate_material(r).texels);
   CompareOptions o;
   o.modes = {MipMode::param, MipMode::brdf};
@@ -125,7 +126,7 @@ void check_preset(const PresetCase& pc, int size) {
   for (const LevelComparison& l : rows) {
     const ModeLevelStats& param = l.modes[0];
     const ModeLevelStats& brdf = l.modes[1];
-    SCOPED_TRACE(name + ":" + pc.variant + " level " + std::to_string(l.level));
+    SCOPED_TRACE(name + ":" + pc.variant + " seed " + std::to_string(seed) + " level " + std::to_string(l.level));
     EXPECT_LE(brdf.elog_mean, 0.03);
     EXPECT_LE(brdf.emean, 0.05);  // appearance conserved with distance
     if (glints) {
@@ -216,6 +217,17 @@ TEST_P(LongPresets, BrdfMeetsTheIssueFigures) {
 TEST_P(LongPresets, DirectionalAlbedoWithinOnePercent) {
   if (!std::getenv("SVBRDF_LONG")) GTEST_SKIP() << "set SVBRDF_LONG=1 (ctest -L long)";
   check_albedo(GetParam(), 128);
+}
+
+// The honed granites with other seeds (issue 5's figures hold for every texture, not one). Disabled:
+// e_mean exceeds 0.05 for about a third of the seeds at 256² — pink 0.087, 0.095, 0.069 (seeds 4, 8,
+// 12), gray 0.058, 0.074, 0.054, 0.072 (4, 8, 9, 12) — at the grazing mirror pairs, where a merged
+// lobe's one normal cannot stand for members of different sharpness tilted toward and away from
+// the light (bench/results/mip.md, "2026-11-23, fourth session"). Run it with
+// --gtest_also_run_disabled_tests.
+TEST(OtherSeeds, DISABLED_HonedGraniteMeetsTheIssueFigures) {
+  for (std::uint64_t seed = 2; seed <= 12; ++seed)
+    for (const char* variant : {"gray", "pink"}) check_preset(PresetCase{"granite", variant}, 256, seed);
 }
 
 INSTANTIATE_TEST_SUITE_P(
