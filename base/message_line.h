@@ -37,6 +37,15 @@ inline std::size_t utf8_sequence_length(std::string_view s, std::size_t i) {
   return n;
 }
 
+// The length of the character at s[i] that message_line writes as it is, or 0 for a byte it
+// escapes: ill-formed UTF-8, a control character other than tab (line breaks included), DEL. Tests
+// read a program's stderr with it.
+inline std::size_t kept_length(std::string_view s, std::size_t i) {
+  const std::size_t n = utf8_sequence_length(s, i);
+  const unsigned char c = static_cast<unsigned char>(s[i]);
+  return n == 1 && (c < 0x20 || c == 0x7F) && c != '\t' ? 0 : n;
+}
+
 inline std::string message_line(std::string_view s) {
   std::string out;
   out.reserve(s.size());
@@ -48,8 +57,8 @@ inline std::string message_line(std::string_view s) {
       i += (c == '\r' && i + 1 < s.size() && s[i + 1] == '\n') ? 2 : 1;
       continue;
     }
-    const std::size_t n = utf8_sequence_length(s, i);
-    if (n == 0 || (n == 1 && (c < 0x20 || c == 0x7F) && c != '\t')) {
+    const std::size_t n = kept_length(s, i);
+    if (n == 0) {
       char hex[5];
       std::snprintf(hex, sizeof hex, "\\x%02X", c);
       out += hex;
