@@ -65,7 +65,12 @@ PathSample trace_path(const RenderWorld& w, const IntegratorSettings& s, float f
   float last_pdf = 0.0f;
   const bool env_on = !w.environment.black();
   auto u1 = [&] { return rng.next_float(); };
-  auto seed = [&] { return (std::uint64_t(rng.next_u32()) << 32) | rng.next_u32(); };
+  // The operands of one expression are unsequenced: each draw is its own statement, so a pixel's
+  // sequence is the same whatever order a compiler evaluates them in.
+  auto seed = [&] {
+    const std::uint64_t hi = rng.next_u32();
+    return (hi << 32) | rng.next_u32();
+  };
 
   auto occluded = [&](const glm::vec3& o, const glm::vec3& d, float tmax) {
     const std::uint64_t sd = seed();
@@ -201,7 +206,7 @@ PathSample trace_path(const RenderWorld& w, const IntegratorSettings& s, float f
     }
 
     // Continue the path by sampling the BSDF.
-    const BsdfSample bs = bsdf->sample(wo, SampleU(u1(), u1(), u1()));
+    const BsdfSample bs = bsdf->sample(wo, SampleU{u1(), u1(), u1()});  // braces: drawn left to right
     if (bs.kind == SampleKind::absorbed) break;
     const glm::vec3 wi_world = frame.to_world(bs.wi);
     // f_eff vanishes below the geometric surface (brdf-mip.md): a finite sample there is absorbed.
