@@ -268,8 +268,9 @@ TEST(Integrator, MisNeeAndBsdfSamplingAgree) {
         var += (a - b) * (a - b) / (4.0 * 36.0 * 36.0);
       }
   };
-  // 32 comparisons at 4.5σ: a false alarm about once in 4000 runs of independent seeds; a bias of
-  // 2 % (a strategy's weight or pdf off by that) exceeds it in the blocks where the noise is least.
+  // 32 comparisons at 4.5σ, σ estimated from 36 pixel pairs (Student's t, 36 degrees of freedom): a
+  // false alarm about once in 500 layouts of the random numbers; a bias of 2 % (a strategy's weight
+  // or pdf off by that) exceeds it in the blocks where the noise is least.
   double worst_sigma = 0;
   for (int by = 0; by < 4; ++by)
     for (int bx = 0; bx < 4; ++bx) {
