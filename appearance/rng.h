@@ -27,6 +27,12 @@ class Rng {
     return (xorshifted >> rot) | (xorshifted << ((32u - rot) & 31u));
   }
 
+  // 64 random bits: the first draw in the high word. Two statements, since the operands of one
+  // expression are unsequenced and the order would be the compiler's.
+  std::uint64_t next_u64() {
+    const std::uint64_t hi = next_u32();
+    return (hi << 32) | next_u32();
+  }
   // Uniform in [0, 1): 24 random bits, so 1 is never returned.
   float next_float() { return static_cast<float>(next_u32() >> 8) * 0x1p-24f; }
   // Uniform in [0, 1) with 53 random bits.

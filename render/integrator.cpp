@@ -65,12 +65,7 @@ PathSample trace_path(const RenderWorld& w, const IntegratorSettings& s, float f
   float last_pdf = 0.0f;
   const bool env_on = !w.environment.black();
   auto u1 = [&] { return rng.next_float(); };
-  // The operands of one expression are unsequenced: each draw is its own statement, so a pixel's
-  // sequence is the same whatever order a compiler evaluates them in.
-  auto seed = [&] {
-    const std::uint64_t hi = rng.next_u32();
-    return (hi << 32) | rng.next_u32();
-  };
+  auto seed = [&] { return rng.next_u64(); };
 
   auto occluded = [&](const glm::vec3& o, const glm::vec3& d, float tmax) {
     const std::uint64_t sd = seed();
