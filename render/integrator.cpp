@@ -50,15 +50,13 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
   return len > 0.0f ? frame.to_world(n / len) : frame.n;
 }
 
-}  // namespace
-
-PathSample trace_path(const RenderWorld& w, const IntegratorSettings& s, float film_x, float film_y, Rng& rng) {
-  PathSample out;
+// The path from its first hit on (trace_path traces the camera ray). Kept out of line: the camera
+// rays that escape, most of a frame's samples where a model sits in front of the sky, then pay for a
+// small function rather than for this one's frame and set-up (bench/results/render.md).
+[[gnu::noinline]] void continue_path(const RenderWorld& w, const IntegratorSettings& s, const CameraRay& cr,
+                                     const RayHit& first_hit, Rng& rng, PathSample& out) {
   const bool mip_filter = s.filter != TextureFilter::level0;
   const float fp_scale = s.footprint_scale > 0.0f ? s.footprint_scale : 1.0f;
-  CameraRay cr;
-  if (s.footprints || mip_filter) cr = w.camera->generate(film_x, film_y);
-  else cr.ray = w.camera->ray(film_x, film_y);
   Ray ray = cr.ray;
   Rgb beta(1.0f);
   bool last_impulse = true;  // the camera ray counts as an impulse: nothing else could have found what it sees
@@ -75,11 +73,14 @@ PathSample trace_path(const RenderWorld& w, const IntegratorSettings& s, float f
   };
 
   LobeMixtureBsdf lobe_bsdf;  // the hit's mixture under a MIP filter, reassigned at every hit
+  RayHit hit = first_hit;
   for (int depth = 0;; ++depth) {
-    const std::uint64_t hit_seed = seed();
-    if (w.ray_log) w.ray_log->record(ray.origin, ray.dir, ray.tnear, ray.tfar, hit_seed, false);
-    const RayHit hit = w.bvh->intersect(ray.origin, ray.dir, ray.tnear, ray.tfar, hit_seed);
-    ++out.rays;
+    if (depth > 0) {
+      const std::uint64_t hit_seed = seed();
+      if (w.ray_log) w.ray_log->record(ray.origin, ray.dir, ray.tnear, ray.tfar, hit_seed, false);
+      hit = w.bvh->intersect(ray.origin, ray.dir, ray.tnear, ray.tfar, hit_seed);
+      ++out.rays;
+    }
     if (!hit.found()) {
       if (env_on) {
         const bool mis_weighted = !last_impulse && s.light_sampling == LightSampling::mis;
@@ -217,6 +218,26 @@ PathSample trace_path(const RenderWorld& w, const IntegratorSettings& s, float f
       if (u1() >= q) break;
       beta /= q;
     }
+  }
+}
+
+}  // namespace
+
+PathSample trace_path(const RenderWorld& w, const IntegratorSettings& s, float film_x, float film_y, Rng& rng) {
+  PathSample out;
+  CameraRay cr;
+  if (s.footprints || s.filter != TextureFilter::level0) cr = w.camera->generate(film_x, film_y);
+  else cr.ray = w.camera->ray(film_x, film_y);
+  const Ray& ray = cr.ray;
+  const std::uint64_t hit_seed = rng.next_u64();
+  if (w.ray_log) w.ray_log->record(ray.origin, ray.dir, ray.tnear, ray.tfar, hit_seed, false);
+  const RayHit hit = w.bvh->intersect(ray.origin, ray.dir, ray.tnear, ray.tfar, hit_seed);
+  out.rays = 1;
+  if (hit.found()) {
+    continue_path(w, s, cr, hit, rng, out);
+  } else if (!w.environment.black()) {
+    // What the camera sees of the environment: an impulse's view, weight 1 under every strategy.
+    out.radiance = w.environment.radiance(ray.dir, nullptr);
   }
   return out;
 }

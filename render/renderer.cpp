@@ -44,9 +44,13 @@ Image Film::normal() const { return mean_image(*this, 3, [&](std::size_t p, int 
 Image Film::depth() const { return mean_image(*this, 1, [&](std::size_t p, int) { return double(depth_sum[p]); }); }
 Image Film::mip_level() const { return mean_image(*this, 1, [&](std::size_t p, int) { return double(level_sum[p]); }); }
 
-Rng pixel_rng(std::uint64_t seed, int x, int y, int width, std::uint32_t index) {
+std::uint64_t pixel_seed(std::uint64_t seed, int x, int y, int width) {
   const std::uint64_t pixel = std::uint64_t(y) * std::uint64_t(width) + std::uint64_t(x);
-  return Rng(mix64(seed * 0x9E3779B97F4A7C15ULL + mix64(pixel + 1)), index);
+  return mix64(seed * 0x9E3779B97F4A7C15ULL + mix64(pixel + 1));
+}
+
+Rng pixel_rng(std::uint64_t seed, int x, int y, int width, std::uint32_t index) {
+  return Rng(pixel_seed(seed, x, y, width), index);
 }
 
 Film render(const RenderWorld& world, const RenderOptions& opt, RenderStats* stats) {
@@ -108,8 +112,9 @@ Film render(const RenderWorld& world, const RenderOptions& opt, RenderStats* sta
               for (int y = ty * kTile; y < std::min(h, (ty + 1) * kTile); ++y)
                 for (int x = tx * kTile; x < std::min(w, (tx + 1) * kTile); ++x) {
                   const std::size_t p = std::size_t(y) * w + x;
+                  const std::uint64_t seed = pixel_seed(opt.seed, x, y, w);  // once per pixel, not per sample
                   for (int s = first; s < last; ++s) {
-                    Rng rng = pixel_rng(opt.seed, x, y, w, std::uint32_t(s));
+                    Rng rng(seed, std::uint32_t(s));  // pixel_rng(opt.seed, x, y, w, s)
                     const float jx = rng.next_float(), jy = rng.next_float();
                     const PathSample ps = trace_path(world, integrator, float(x) + jx, float(y) + jy, rng);
                     tile_rays += ps.rays;

@@ -60,7 +60,9 @@ struct RenderStats {
 // not in stats), and resolves a footprint_scale of 0 to pbrt-v4's max(1/8, 1/√spp).
 Film render(const RenderWorld& world, const RenderOptions& options, RenderStats* stats = nullptr);
 
-// The random-number generator of sample `index` of pixel (x, y): independent of everything else.
+// The random-number generator of sample `index` of pixel (x, y): independent of everything else. It
+// is Rng(pixel_seed(seed, x, y, width), index); the renderer mixes a pixel's seed once for all its samples.
+std::uint64_t pixel_seed(std::uint64_t seed, int x, int y, int width);
 Rng pixel_rng(std::uint64_t seed, int x, int y, int width, std::uint32_t index);
 
 }  // namespace svbrdf
