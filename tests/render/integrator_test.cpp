@@ -2,6 +2,7 @@
 // or a property, never from the renderer's own output.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -316,6 +317,28 @@ TEST(Integrator, DeterministicAcrossThreadCounts) {
   const Film c = render_scene(make(), setup, 8, {}, 2, 8);
   EXPECT_NE(std::memcmp(a.radiance_sum.data(), c.radiance_sum.data(), a.radiance_sum.size() * sizeof(glm::dvec3)), 0)
       << "another seed gives another image";
+
+  // Each pixel alone, from its samples' generators (renderer.h, pixel_rng: the film jitter first, then
+  // the path), sums to the rendered pixel bit for bit: a pixel can be traced on its own to debug it.
+  const PreparedScene prepared(make(), setup);
+  RenderOptions o;
+  o.spp = 8, o.seed = 7, o.aovs = false;
+  const Film f = render(prepared.world(), o);
+  IntegratorSettings integ = o.integrator;
+  integ.aovs = false;
+  integ.footprint_scale = std::max(0.125f, 1.0f / std::sqrt(8.0f));  // what render() resolves 0 to
+  int differ = 0;
+  for (int y = 0; y < setup.height; ++y)
+    for (int x = 0; x < setup.width; ++x) {
+      glm::dvec3 sum(0.0);
+      for (std::uint32_t s = 0; s < 8; ++s) {
+        Rng rng = pixel_rng(o.seed, x, y, setup.width, s);
+        const float jx = rng.next_float(), jy = rng.next_float();
+        sum += glm::dvec3(trace_path(prepared.world(), integ, float(x) + jx, float(y) + jy, rng).radiance);
+      }
+      differ += std::memcmp(&sum, &f.radiance_sum[std::size_t(y) * setup.width + x], sizeof sum) != 0;
+    }
+  EXPECT_EQ(differ, 0) << "of " << setup.width * setup.height << " pixels";
 }
 
 // An unlit quad textured with a 2×2 image (or 2×1 with alpha), filling an orthographic view exactly.
