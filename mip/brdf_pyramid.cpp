@@ -55,11 +55,15 @@ void set_lobe_shape_code(Lobe& lobe, float code) {
 
 void round_to_stored(Lobe& lobe) {
   lobe.weight = to_half(lobe.weight);
+  // α as a half (α ≥ 1e-3 is in its normal range): 2.4e-4 relative on α, and α·α is exact in a float.
+  const float alpha = to_half(std::sqrt(lobe.alpha2));
+  lobe.alpha2 = alpha * alpha;
   for (int c = 0; c < 3; ++c) {
     lobe.diffuse[c] = to_half(lobe.diffuse[c]);
     lobe.f0[c] = to_half(lobe.f0[c]);
   }
   set_lobe_shape_code(lobe, lobe_shape_code(lobe));
+  lobe.skirt = lobe.ggx < 1.0f ? std::max(1.0f, to_half(lobe.skirt)) : 1.0f;
 }
 
 namespace {

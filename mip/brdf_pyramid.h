@@ -84,14 +84,14 @@ struct BrdfBuildOptions {
 float lobe_shape_code(const Lobe& lobe);
 void set_lobe_shape_code(Lobe& lobe, float code);
 
-// Rounds a lobe to what the MIP file stores: weight, colors and shape code as half floats, normal and
-// α² as 32-bit floats. The BRDF pyramid holds its lobes so rounded, which is what makes the file's
-// round trip bit-identical and what its figures measure.
+// Rounds a lobe to what the MIP file stores: weight, colors, α (the square root of alpha2), shape code
+// and skirt as half floats, the normal as 32-bit floats. The BRDF pyramid holds its lobes so rounded,
+// which is what makes the file's round trip bit-identical and what its figures measure.
 void round_to_stored(Lobe& lobe);
 
-// Bytes a stored lobe takes: normal (3) and α² as 32-bit floats; weight, ρ (3), F0 (3) and the shape
-// code as half floats.
-inline constexpr int kBytesPerLobe = 4 * 4 + 8 * 2;
+// Bytes a stored lobe takes: the normal (3) as 32-bit floats; weight, ρ (3), F0 (3), α, the shape code
+// and the skirt as half floats.
+inline constexpr int kBytesPerLobe = 3 * 4 + 10 * 2;
 
 class BrdfPyramid {
  public:

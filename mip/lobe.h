@@ -19,7 +19,8 @@
 //   - a roughness mixture (alpha2_hi > alpha2, ggx = 1): GGX averaged over α² log-uniform in
 //     [l, h] = [alpha2, alpha2_hi], in closed form
 //       D = L(l, h) / (π·(|n×h|² + (n·h)²·l)·(|n×h|² + (n·h)²·h)),  L(l, h) = (h − l)/ln(h/l);
-//   - a spread core (alpha2_hi = 0, ggx = μ ≤ 1): D = μ·D_GGX(α²) + (1 − μ)·D_Beckmann(α²).
+//   - a spread core (alpha2_hi = 0, ggx = μ ≤ 1): D = μ·D_GGX(α²) + (1 − μ)·D_Beckmann(c·α²), c = skirt ≥ 1
+//     (a skirt wider than the core: lobe_reduction.cpp, set_shape).
 // Why two: far from its peak a GGX lobe falls as α²/(π·tan⁴θ·cos⁴θ), so a mixture's tail is set by
 // the mean α² (A) and its peak by the mean 1/α² (P). Lobes of different roughness have A·P > 1 —
 // heavier tails than any one GGX; the log-uniform mixture matches both moments (A = L(l, h),
@@ -60,6 +61,7 @@ struct Lobe {
   float alpha2 = 1e-6f;     // GGX α² (a roughness mixture's lower end)
   float ggx = 1.0f;         // μ, the GGX share of a spread core
   float alpha2_hi = 0.0f;   // > alpha2: a roughness mixture's upper end
+  float skirt = 1.0f;       // c ≥ 1: a spread core's Beckmann share is at c·alpha2 (its skirt)
 };
 
 // The level-0 lobe of a texel with glTF parameters (linear base color, metallic, perceptual
@@ -115,6 +117,7 @@ struct LobeShape {
   T sigma = 0;                // spread of the normals' slopes (0: a hard horizon)
   T alpha2 = 1;
   T ggx = 1;  // μ, the GGX share of D
+  T skirt = 1;  // c: the Beckmann share's α² is c·alpha2
   T alpha2_hi = 0, lmean = 0;  // log-uniform α² mixture: upper end and logarithmic mean (0: plain GGX)
   T node_a2[3] = {0, 0, 0};    // its 3-point Gauss–Legendre nodes in ln α², for V (lobe_brdf)
   bool valid = false;
@@ -134,6 +137,7 @@ LobeShape<T> lobe_shape(const Lobe& lobe, bool with_nodes = true) {
   s.sigma = var > T(1e-7) ? std::sqrt(var) : T(0);
   s.alpha2 = T(lobe.alpha2);
   s.ggx = std::clamp(T(lobe.ggx), T(0), T(1));
+  s.skirt = std::max(T(1), T(lobe.skirt));
   if (lobe.alpha2_hi > lobe.alpha2 * 1.0001f) {
     s.alpha2_hi = T(lobe.alpha2_hi);
     T x, span;  // h/l − 1 and ln(h/l)
@@ -223,12 +227,13 @@ T lobe_d(const LobeShape<T>& s, T ch, const glm::vec<3, T>& nxh) {
   if (s.ggx != T(1)) {
     // Past tan²θ/α² = 60 the Beckmann share is below e⁻⁶⁰ of its peak: skipped, which also keeps
     // 0·∞ out at grazing half vectors.
-    const T c2 = ch * ch, x = sin2 / (c2 * a2);
+    const T b2 = a2 * s.skirt;
+    const T c2 = ch * ch, x = sin2 / (c2 * b2);
     if (x < T(60)) {
       T ex;
       if constexpr (std::is_same_v<T, float>) ex = series_exp(-x);
       else ex = std::exp(-x);
-      d += (T(1) - s.ggx) * ex * kInvPi / (a2 * c2 * c2);
+      d += (T(1) - s.ggx) * ex * kInvPi / (b2 * c2 * c2);
     }
   }
   return d;

@@ -49,8 +49,8 @@ double specular_amp(double weight, double len, double f0) { return weight * len 
 
 // What D of a lobe shape depends on (lobe_d), without the horizons' fields.
 struct DShape {
-  double alpha2 = 1, alpha2_hi = 0, lmean = 0, ggx = 1;
-  static DShape of(const LobeShape<double>& sh) { return {sh.alpha2, sh.alpha2_hi, sh.lmean, sh.ggx}; }
+  double alpha2 = 1, alpha2_hi = 0, lmean = 0, ggx = 1, skirt = 1;
+  static DShape of(const LobeShape<double>& sh) { return {sh.alpha2, sh.alpha2_hi, sh.lmean, sh.ggx, sh.skirt}; }
 };
 
 // What the cost model needs of a lobe, computed once per lobe.
@@ -79,8 +79,8 @@ double d_at_tan2(const DShape& sh, double t) {
   const double a2 = sh.alpha2, q = (1 + t) * (1 + t) / kPi;
   double d = sh.lmean > 0 ? sh.ggx * sh.lmean / ((t + a2) * (t + sh.alpha2_hi)) : sh.ggx * a2 / ((t + a2) * (t + a2));
   if (sh.ggx != 1.0) {
-    const double x = t / a2;
-    if (x < 60.0) d += (1.0 - sh.ggx) * double(series_exp(static_cast<float>(-x))) / a2;
+    const double b2 = a2 * sh.skirt, x = t / b2;
+    if (x < 60.0) d += (1.0 - sh.ggx) * double(series_exp(static_cast<float>(-x))) / b2;
   }
   return q * d;
 }
@@ -109,11 +109,13 @@ void profile_of(const DShape& sh, std::array<double, kProfileSteps>& out) {
     const double c = sh.ggx * a2;
     for (std::size_t j = 0; j < kProfileSteps; ++j) out[j] = c / ((steps.t[j] + a2) * (steps.t[j] + a2));
   }
-  if (sh.ggx != 1.0)
+  if (sh.ggx != 1.0) {
+    const double b2 = a2 * sh.skirt;
     for (std::size_t j = 0; j < kProfileSteps; ++j) {
-      const double x = steps.t[j] / a2;
-      if (x < 60.0) out[j] += (1.0 - sh.ggx) * double(series_exp(static_cast<float>(-x))) / a2;
+      const double x = steps.t[j] / b2;
+      if (x < 60.0) out[j] += (1.0 - sh.ggx) * double(series_exp(static_cast<float>(-x))) / b2;
     }
+  }
   for (std::size_t j = 0; j < kProfileSteps; ++j) out[j] = steps.q[j] * out[j];
 }
 
@@ -146,7 +148,7 @@ Summary summarize(const Lobe& l) {
     s.peak = s.ggx * sh.lmean / (sh.alpha2 * sh.alpha2_hi) + (1 - s.ggx) / sh.alpha2;
   } else {
     s.tail = s.ggx * sh.alpha2;
-    s.peak = 1 / sh.alpha2;
+    s.peak = (s.ggx + (1 - s.ggx) / sh.skirt) / sh.alpha2;
   }
   s.alpha2 = 1 / s.peak;
   s.d_shape = DShape::of(sh);
@@ -442,14 +444,121 @@ class SinhcInverse {
   std::array<double, kSize> u_{};
 };
 
+// The cone a spread core's skirt is fitted in: the mass of D within 2.5° of the merged normal.
+constexpr double kSkirtTan2 = 0.0019076;  // tan²(2.5°)
+// Cores get a skirt while P·tan²(2.5°) exceeds this (α² below 2.5 tan²(2.5°): a core within ~4°).
+constexpr double kSkirtMinPeak = 0.4;
+
+// 1 − e^(−x) for x ≥ 0 within 4e-7 (series_exp; the series near 0, where the difference would cancel):
+// the cone masses below run for every candidate merge that makes a narrow spread core.
+double one_minus_exp(double x) {
+  return x < 1e-2 ? x * (1.0 - x * (0.5 - x / 6.0)) : 1.0 - double(series_exp(static_cast<float>(-x)));
+}
+
+// The mass within slope radius R of an axis of a GGX slope distribution α²/(π(α² + |s|²)²) (slope
+// space: tan θ, small angles) whose normal lies at slope distance d from the axis. In closed form:
+// the angle about the axis integrates to 2π·a/(a² − b²)^{3/2} (a = α² + ρ² + d², b = 2ρd), and in
+// x = ρ² the rest is ∫ α²(y + 2d²)/(y² + 4α²d²)^{3/2} dy with y = x + α² − d², whose antiderivative is
+// (y/2 − α²)/√(y² + 4α²d²). At d = 0 this is R²/(α² + R²), GGX's radial CDF.
+double ggx_disc_mass(double a2, double d2, double R2) {
+  const double k2 = 4.0 * a2 * d2;
+  const auto at = [&](double y) { return (0.5 * y - a2) / std::sqrt(y * y + k2); };
+  return at(R2 + a2 - d2) - at(a2 - d2);
+}
+
+// e^(−x)·I0(x) for x ≥ 0 (I0 the modified Bessel function of order 0), within 2e-7 relative:
+// Abramowitz & Stegun 9.8.1 (x ≤ 3.75) and 9.8.2 (above).
+double scaled_bessel_i0(double x) {
+  if (x <= 3.75) {
+    const double t2 = (x / 3.75) * (x / 3.75);
+    return double(series_exp(static_cast<float>(-x))) *
+           (1.0 + t2 * (3.5156229 + t2 * (3.0899424 + t2 * (1.2067492 + t2 * (0.2659732 + t2 * (0.0360768 + t2 * 0.0045813))))));
+  }
+  const double s = 3.75 / x;
+  return (0.39894228 + s * (0.01328592 + s * (0.00225319 + s * (-0.00157565 + s * (0.00916281 + s * (-0.02057706 +
+          s * (0.02635537 + s * (-0.01647633 + s * 0.00392377)))))))) / std::sqrt(x);
+}
+
+// Gauss–Legendre nodes and weights on [0, 1], by Newton's method on the Legendre polynomial.
+template <int N>
+struct GaussLegendre {
+  std::array<double, N> x{}, w{};
+  GaussLegendre() {
+    for (int i = 0; i < N; ++i) {
+      double z = std::cos(kPi * (i + 0.75) / (N + 0.5)), dp = 1.0;
+      for (int it = 0; it < 100; ++it) {
+        double p0 = 1.0, p1 = z;  // P_0, P_1, then up to P_N by the three-term recurrence
+        for (int k = 2; k <= N; ++k) {
+          const double p2 = ((2 * k - 1) * z * p1 - (k - 1) * p0) / k;
+          p0 = p1, p1 = p2;
+        }
+        dp = N * (z * p1 - p0) / (z * z - 1.0);
+        const double step = p1 / dp;
+        z -= step;
+        if (std::abs(step) < 1e-15) break;
+      }
+      x[static_cast<std::size_t>(i)] = 0.5 * (1.0 - z);
+      w[static_cast<std::size_t>(i)] = 1.0 / ((1.0 - z * z) * dp * dp);  // 2/((1 − z²)P'²), halved for [0, 1]
+    }
+  }
+};
+
+// The same for a Beckmann (Gaussian) slope distribution e^(−|s|²/b²)/(πb²): about the axis, the angle
+// integrates to 2π·e^(−(ρ² + d²)/b²)·I0(2ρd/b²), and the radius ρ ∈ [0, R] — where that is a smooth
+// bump of width b about d — by 4-point Gauss–Legendre on panels of at most 1.5b over the part within
+// 4.5b of d (e^(−20) beyond): within 1.1e-5 of a 4000 × 2000 grid for b² from 3e-5 to 2e-2.
+double beckmann_disc_mass(double b2, double d, double R) {
+  const double b = std::sqrt(b2);
+  if (R - d >= 4.5 * b) return 1.0;
+  if (d - R >= 4.5 * b) return 0.0;
+  if (d >= 8.0 * b) {
+    // A bump narrow against its distance d from the axis: with e^(−x)·I0(x) ≈ (1 + 1/(8x))/√(2πx) and
+    // √(ρ/d) to second order in ρ − d, the integral is Gaussian moments up to z = (R − d)/b:
+    // ½erfc(−z) − (b/(4√π·d) − b²z/(16√π·d²))·e^(−z²), within 3e-6 for b ≤ d/8.
+    const double z = (R - d) / b, g = std::exp(-z * z) * 0.56418958354775628 / d;  // 1/√π
+    return 0.5 * std::erfc(-z) - g * b * (0.25 - b * z / (16.0 * d));
+  }
+  const double lo = std::max(0.0, d - 4.5 * b), hi = std::min(R, d + 4.5 * b);
+  static const GaussLegendre<4> gl;
+  const int panels = std::max(1, static_cast<int>(std::ceil((hi - lo) / (1.5 * b))));
+  const double width = (hi - lo) / panels;
+  double m = 0.0;
+  for (int p = 0; p < panels; ++p)
+    for (std::size_t j = 0; j < gl.x.size(); ++j) {
+      const double rho = lo + width * (p + gl.x[j]), e = (rho - d) * (rho - d) / b2;
+      m += gl.w[j] * rho * double(series_exp(static_cast<float>(-e))) * scaled_bessel_i0(2.0 * rho * d / b2);
+    }
+  return m * width * 2.0 / b2;
+}
+
+// The mass of a lobe shape whose normal lies at slope distance d from an axis within slope radius R of
+// that axis (slopes add: LEAN): its GGX share in closed form (a roughness mixture's by 4-point
+// Gauss–Legendre in ln α², where that mass is smooth), its Beckmann share at c·α² by quadrature.
+double cone_mass_at(const DShape& sh, double d, double R) {
+  const double R2 = R * R, d2 = d * d, a2 = sh.alpha2;
+  double m;
+  if (sh.lmean > 0) {
+    static const GaussLegendre<4> gl;
+    const double span = (sh.alpha2_hi - a2) / sh.lmean;  // ln(h/l) = (h − l)/L(l, h) (lobe.h)
+    m = 0.0;
+    for (std::size_t k = 0; k < gl.x.size(); ++k) m += gl.w[k] * ggx_disc_mass(a2 * std::exp(gl.x[k] * span), d2, R2);
+  } else {
+    m = ggx_disc_mass(a2, d2, R2);
+  }
+  m *= sh.ggx;
+  if (sh.ggx != 1.0) m += (1.0 - sh.ggx) * beckmann_disc_mass(a2 * sh.skirt, d, R);
+  return m;
+}
+
 // The lobe shape with tail coefficient A and peak P (lobe.h): a log-uniform α² mixture on
 // [g/r, g·r] (g = √(A/P), ln r = u with sinh(u)/u = √(AP)) when AP ≥ 1, else one core of α² = 1/P
 // whose GGX share μ = AP thins the tail (the rest Beckmann).
-void set_shape(Lobe& m, double A, double P) {
+void set_shape(Lobe& m, double A, double P, double cone_mass = -1) {
   A = std::max(A, 1e-9);
   P = std::max(P, 1.0);
   const double q = A * P;
   m.alpha2_hi = 0.0f;
+  m.skirt = 1.0f;
   if (q > 1.0 + 1e-7) {
     const double target = std::sqrt(q);
     double u = std::max(1e-6, SinhcInverse::get().guess(target));
@@ -474,6 +583,48 @@ void set_shape(Lobe& m, double A, double P) {
   } else {
     m.alpha2 = static_cast<float>(std::clamp(1.0 / P, 1e-6, 1.0));
     m.ggx = static_cast<float>(std::clamp(q, 0.0, 1.0));
+    // The skirt: the Beckmann share widens to c·α² and, to keep the peak and the tail, the GGX share
+    // rises to μ (α² = A/μ) with c = μ(1 − μ)/(AP − μ²), i.e. μ = 2c·AP/(1 + √(1 + 4c·AP·(c − 1)))
+    // (μ = AP at c = 1, → √AP as c grows). That moves mass from inside the cone of kSkirtTan2 to just
+    // outside it; c is solved for the union's mass in the cone, in ln c ∈ [0, ln 10⁴] where the mass is
+    // smooth: regula falsi with the Illinois rule (halve the value kept at an end that stays twice),
+    // to 1e-4 of mass (the members' masses are good to 2e-4).
+    const double R2 = kSkirtTan2;
+    const auto share = [&](double c) { return 2.0 * c * q / (1.0 + std::sqrt(1.0 + 4.0 * c * q * (c - 1.0))); };
+    const auto excess = [&](double t) {
+      const double c = double(series_exp(static_cast<float>(t))), mu = share(c), a2 = A / mu;
+      return mu * R2 / (a2 + R2) + (1.0 - mu) * one_minus_exp(R2 / (c * a2)) - cone_mass;
+    };
+    constexpr double kMaxLnSkirt = 9.210340371976184;  // ln 10⁴
+    constexpr int kBisections = 4;
+    double f_lo;
+    if (cone_mass >= 0 && q > 1e-9 && q < 1 - 1e-6 && (f_lo = excess(0.0)) > 1e-4) {
+      double lo = 0.0, hi = kMaxLnSkirt, f_hi = excess(hi), t = hi;
+      int kept = 0;  // +1: lo moved last, −1: hi moved last
+      for (int it = 0; it < 60 && f_hi < 0; ++it) {
+        // The mass is a sigmoid in ln c (flat until the skirt reaches the cone, flat again once it is
+        // far outside): bisect first, to find the slope.
+        t = it < kBisections ? 0.5 * (lo + hi) : (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+        const double f = excess(t);
+        if (std::abs(f) < 1e-4) break;
+        const bool falsi = it >= kBisections;
+        if (f > 0) {
+          lo = t, f_lo = f;
+          if (falsi && kept == 1) f_hi *= 0.5;
+          kept = 1;
+        } else {
+          hi = t, f_hi = f;
+          if (falsi && kept == -1) f_lo *= 0.5;
+          kept = -1;
+        }
+      }
+      const double c = double(series_exp(static_cast<float>(t))), mu = share(c);
+      if (c > 1.0001) {
+        m.alpha2 = static_cast<float>(std::clamp(A / mu, 1e-6, 1.0));
+        m.ggx = static_cast<float>(mu);
+        m.skirt = static_cast<float>(c);
+      }
+    }
   }
 }
 
@@ -521,8 +672,25 @@ Merged merge_union(std::span<const Member> u, const UnionTerms* terms, float spr
     }
     P = (1.0 - kLeanPeakShareSpread) * P_centre + kLeanPeakShareSpread * P_lean;
   }
+  // A spread core narrower than a few degrees gets a skirt fitted to the union's mass in the cone of
+  // kSkirtTan2 (set_shape): with its peak and tail kept, a one-width core puts into that cone the
+  // mass the union spreads just outside it (texels tilted by 1–3°), +2 to +3.5 % on polished granite's
+  // highlight from level 5 on. Wider cores (the tile roof's slopes, honed granite) keep c = 1: their
+  // unions have no such shoulder, and slopes stop adding at their tilts. bench/results/mip.md,
+  // "sixth session".
+  double cone = -1;
+  if (A * P < K * K && P / K * kSkirtTan2 > kSkirtMinPeak) {
+    const double R = std::sqrt(kSkirtTan2);
+    cone = 0;
+    for (const Member& x : u) {
+      const Summary& a = *x.sum;
+      const double t = tan2_between(a.n, n);
+      if (std::isfinite(t)) cone += (by_amp ? a.amp : a.weight) * cone_mass_at(a.d_shape, std::sqrt(t), R);
+    }
+    cone /= K;
+  }
   Merged best{mb.lobe, mb.summary, 0};
-  set_shape(best.lobe, A / K, P / K);
+  set_shape(best.lobe, A / K, P / K, cone);
   best.summary = summarize(best.lobe);
   if (terms) best.cost = union_cost(u, terms->self, terms->horizon, best.summary, by_amp, peak_weight);
   return best;
@@ -550,7 +718,9 @@ void keep_specular_flux(std::span<const Member> u, Merged& m) {
       const double f0 = mean3(l.f0);
       for (int k = 0; k < 8; ++k) spec += t.ggx_albedo_at_log(lo + (k + 0.5) * step, f0) / 8;
     } else {
-      spec = t.albedo(l.alpha2, mean3(l.f0), l.ggx);
+      spec = l.skirt > 1.0f ? l.ggx * t.albedo(l.alpha2, mean3(l.f0), 1.0) +
+                                  (1 - l.ggx) * t.albedo(double(l.alpha2) * l.skirt, mean3(l.f0), 0.0)
+                            : t.albedo(l.alpha2, mean3(l.f0), l.ggx);
     }
     return double(l.weight) * glm::length(glm::dvec3(l.normal)) * spec;
   };
@@ -615,7 +785,7 @@ std::pair<int, int> cheapest_pair(int n, M&& m) {
 bool near_duplicates(const Lobe& a, const Lobe& b) {
   const glm::vec3 d = a.normal - b.normal;
   return glm::dot(d, d) < 1e-12f && std::abs(a.alpha2 - b.alpha2) <= 1e-4f * std::min(a.alpha2, b.alpha2) &&
-         a.alpha2_hi == b.alpha2_hi && a.ggx == b.ggx;
+         a.alpha2_hi == b.alpha2_hi && a.ggx == b.ggx && a.skirt == b.skirt;
 }
 
 }  // namespace
@@ -643,6 +813,7 @@ int reduce_lobes(std::span<Lobe> lobes, int n, const ReductionOptions& options) 
       const Summary sd = summarize(L(dup)), si = summarize(L(i));
       MergeBase mb = merge_base(std::array<Member, 2>{Member{&L(dup), &sd}, Member{&L(i), &si}});
       mb.lobe.alpha2 = L(dup).alpha2, mb.lobe.alpha2_hi = L(dup).alpha2_hi, mb.lobe.ggx = L(dup).ggx;
+      mb.lobe.skirt = L(dup).skirt;
       L(dup) = mb.lobe;
     }
     else

@@ -2,6 +2,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <cmath>
 #include <map>
 #include <memory>
 #include <string>
@@ -18,19 +19,21 @@ namespace fs = std::filesystem;
 
 const char* const kParamChannels[8] = {"param.R",         "param.G",   "param.B",   "param.metallic",
                                        "param.roughness", "param.N.X", "param.N.Y", "param.N.Z"};
-// Version 3: 32 bytes a lobe (kBytesPerLobe).
-constexpr int kLobeChannels = 12;
-const char* const kLobeSuffix[kLobeChannels] = {"weight", "diffuse.R", "diffuse.G", "diffuse.B", "F0.R", "F0.G",
-                                                "F0.B",   "N.X",       "N.Y",       "N.Z",       "alpha2", "shape"};
-bool lobe_channel_is_half(int c) { return c <= 6 || c == 11; }
-// Versions 1 and 2 have the first 11 (weight as a float); version 2 then the shape as two channels,
-// version 1 nothing (plain GGX lobes).
-constexpr int kCommonLobeChannels = 11;
+// Version 4: 32 bytes a lobe (kBytesPerLobe): α (not α²) as a half, which frees the two bytes of the
+// skirt. Version 3 had α² as a float and no skirt (c = 1).
+constexpr int kLobeChannels = 13;
+const char* const kLobeSuffix[kLobeChannels] = {"weight", "diffuse.R", "diffuse.G", "diffuse.B", "F0.R",  "F0.G", "F0.B",
+                                                "N.X",    "N.Y",       "N.Z",       "alpha",     "shape", "skirt"};
+bool lobe_channel_is_half(int c) { return c <= 6 || c >= 10; }
+// Versions 1 and 2 have the first 10 and then α² as a float (weight as a float too); version 2 then the
+// shape as two channels, version 1 nothing (plain GGX lobes).
+constexpr int kCommonLobeChannels = 10;
 const char* const kShapeSuffixV2[2] = {"alpha2_hi", "ggx"};
-int lobe_channels(int version) { return version >= 3 ? kLobeChannels : version == 2 ? kCommonLobeChannels + 2 : kCommonLobeChannels; }
+int lobe_channels(int version) { return version >= 4 ? 13 : version == 3 ? 12 : version == 2 ? 13 : 11; }
 std::string lobe_suffix(int version, int c) {
   if (c < kCommonLobeChannels) return kLobeSuffix[c];
-  return version >= 3 ? kLobeSuffix[c] : kShapeSuffixV2[c - kCommonLobeChannels];
+  if (c == kCommonLobeChannels) return version >= 4 ? "alpha" : "alpha2";
+  return version >= 3 ? kLobeSuffix[c] : kShapeSuffixV2[c - kCommonLobeChannels - 1];
 }
 
 std::string where(const fs::path& p) { return p.string(); }
@@ -53,8 +56,9 @@ void pack_lobe(const Lobe& l, float* out) {
   out[1] = l.diffuse.r, out[2] = l.diffuse.g, out[3] = l.diffuse.b;
   out[4] = l.f0.r, out[5] = l.f0.g, out[6] = l.f0.b;
   out[7] = l.normal.x, out[8] = l.normal.y, out[9] = l.normal.z;
-  out[10] = l.alpha2;
+  out[10] = std::sqrt(l.alpha2);  // exact: a stored α² is the square of a half (round_to_stored)
   out[11] = lobe_shape_code(l);
+  out[12] = l.skirt;
 }
 Lobe unpack_lobe(int version, const float* in) {
   Lobe l;
@@ -62,9 +66,10 @@ Lobe unpack_lobe(int version, const float* in) {
   l.diffuse = {in[1], in[2], in[3]};
   l.f0 = {in[4], in[5], in[6]};
   l.normal = {in[7], in[8], in[9]};
-  l.alpha2 = in[10];
+  l.alpha2 = version >= 4 ? in[10] * in[10] : in[10];
   if (version >= 3) {
     set_lobe_shape_code(l, in[11]);
+    if (version >= 4) l.skirt = in[12];
   } else if (version == 2) {
     l.alpha2_hi = in[11];
     l.ggx = in[12];

@@ -12,6 +12,7 @@
 
 #include "base/error.h"
 #include "mip/mip_file.h"
+#include "textures/material_family.h"
 #include "tests/mip/synthetic_materials.h"
 #include "tests/common/temp_dir.h"
 
@@ -42,10 +43,14 @@ MaterialTexels mixed_material(int w, int h) {
 
 TEST(MipFile, RoundTripIsBitIdentical) {
   testing::TempDir dir;
-  for (auto [w, h] : {std::pair{16, 16}, std::pair{12, 5}}) {
+  int skirts = 0;  // lobes whose skirt (version 4's channel) is not 1: the polished granite has them
+  for (auto [w, h] : {std::pair{16, 16}, std::pair{12, 5}, std::pair{64, 0}}) {
     BrdfBuildOptions o;
     o.reduction.max_lobes = 3;
-    const MipData a = build_mip(mixed_material(w, h), o);
+    const MipData a =
+        build_mip(h > 0 ? mixed_material(w, h) : generate_material(MaterialRecipe{"granite", "polished", w, 25}).texels, o);
+    for (int l = 1; l < a.levels(); ++l)
+      for (const Lobe& lobe : a.brdf.level(l).all_lobes()) skirts += lobe.skirt != 1.0f;
     std::string name = "m";  // appended, not concatenated: GCC 12 -O3 warns falsely otherwise (PR 105651)
     name += std::to_string(w);
     name += ".exr";
@@ -70,6 +75,7 @@ TEST(MipFile, RoundTripIsBitIdentical) {
       EXPECT_TRUE(same_bits(la.single, lb.single)) << "level " << l;
     }
   }
+  EXPECT_GT(skirts, 0);
 }
 
 TEST(MipFile, OpenImageIOToolsListIt) {
@@ -143,21 +149,32 @@ void write_as_older_version(const std::filesystem::path& from, const std::filesy
     OIIO::ImageSpec dst = src;
     dst.channelnames.clear();
     dst.channelformats.clear();
-    // Each output channel: a source channel, or (for version 2) a shape code's α² upper end or μ.
+    // Each output channel: a source channel, α² from version 4's α, or (for version 2) a shape code's
+    // α² upper end or μ.
     struct Out {
       int from;
-      int alpha2 = -1;  // ≥ 0: the α² channel, and `from` is the shape code: write the upper end
+      int alpha = -1;    // ≥ 0: the α channel, and `from` is the shape code: write the α² upper end
       bool ggx = false;  // write μ from the shape code `from`
+      bool square = false;  // write from² (α² from α)
     };
     std::vector<Out> outs;
     for (int c = 0; c < src.nchannels; ++c) {
       const std::string& name = src.channelnames[static_cast<std::size_t>(c)];
-      if (name.size() > 6 && name.compare(name.size() - 6, 6, ".shape") == 0) {
+      // The skirt (version 4) is not in older files.
+      if (name.size() > 6 && name.compare(name.size() - 6, 6, ".skirt") == 0) continue;
+      // Older versions store α² as a float where version 4 stores α as a half.
+      if (name.size() > 6 && name.compare(name.size() - 6, 6, ".alpha") == 0) {
+        outs.push_back({c, -1, false, true});
+        dst.channelnames.push_back(name + "2");
+        dst.channelformats.push_back(OIIO::TypeDesc::FLOAT);
+        continue;
+      }
+      if (name.size() > 6 && name.compare(name.size() - 6, 6, ".shape") == 0 && version < 3) {
         if (version == 2) {
           const std::string lobe = name.substr(0, name.size() - 6);
           int a2 = -1;
           for (int k = 0; k < src.nchannels; ++k)
-            if (src.channelnames[static_cast<std::size_t>(k)] == lobe + ".alpha2") a2 = k;
+            if (src.channelnames[static_cast<std::size_t>(k)] == lobe + ".alpha") a2 = k;
           ASSERT_GE(a2, 0);
           outs.push_back({c, a2, false});
           dst.channelnames.push_back(lobe + ".alpha2_hi");
@@ -180,8 +197,10 @@ void write_as_older_version(const std::filesystem::path& from, const std::filesy
         const float* px = all.data() + t * static_cast<std::size_t>(src.nchannels);
         const float v = px[outs[k].from];
         float& o = kept[t * outs.size() + k];
-        if (outs[k].alpha2 >= 0)
-          o = v > 0 ? static_cast<float>(double(px[outs[k].alpha2]) * std::exp(double(v))) : 0.0f;
+        if (outs[k].alpha >= 0)
+          o = v > 0 ? static_cast<float>(double(px[outs[k].alpha] * px[outs[k].alpha]) * std::exp(double(v))) : 0.0f;
+        else if (outs[k].square)
+          o = v * v;
         else if (outs[k].ggx)
           o = v > 0 ? 1.0f : -v;
         else
@@ -203,15 +222,15 @@ void write_as_older_version(const std::filesystem::path& from, const std::filesy
   ASSERT_TRUE(out->close());
 }
 
-// Version-2 files read with the lobe shapes they stored; version-1 files (before the lobe shapes of
-// lobe.h) as plain GGX lobes; every other channel as stored.
+// Version-3 and -2 files read with the lobe shapes they stored (and no skirt); version-1 files (before
+// the lobe shapes of lobe.h) as plain GGX lobes; every other channel as stored.
 TEST(MipFile, ReadsOlderVersions) {
   testing::TempDir dir;
   const MipData mip = build_mip(synthetic::tray(8));
-  write_mip_file(dir / "v3.exr", mip);
-  for (int version : {1, 2}) {
+  write_mip_file(dir / "v4.exr", mip);
+  for (int version : {1, 2, 3}) {
     const auto old = dir / ("v" + std::to_string(version) + ".exr");
-    write_as_older_version(dir / "v3.exr", old, version);
+    write_as_older_version(dir / "v4.exr", old, version);
     const MipData back = read_mip_file(old);
     ASSERT_EQ(back.levels(), mip.levels());
     int shaped = 0;
@@ -232,6 +251,7 @@ TEST(MipFile, ReadsOlderVersions) {
           EXPECT_EQ(b[k].alpha2_hi, a[k].alpha2_hi);
           EXPECT_EQ(b[k].ggx, a[k].ggx);
         }
+        EXPECT_EQ(b[k].skirt, 1.0f);
         shaped += a[k].alpha2_hi > 0 || a[k].ggx != 1.0f;
       }
     }
