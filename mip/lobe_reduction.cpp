@@ -444,9 +444,13 @@ class SinhcInverse {
   std::array<double, kSize> u_{};
 };
 
-// The cone a spread core's skirt is fitted in: the mass of D within 2.5° of the merged normal.
-constexpr double kSkirtTan2 = 0.0019076;  // tan²(2.5°)
-// Cores get a skirt while P·tan²(2.5°) exceeds this (α² below 2.5 tan²(2.5°): a core within ~4°).
+// The cone a spread core's skirt is fitted in: the mass of D within 2.82° of the merged normal, the
+// disc of the area of the ±2.5° square of half vectors that a 10° field of view spans (the LOD scenes'
+// camera, whose images integrate D over that square). The resolution at which the skirt keeps the
+// union's shape, as kResolutionAlpha2 is the cost's: at 2.5° (the square's inscribed disc) polished
+// granite's highlight kept +2.5 % at level 8, at 2.82° +1.3–1.4 % (bench/results/mip.md).
+constexpr double kSkirtTan2 = 0.0024279912;  // tan²(2.8209°), 2.8209° = √(25/π)°
+// Cores get a skirt while P·kSkirtTan2 exceeds this (α² below 2.5·kSkirtTan2: a core within ~4.5°).
 constexpr double kSkirtMinPeak = 0.4;
 
 // 1 − e^(−x) for x ≥ 0 within 4e-7 (series_exp; the series near 0, where the difference would cancel):
@@ -677,7 +681,7 @@ Merged merge_union(std::span<const Member> u, const UnionTerms* terms, float spr
   // mass the union spreads just outside it (texels tilted by 1–3°), +2 to +3.5 % on polished granite's
   // highlight from level 5 on. Wider cores (the tile roof's slopes, honed granite) keep c = 1: their
   // unions have no such shoulder, and slopes stop adding at their tilts. bench/results/mip.md,
-  // "sixth session".
+  // "sixth session" and "seventh session".
   double cone = -1;
   if (A * P < K * K && P / K * kSkirtTan2 > kSkirtMinPeak) {
     const double R = std::sqrt(kSkirtTan2);
