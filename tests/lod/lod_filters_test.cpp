@@ -39,9 +39,10 @@ bool filters_available() {
                   "the probe rendered them exactly as level0): the LOD assertions need the mip module's lookups "   \
                   "wired into the integrator"
 
-LodResults render(const std::vector<std::string>& cases, double min_distance, const std::vector<std::string>& lights = {}) {
+LodResults render(const std::vector<std::string>& cases, double min_distance, const std::vector<std::string>& lights = {},
+                  int spp = 256) {
   LodOptions o;
-  o.spp = 256;
+  o.spp = spp;
   o.min_distance = min_distance;
   o.filters = {"param", "brdf"};
   o.keep_images = false;
@@ -127,6 +128,29 @@ TEST(LodFilters, FamiliesFromSixteenTimesOn) {
     ++n;
   }
   EXPECT_EQ(n, (5 + 1) * 3);  // metal-tray: four lights head-on + the mirror view; painted-wall: sun-0
+}
+
+// The same assertion at the report's --full size (4096 samples per pixel, a noise floor 16× lower) on
+// the glossy families' highlights from 256× on. Disabled: it fails today, and takes 6–12 minutes.
+// Measured on 2026-11-24 (48a4152), brdf's relative MSE over the floor and flux bias (allowed: 1.5×, and
+// 1 % plus 0.3–0.4 % of noise), at 256× and 1024×:
+//   metal-tray-steel head-on sun-0: 7.2× and −0.9 %, 13.8× and −2.2 %;
+//   metal-tray-steel mirror sun-45: 6.8×, 13.0× and −1.7 %;
+//   granite-polished head-on sun-0: 1.8× and +0.6 %, 3.2× and +1.5 %;
+//   granite-polished mirror sun-45: 1.5× and +0.6 % (passes), 4.0× and +1.5 %;
+//   both families head-on under the 45° sun pass.
+// The 256-sample test above passes them all because its floor is 16× higher. The tray's deficit is older
+// than the spread cores' skirts (−2.77 % at 1024× before them, 256 samples); the granite's is what the
+// skirts leave after pairwise merges (bench/results/mip.md, seventh session).
+TEST(LodFilters, DISABLED_GlossyHighlightsAtTheReportsFullSizeFromTwoHundredFiftySixTimesOn) {
+  REQUIRE_FILTERS();
+  const LodResults r = render({"metal-tray-steel", "granite-polished"}, 256, {"sun-0", "sun-45"}, 4096);
+  int n = 0;
+  for (const LodShot& s : r.shots) {
+    expect_matches(s, "brdf", 1.5);
+    ++n;
+  }
+  EXPECT_EQ(n, 2 * 3 * 2);  // two families × (two lights head-on + the mirror view) × two distances
 }
 
 // The tile roof: the flat proxy with the baked normal distribution, under --filter brdf, matches the
