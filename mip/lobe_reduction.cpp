@@ -507,7 +507,8 @@ struct GaussLegendre {
   }
 };
 
-// The same for a Beckmann (Gaussian) slope distribution e^(−|s|²/b²)/(πb²): about the axis, the angle
+// The mass within slope radius R of an axis of a Beckmann (Gaussian) slope distribution e^(−|s|²/b²)/(πb²)
+// whose normal lies at slope distance d from the axis (as ggx_disc_mass): about the axis, the angle
 // integrates to 2π·e^(−(ρ² + d²)/b²)·I0(2ρd/b²), and the radius ρ ∈ [0, R] — where that is a smooth
 // bump of width b about d — by 4-point Gauss–Legendre on panels of at most 1.5b over the part within
 // 4.5b of d (e^(−20) beyond): within 1.1e-5 of a 4000 × 2000 grid for b² from 3e-5 to 2e-2.
