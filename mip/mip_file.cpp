@@ -29,7 +29,11 @@ bool lobe_channel_is_half(int c) { return c <= 6 || c >= 10; }
 // shape as two channels, version 1 nothing (plain GGX lobes).
 constexpr int kCommonLobeChannels = 10;
 const char* const kShapeSuffixV2[2] = {"alpha2_hi", "ggx"};
-int lobe_channels(int version) { return version >= 4 ? 13 : version == 3 ? 12 : version == 2 ? 13 : 11; }
+// Version 4: all; version 3: all but the skirt; version 2: the common ones, α² and the two shape
+// channels; version 1: the common ones and α².
+int lobe_channels(int version) {
+  return version >= 4 ? kLobeChannels : version == 3 ? kLobeChannels - 1 : kCommonLobeChannels + (version == 2 ? 3 : 1);
+}
 std::string lobe_suffix(int version, int c) {
   if (c < kCommonLobeChannels) return kLobeSuffix[c];
   if (c == kCommonLobeChannels) return version >= 4 ? "alpha" : "alpha2";
