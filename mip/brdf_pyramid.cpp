@@ -35,22 +35,48 @@ float to_half(float x) {
 }
 }  // namespace
 
+namespace {
+bool is_mixture(const Lobe& lobe) { return lobe.alpha2_hi > lobe.alpha2 * 1.001f; }
+}  // namespace
+
 float lobe_shape_code(const Lobe& lobe) {
-  if (lobe.alpha2_hi > lobe.alpha2 * 1.001f)
-    return to_half(static_cast<float>(std::log(double(lobe.alpha2_hi) / double(lobe.alpha2))));
+  if (is_mixture(lobe)) {
+    const float span = static_cast<float>(std::log(double(lobe.alpha2_hi) / double(lobe.alpha2)));
+    return to_half(lobe.skirt == 0.0f ? -(1.0f + span) : span);
+  }
   return to_half(-std::clamp(lobe.ggx, 0.0f, 1.0f));
 }
 
 void set_lobe_shape_code(Lobe& lobe, float code) {
-  if (code > 0) {
+  if (code > 0 || code < -1) {
     // In double, so that writing the lobe again gives back the same half (the float rounding of
     // alpha2_hi moves the logarithm by 6e-8, far below a half's spacing at the smallest code, 1e-3).
-    lobe.alpha2_hi = static_cast<float>(double(lobe.alpha2) * std::exp(double(code)));
+    const bool two_point = code < -1;
+    const double span = two_point ? -double(code) - 1.0 : double(code);
+    lobe.alpha2_hi = static_cast<float>(double(lobe.alpha2) * std::exp(span));
     lobe.ggx = 1.0f;
+    lobe.skirt = two_point ? 0.0f : 1.0f;
   } else {
     lobe.alpha2_hi = 0.0f;
     lobe.ggx = std::min(1.0f, -code);
+    lobe.skirt = 1.0f;
   }
+}
+
+float lobe_skirt_code(const Lobe& lobe) {
+  if (is_mixture(lobe)) {
+    const float beta = std::clamp(lobe.ggx, 1e-3f, 1.0f);
+    return to_half(beta <= 0.5f ? beta : beta - 1.0f);  // β − 1 is exact in a float
+  }
+  return lobe.ggx < 1.0f ? std::max(1.0f, to_half(lobe.skirt)) : 1.0f;
+}
+
+void set_lobe_skirt_code(Lobe& lobe, float code) {
+  // β ≥ 1e-3 as set_shape makes it (the atom's weight in V is (1 − β)/β); 1 + a half in (−½, 0] is exact.
+  if (lobe.alpha2_hi > 0.0f)
+    lobe.ggx = std::clamp(code > 0.0f ? code : 1.0f + code, 1e-3f, 1.0f);
+  else
+    lobe.skirt = code;
 }
 
 void round_to_stored(Lobe& lobe) {
@@ -62,8 +88,9 @@ void round_to_stored(Lobe& lobe) {
     lobe.diffuse[c] = to_half(lobe.diffuse[c]);
     lobe.f0[c] = to_half(lobe.f0[c]);
   }
+  const float skirt_code = lobe_skirt_code(lobe);
   set_lobe_shape_code(lobe, lobe_shape_code(lobe));
-  lobe.skirt = lobe.ggx < 1.0f ? std::max(1.0f, to_half(lobe.skirt)) : 1.0f;
+  set_lobe_skirt_code(lobe, skirt_code);
 }
 
 namespace {

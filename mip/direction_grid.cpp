@@ -49,7 +49,7 @@ void accumulate(const Lobe& lobe, double scale, std::span<glm::dvec3> table) {
   const LobeShape<T> shape = lobe_shape<T>(lobe);
   if (!shape.valid) return;
   constexpr int nd = DirectionGrid::kDirections;
-  if (shape.lmean > 0 || shape.ggx != T(1)) {
+  if (shape.alpha2_hi > 0 || shape.ggx != T(1)) {
     // Mixture shapes (lobe.h): V depends on the pair through the mixture's α², so nothing hoists.
     for (int pr = 0; pr < DirectionGrid::kPairs; ++pr) {
       const PairTerms<T>* pt;

@@ -13,12 +13,15 @@
 //             ρ is divided by the same factor, so weight·ρ stays the exact diffuse amplitude),
 //   diffuse — the mean ρ, f0 — the mean F0 (linear, exact under averaging),
 //   normal  — the mean of the unit shading normals, unnormalized: its length says how much they spread,
-//   alpha2, alpha2_hi, ggx — the specular shape about n̂ = normalize(normal) (below),
+//   alpha2, alpha2_hi, ggx, skirt — the specular shape about n̂ = normalize(normal) (below),
 // and its microfacet distribution D is one of two shapes, both normalized, both exactly GGX(α²) for a
 // level-0 texel (alpha2_hi = 0, ggx = 1):
-//   - a roughness mixture (alpha2_hi > alpha2, ggx = 1): GGX averaged over α² log-uniform in
-//     [l, h] = [alpha2, alpha2_hi], in closed form
-//       D = L(l, h) / (π·(|n×h|² + (n·h)²·l)·(|n×h|² + (n·h)²·h)),  L(l, h) = (h − l)/ln(h/l);
+//   - a roughness mixture (alpha2_hi > alpha2): a GGX atom at l = alpha2 of share 1 − β and an upper
+//     part of share β = ggx, which is (skirt = 1) GGX averaged over α² log-uniform in [l, h] =
+//     [alpha2, alpha2_hi], in closed form
+//       D_band = L(l, h) / (π·(|n×h|² + (n·h)²·l)·(|n×h|² + (n·h)²·h)),  L(l, h) = (h − l)/ln(h/l),
+//     or (skirt = 0) a second GGX atom at h (a two-point mixture). β = 1 with the band is the plain
+//     log-uniform mixture; the atom keeps a sharp peak that a band alone cannot (lobe_reduction.cpp);
 //   - a spread core (alpha2_hi = 0, ggx = μ ≤ 1): D = μ·D_GGX(α²) + (1 − μ)·D_Beckmann(c·α²), c = skirt ≥ 1
 //     (a skirt wider than the core: lobe_reduction.cpp, set_shape).
 // Why two: far from its peak a GGX lobe falls as α²/(π·tan⁴θ·cos⁴θ), so a mixture's tail is set by
@@ -32,7 +35,7 @@
 // and reflects, in the geometric tangent frame,
 //   weight · [0.96·(1 − w)·ρ/π + D·V·(F0 + (1 − F0)·w)] · (normal·wi) / wi.z,
 // with D as above and V the glTF (GGX, height-correlated Smith) visibility about n̂ — for a roughness
-// mixture the mean of its components' V weighted by their D at the half vector, for a spread core's
+// mixture the mean of its components' V (atoms and band) weighted by their D at the half vector, for a spread core's
 // Beckmann share and its skirt at the GGX share's α² (the masking functions differ by a few percent at
 // grazing angles only; weighting V by the shares' D moved polished granite's highlight by < 0.01 %) — and 0
 // when n̂·wi ≤ 0, n̂·wo ≤ 0, wi.z ≤ 0 or wo.z ≤ 0. A level-0 texel is one lobe of weight 1 with a unit normal and
@@ -60,9 +63,10 @@ struct Lobe {
   glm::vec3 f0{0.0f};
   glm::vec3 normal{0.0f, 0.0f, 1.0f};
   float alpha2 = 1e-6f;     // GGX α² (a roughness mixture's lower end)
-  float ggx = 1.0f;         // μ, the GGX share of a spread core
+  float ggx = 1.0f;         // μ, the GGX share of a spread core; β, the upper part's share of a roughness mixture
   float alpha2_hi = 0.0f;   // > alpha2: a roughness mixture's upper end
-  float skirt = 1.0f;       // c ≥ 1: a spread core's Beckmann share is at c·alpha2 (its skirt)
+  float skirt = 1.0f;       // c ≥ 1: a spread core's Beckmann share is at c·alpha2 (its skirt); a roughness
+                            // mixture's upper part: 1 the band [alpha2, alpha2_hi], 0 an atom at alpha2_hi
 };
 
 // The level-0 lobe of a texel with glTF parameters (linear base color, metallic, perceptual
@@ -119,8 +123,10 @@ struct LobeShape {
   T alpha2 = 1;
   T ggx = 1;  // μ, the GGX share of D
   T skirt = 1;  // c: the Beckmann share's α² is c·alpha2
-  T alpha2_hi = 0, lmean = 0;  // log-uniform α² mixture: upper end and logarithmic mean (0: plain GGX)
-  T node_a2[3] = {0, 0, 0};    // its 3-point Gauss–Legendre nodes in ln α², for V (lobe_brdf)
+  T alpha2_hi = 0;             // a roughness mixture's upper end (0: not a mixture)
+  T lmean = 0;                 // its band's logarithmic mean L(l, h) (0: no band)
+  T node_a2[3] = {0, 0, 0};    // the band's 3-point Gauss–Legendre nodes in ln α², for V (lobe_brdf)
+  bool two_point = false;      // a roughness mixture whose upper part is an atom at alpha2_hi
   bool valid = false;
 };
 
@@ -139,7 +145,11 @@ LobeShape<T> lobe_shape(const Lobe& lobe, bool with_nodes = true) {
   s.alpha2 = T(lobe.alpha2);
   s.ggx = std::clamp(T(lobe.ggx), T(0), T(1));
   s.skirt = std::max(T(1), T(lobe.skirt));
-  if (lobe.alpha2_hi > lobe.alpha2 * 1.0001f) {
+  if (lobe.alpha2_hi > lobe.alpha2 * 1.0001f && lobe.skirt == 0.0f) {
+    s.alpha2_hi = T(lobe.alpha2_hi);
+    s.two_point = true;
+    s.skirt = 1;
+  } else if (lobe.alpha2_hi > lobe.alpha2 * 1.0001f) {
     s.alpha2_hi = T(lobe.alpha2_hi);
     T x, span;  // h/l − 1 and ln(h/l)
     if constexpr (std::is_same_v<T, float>) {
@@ -220,11 +230,15 @@ T lobe_d(const LobeShape<T>& s, T ch, const glm::vec<3, T>& nxh) {
   if (!(ch > 0)) return T(0);
   const T a2 = s.alpha2, sin2 = glm::dot(nxh, nxh);
   const T denom = sin2 + ch * ch * a2;
-  T d;
-  if (s.lmean > 0)
-    d = s.ggx * s.lmean * kInvPi / (denom * (sin2 + ch * ch * s.alpha2_hi));
-  else
-    d = s.ggx * a2 * kInvPi / (denom * denom);
+  if (s.alpha2_hi > 0) {
+    // A roughness mixture: its atom at l, and its band or its atom at h.
+    const T denom_hi = sin2 + ch * ch * s.alpha2_hi;
+    const T upper = s.two_point ? s.alpha2_hi / (denom_hi * denom_hi) : s.lmean / (denom * denom_hi);
+    T d = s.ggx * upper;
+    if (s.ggx != T(1)) d += (T(1) - s.ggx) * a2 / (denom * denom);
+    return d * kInvPi;
+  }
+  T d = s.ggx * a2 * kInvPi / (denom * denom);
   if (s.ggx != T(1)) {
     // Past tan²θ/α² = 60 the Beckmann share is below e⁻⁶⁰ of its peak: skipped, which also keeps
     // 0·∞ out at grazing half vectors.
@@ -253,17 +267,24 @@ glm::vec<3, T> lobe_brdf(const Lobe& lobe, const LobeShape<T>& s, const PairTerm
     return T(0.5) / (co * std::sqrt(a2 + (T(1) - a2) * ci * ci) + ci * std::sqrt(a2 + (T(1) - a2) * co * co));
   };
   T vis;
-  if (s.lmean > 0 && ch > 0) {
+  if (s.two_point && ch > 0) {
+    // A two-point mixture: each atom's V weighted by its share of D at this half vector.
+    const T t = glm::dot(nxh, nxh) / (ch * ch), al = s.alpha2, ah = s.alpha2_hi;
+    const T dl = (T(1) - s.ggx) * al / ((al + t) * (al + t)), dh = s.ggx * ah / ((ah + t) * (ah + t));
+    vis = (dl * visibility(al) + dh * visibility(ah)) / (dl + dh);
+  } else if (s.lmean > 0 && ch > 0) {
     // A roughness mixture: V of each component weighted by its share of D at this half vector,
-    // ∫ D_a·V_a da/a / ∫ D_a da/a over log-uniform a = α², by 3-point Gauss–Legendre in ln a.
+    // ∫ D_a·V_a da/a / ∫ D_a da/a over log-uniform a = α², by 3-point Gauss–Legendre in ln a, and
+    // the atom at l with its share 1 − β.
     const T t = glm::dot(nxh, nxh) / (ch * ch);
     constexpr T kW[3] = {T(5) / T(18), T(8) / T(18), T(5) / T(18)};
 #if defined(__SSE2__)
     if constexpr (std::is_same_v<T, float>) {
       // The three nodes side by side (the renderer's eval: 2 square roots and 2 divisions of four
-      // lanes instead of 6 and 6); the fourth lane repeats the middle node with weight 0.
-      const __m128 a = _mm_setr_ps(s.node_a2[0], s.node_a2[1], s.node_a2[2], s.node_a2[1]);
-      const __m128 wk = _mm_setr_ps(kW[0], kW[1], kW[2], 0.0f);
+      // lanes instead of 6 and 6); the fourth lane is the atom at l (weight 0 without one).
+      const T atom = (T(1) - s.ggx) / s.ggx;  // relative to the band's weights (β > 0: lobe_reduction.cpp)
+      const __m128 a = _mm_setr_ps(s.node_a2[0], s.node_a2[1], s.node_a2[2], s.alpha2);
+      const __m128 wk = _mm_setr_ps(kW[0], kW[1], kW[2], atom);
       const __m128 one = _mm_set1_ps(1.0f), r = _mm_div_ps(one, _mm_add_ps(a, _mm_set1_ps(t)));
       const __m128 dk = _mm_mul_ps(_mm_mul_ps(wk, a), _mm_mul_ps(r, r));
       const __m128 om = _mm_sub_ps(one, a);
@@ -280,7 +301,12 @@ glm::vec<3, T> lobe_brdf(const Lobe& lobe, const LobeShape<T>& s, const PairTerm
     {
       T num = 0, den = 0;
       for (int k = 0; k < 3; ++k) {
-        const T a = s.node_a2[k], dk = kW[k] * a / ((a + t) * (a + t));
+        const T a = s.node_a2[k], dk = s.ggx * kW[k] * a / ((a + t) * (a + t));
+        num += dk * visibility(a);
+        den += dk;
+      }
+      if (s.ggx != T(1)) {
+        const T a = s.alpha2, dk = (T(1) - s.ggx) * a / ((a + t) * (a + t));
         num += dk * visibility(a);
         den += dk;
       }

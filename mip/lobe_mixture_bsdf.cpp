@@ -90,7 +90,7 @@ float LobeMixtureBsdf::pdf_with(const Choice& c, const glm::vec3& wi, const glm:
         const float sin2h = glm::dot(nxh, nxh);
         float vis = ggx_reflection_pdf(sh.alpha2, co, ch, sin2h);
         // A roughness mixture is sampled half from each end of its range (sample below).
-        if (sh.lmean > 0) vis = 0.5f * (vis + ggx_reflection_pdf(sh.alpha2_hi, co, ch, sin2h));
+        if (sh.alpha2_hi > 0) vis = 0.5f * (vis + ggx_reflection_pdf(sh.alpha2_hi, co, ch, sin2h));
         p += (1.0f - c.diffuse[i]) * vis;
       }
     }
@@ -130,7 +130,7 @@ BsdfSample LobeMixtureBsdf::sample(const glm::vec3& wo, const SampleU& u) const 
       const glm::vec3 wo_l = fr.to_local(wo);
       // A roughness mixture (lobe.h) is sampled half from each end of its α² range.
       const LobeShape<float>& sh = slot(picked).shape;
-      const bool upper = sh.lmean > 0 && (ux - c.diffuse[i]) >= 0.5f * (1.0f - c.diffuse[i]);
+      const bool upper = sh.alpha2_hi > 0 && (ux - c.diffuse[i]) >= 0.5f * (1.0f - c.diffuse[i]);
       const glm::vec3 h = sample_ggx_visible(std::sqrt(upper ? sh.alpha2_hi : sh.alpha2), wo_l, uv);
       wi = fr.to_world(2.0f * glm::dot(wo_l, h) * h - wo_l);
     }

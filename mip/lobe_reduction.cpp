@@ -50,7 +50,10 @@ double specular_amp(double weight, double len, double f0) { return weight * len 
 // What D of a lobe shape depends on (lobe_d), without the horizons' fields.
 struct DShape {
   double alpha2 = 1, alpha2_hi = 0, lmean = 0, ggx = 1, skirt = 1;
-  static DShape of(const LobeShape<double>& sh) { return {sh.alpha2, sh.alpha2_hi, sh.lmean, sh.ggx, sh.skirt}; }
+  bool two_point = false;
+  static DShape of(const LobeShape<double>& sh) {
+    return {sh.alpha2, sh.alpha2_hi, sh.lmean, sh.ggx, sh.skirt, sh.two_point};
+  }
 };
 
 // What the cost model needs of a lobe, computed once per lobe.
@@ -77,7 +80,12 @@ struct Summary {
 double d_at_tan2(const DShape& sh, double t) {
   if (!std::isfinite(t)) return 0.0;
   const double a2 = sh.alpha2, q = (1 + t) * (1 + t) / kPi;
-  double d = sh.lmean > 0 ? sh.ggx * sh.lmean / ((t + a2) * (t + sh.alpha2_hi)) : sh.ggx * a2 / ((t + a2) * (t + a2));
+  if (sh.alpha2_hi > 0) {
+    const double hi = sh.alpha2_hi;
+    const double upper = sh.two_point ? hi / ((t + hi) * (t + hi)) : sh.lmean / ((t + a2) * (t + hi));
+    return q * (sh.ggx * upper + (1.0 - sh.ggx) * a2 / ((t + a2) * (t + a2)));
+  }
+  double d = sh.ggx * a2 / ((t + a2) * (t + a2));
   if (sh.ggx != 1.0) {
     const double b2 = a2 * sh.skirt, x = t / b2;
     if (x < 60.0) d += (1.0 - sh.ggx) * double(series_exp(static_cast<float>(-x))) / b2;
@@ -102,10 +110,19 @@ void profile_of(const DShape& sh, std::array<double, kProfileSteps>& out) {
     return s;
   }();
   const double a2 = sh.alpha2;
-  if (sh.lmean > 0) {
-    const double c = sh.ggx * sh.lmean, hi = sh.alpha2_hi;
-    for (std::size_t j = 0; j < kProfileSteps; ++j) out[j] = c / ((steps.t[j] + a2) * (steps.t[j] + hi));
-  } else {
+  if (sh.alpha2_hi > 0) {
+    const double hi = sh.alpha2_hi, atom = (1.0 - sh.ggx) * a2;
+    if (sh.two_point) {
+      const double c = sh.ggx * hi;
+      for (std::size_t j = 0; j < kProfileSteps; ++j) out[j] = c / ((steps.t[j] + hi) * (steps.t[j] + hi));
+    } else {
+      const double c = sh.ggx * sh.lmean;
+      for (std::size_t j = 0; j < kProfileSteps; ++j) out[j] = c / ((steps.t[j] + a2) * (steps.t[j] + hi));
+    }
+    for (std::size_t j = 0; j < kProfileSteps; ++j) out[j] = steps.q[j] * (out[j] + atom / ((steps.t[j] + a2) * (steps.t[j] + a2)));
+    return;
+  }
+  {
     const double c = sh.ggx * a2;
     for (std::size_t j = 0; j < kProfileSteps; ++j) out[j] = c / ((steps.t[j] + a2) * (steps.t[j] + a2));
   }
@@ -143,9 +160,13 @@ Summary summarize(const Lobe& l) {
   s.amp = specular_amp(l.weight, len, s.f0);
   const LobeShape<double> sh = lobe_shape<double>(l, false);
   s.ggx = sh.ggx;
-  if (sh.lmean > 0) {
-    s.tail = s.ggx * sh.lmean;
-    s.peak = s.ggx * sh.lmean / (sh.alpha2 * sh.alpha2_hi) + (1 - s.ggx) / sh.alpha2;
+  if (sh.alpha2_hi > 0) {
+    // A roughness mixture: its atom at l (share 1 − β) and its upper part (lobe.h). The width term of
+    // union_cost takes it as one GGX core (μ = 1).
+    const double beta = sh.ggx, l = sh.alpha2, h = sh.alpha2_hi;
+    s.tail = beta * (sh.two_point ? h : sh.lmean) + (1 - beta) * l;
+    s.peak = beta * (sh.two_point ? 1 / h : sh.lmean / (l * h)) + (1 - beta) / l;
+    s.ggx = 1;
   } else {
     s.tail = s.ggx * sh.alpha2;
     s.peak = (s.ggx + (1 - s.ggx) / sh.skirt) / sh.alpha2;
@@ -541,50 +562,234 @@ double beckmann_disc_mass(double b2, double d, double R) {
 // Gauss–Legendre in ln α², where that mass is smooth), its Beckmann share at c·α² by quadrature.
 double cone_mass_at(const DShape& sh, double d, double R) {
   const double R2 = R * R, d2 = d * d, a2 = sh.alpha2;
-  double m;
-  if (sh.lmean > 0) {
-    static const GaussLegendre<4> gl;
-    const double span = (sh.alpha2_hi - a2) / sh.lmean;  // ln(h/l) = (h − l)/L(l, h) (lobe.h)
-    m = 0.0;
-    for (std::size_t k = 0; k < gl.x.size(); ++k) m += gl.w[k] * ggx_disc_mass(a2 * std::exp(gl.x[k] * span), d2, R2);
-  } else {
-    m = ggx_disc_mass(a2, d2, R2);
+  if (sh.alpha2_hi > 0) {
+    double upper;
+    if (sh.two_point) {
+      upper = ggx_disc_mass(sh.alpha2_hi, d2, R2);
+    } else {
+      static const GaussLegendre<4> gl;
+      const double span = (sh.alpha2_hi - a2) / sh.lmean;  // ln(h/l) = (h − l)/L(l, h) (lobe.h)
+      upper = 0.0;
+      for (std::size_t k = 0; k < gl.x.size(); ++k) upper += gl.w[k] * ggx_disc_mass(a2 * std::exp(gl.x[k] * span), d2, R2);
+    }
+    return sh.ggx * upper + (sh.ggx != 1.0 ? (1.0 - sh.ggx) * ggx_disc_mass(a2, d2, R2) : 0.0);
   }
-  m *= sh.ggx;
+  double m = sh.ggx * ggx_disc_mass(a2, d2, R2);
   if (sh.ggx != 1.0) m += (1.0 - sh.ggx) * beckmann_disc_mass(a2 * sh.skirt, d, R);
   return m;
 }
 
-// The lobe shape with tail coefficient A and peak P (lobe.h): a log-uniform α² mixture on
-// [g/r, g·r] (g = √(A/P), ln r = u with sinh(u)/u = √(AP)) when AP ≥ 1, else one core of α² = 1/P
-// whose GGX share μ = AP thins the tail (the rest Beckmann).
-void set_shape(Lobe& m, double A, double P, double cone_mass = -1) {
+// cone_mass_at for a lobe whose normal is the axis (d = 0), in closed form: GGX's radial CDF
+// R²/(α² + R²), its log-uniform mean over a band, Beckmann's 1 − e^(−R²/b²). A lobe tilted off the axis
+// has less there (a radially decreasing density has most mass in a disc centred on its mode), so
+// this bounds a union's mass in the disc from above, at no quadrature.
+double centred_cone_mass(const DShape& sh, double R2) {
+  const double a2 = sh.alpha2;
+  if (sh.alpha2_hi > 0) {
+    const double hi = sh.alpha2_hi;
+    const double upper = sh.two_point ? R2 / (hi + R2) : 1.0 + series_log((a2 + R2) / (hi + R2)) / series_log(hi / a2);
+    return sh.ggx * upper + (1.0 - sh.ggx) * R2 / (a2 + R2);
+  }
+  double m = sh.ggx * R2 / (a2 + R2);
+  if (sh.ggx != 1.0) m += (1.0 - sh.ggx) * one_minus_exp(R2 / (a2 * sh.skirt));
+  return m;
+}
+
+// Roughness mixtures with an atom (lobe.h), in units of 1/P: the atom at x = lP ≤ 1, the upper end
+// y = hP, the upper part's share β. Each has tail q = AP and peak 1; the third number, the mass within
+// slope radius 1/√P (the core), picks one of a one-parameter family (fit_atom_band, fit_two_point).
+struct MixtureFit {
+  double x = 1, y = 1, beta = 1;
+  bool two_point = false;
+  // The mass within slope radius² s/P (closed forms: GGX's radial CDF s/(s + a), and its log-uniform
+  // mean 1 + ln((s + x)/(s + y))/ln(y/x) over the band); t = ln(y/x) when known.
+  double mass(double s, double t = 0) const {
+    const double upper = two_point ? s / (s + y) : 1.0 + series_log((s + x) / (s + y)) / (t > 0 ? t : series_log(y / x));
+    return (1 - beta) * s / (s + x) + beta * upper;
+  }
+};
+
+// Finds where f (continuous) crosses 0 on [lo, hi], f(lo) and f(hi) of opposite signs: regula falsi
+// with the Illinois rule (halve the value kept at an end that stays twice), to |f| < tol or 40 steps.
+template <class F>
+double illinois_root(F&& f, double lo, double hi, double tol) {
+  double f_lo = f(lo), f_hi = f(hi), t = lo;
+  if (!(f_lo * f_hi < 0)) return std::abs(f_lo) <= std::abs(f_hi) ? lo : hi;
+  int kept = 0;  // +1: lo moved last, −1: hi moved last
+  for (int it = 0; it < 40; ++it) {
+    t = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+    const double v = f(t);
+    if (std::abs(v) < tol) break;
+    if ((v < 0) == (f_lo < 0)) {
+      lo = t, f_lo = v;
+      if (kept == 1) f_hi *= 0.5;
+      kept = 1;
+    } else {
+      hi = t, f_hi = v;
+      if (kept == -1) f_lo *= 0.5;
+      kept = -1;
+    }
+  }
+  return t;
+}
+
+// Where the atom-and-band family's two roots meet (fit_atom_band), as a function of q alone: tabulated
+// over ln q ∈ [0, 40] by bisection once, and read slightly above (1e-4), where the roots are real.
+class FoldTable {
+ public:
+  static const FoldTable& get() {
+    static const FoldTable t;
+    return t;
+  }
+  static double disc(double q, double t) {
+    const double e = std::exp(t), g = (1 - 1 / e) / t, k = (e - 1) / t, a = 1 - g, b = k - 1;
+    return (b - a) * (b - a) - 4 * a * b * (q - 1);
+  }
+  double t_min(double q) const {
+    const double x = std::clamp(series_log(q) / kMaxLnQ, 0.0, 1.0) * (kSize - 1);
+    const int i = std::min(kSize - 2, static_cast<int>(x));
+    const double f = x - i;
+    return (t_[static_cast<std::size_t>(i)] * (1 - f) + t_[static_cast<std::size_t>(i + 1)] * f) * (1 + 1e-4);
+  }
+
+ private:
+  static constexpr int kSize = 512;
+  static constexpr double kMaxLnQ = 40.0;
+  FoldTable() {
+    for (int k = 0; k < kSize; ++k) {
+      const double q = std::exp(kMaxLnQ * k / (kSize - 1)) * (1 + 1e-9);
+      double lo = 1e-6, hi = 60;
+      for (int it = 0; it < 60; ++it) (disc(q, 0.5 * (lo + hi)) < 0 ? lo : hi) = 0.5 * (lo + hi);
+      t_[static_cast<std::size_t>(k)] = hi;
+    }
+  }
+  std::array<double, kSize> t_{};
+};
+
+// The atom and a log-uniform band [x, y] over it, with core mass `core`. In t = ln(y/x), with
+// g = (1 − e^−t)/t and k = (e^t − 1)/t, the peak gives x = 1 − β(1 − g) and the tail x(1 + β(k − 1)) = q, so
+// a·b·β² − (b − a)·β + (q − 1) = 0 with a = 1 − g, b = k − 1. Its roots meet at t_min; from the band alone
+// (β = 1 at t = t_band, the log-uniform mixture) the upper root runs down to t_min and the lower one on to
+// β → 0 as t → ∞, and along that path the core mass rises from the band's to ½: the root on the branch
+// that holds `core`, with y ≤ y_max (α² ≤ 1).
+MixtureFit fit_atom_band(double q, double t_band, double core, double y_max) {
+  const auto at = [&](double t, bool upper_root) {
+    const double e = std::exp(t), g = (1 - 1 / e) / t, k = (e - 1) / t, a = 1 - g, b = k - 1;
+    const double disc = (b - a) * (b - a) - 4 * a * b * (q - 1);
+    MixtureFit f;
+    f.beta = std::clamp(((b - a) + (upper_root ? 1 : -1) * std::sqrt(std::max(0.0, disc))) / (2 * a * b), 0.0, 1.0);
+    f.x = 1 - f.beta * a;
+    f.y = f.x * e;
+    return f;
+  };
+  const double t_min = std::min(FoldTable::get().t_min(q), t_band);
+  const bool upper_root = core <= at(t_min, true).mass(1, t_min);
+  const double t_end = upper_root ? t_band : std::max(t_min, std::min(40.0, std::log(y_max)));
+  const double t = illinois_root([&](double t) { return at(t, upper_root).mass(1, t) - core; }, t_min, t_end, 1e-5);
+  return at(t, upper_root);
+}
+
+// Two atoms at x and y with core mass `core`: the moments give β = y(1 − x)/(y − x) and
+// y²(1 − x) + y(x² − q) + (qx − x²) = 0 (its root ≥ 1); the core mass rises with x from 1/(1 + q) (x → 0)
+// to ½ (x → 1): the root in x, with y ≤ y_max (α² ≤ 1; y grows with x).
+MixtureFit fit_two_point(double q, double core, double y_max) {
+  const auto at = [&](double x) {
+    MixtureFit f;
+    f.two_point = true;
+    f.x = x;
+    const double b = x * x - q, c = q * x - x * x, a = 1 - x;
+    f.y = (-b + std::sqrt(std::max(0.0, b * b - 4 * a * c))) / (2 * a);
+    f.beta = f.y * (1 - x) / (f.y - x);
+    return f;
+  };
+  // y = y_max where x²(Y − 1) + x(q − Y²) + Y(Y − q) = 0 (the quadratic at y = Y): its root in (0, 1).
+  constexpr double kLo = 1e-9, kHi = 1 - 1e-9;
+  const double Y = y_max, qa = Y - 1, qb = q - Y * Y, qc = Y * (Y - q);
+  const double x_max = qa > 0 ? (-qb - std::sqrt(std::max(0.0, qb * qb - 4 * qa * qc))) / (2 * qa) : kHi;
+  const double hi = std::clamp(x_max, kLo, kHi);
+  return at(illinois_root([&](double x) { return at(x).mass(1) - core; }, kLo, hi, 1e-5));
+}
+
+// Where a log-uniform band's core mass falls this far below the union's, the union is sharper at its
+// centre than a band can be (sharp lobes with rough ones: the fingerprinted tray, 30–40 % short) and
+// gets an atom. At 2 % atoms also reach polished granite's unions of spread cores with mica flecks and
+// raise its highlight over ±1° of views by 1–3 %; at 20 % the tray keeps half its loss (bench/results/mip.md,
+// "eighth session").
+constexpr double kAtomCoreShortfall = 0.1;
+
+// The half span u of the log-uniform band with tail q = AP in units of its peak: sinh(u)/u = √q (the
+// band is [g/e^u, g·e^u], g = √(A/P)), by Newton's method from the tabulated guess; and e^u.
+struct BandSpan {
+  double u, e;
+};
+BandSpan band_span(double q) {
+  const double target = std::sqrt(q);
+  double u = std::max(1e-6, SinhcInverse::get().guess(target));
+  double e = std::exp(u);
+  for (int k = 0; k < 8; ++k) {
+    const double inv_e = 1 / e, sh = 0.5 * (e - inv_e), ch = 0.5 * (e + inv_e);
+    // f = sinh(u)/u − T, f' = (u·cosh u − sinh u)/u², so the step f/f' = u·(sinh u − T·u)/(u·cosh u − sinh u).
+    const double den = u * ch - sh;
+    if (!(den > 0)) break;
+    const double step = u * (sh - target * u) / den;
+    const double next = std::max(1e-6, u - step), d = u - next;
+    // e^next = e^u·e^−d; the steps from the tabulated guess are small (|d| ~ 1e-5·u, then ~1e-10),
+    // where e^−d's series to d⁴ is exact to 1e-17: one exponential per shape, not one per step.
+    e = std::abs(d) < 1e-3 ? e * (1 - d * (1 - d * (0.5 - d * (1.0 / 6 - d * (1.0 / 24))))) : std::exp(next);
+    u = next;
+    if (std::abs(step) < 1e-9 * u) break;
+  }
+  return {u, e};
+}
+
+// The lobe shape with tail coefficient A and peak P (lobe.h): when AP ≥ 1 a roughness mixture, the
+// log-uniform band on [g/e^u, g·e^u] (band_span) unless the union is sharper at its centre than that
+// band, else one core of α² = 1/P whose GGX share μ = AP thins the tail (the rest Beckmann).
+// union_mass(R²), when given, is the union's mass within slope radius² R² of the merged normal (per unit
+// of its amplitude, as A and P), and mass_bound(R²) a cheap upper bound of it.
+//
+// Why the atom: a band's mass within the core (slope radius 1/√P) is fixed by q alone, and a union of
+// sharp lobes with rough ones — polished metal with fingerprints, clean at one texel and oily at the
+// next — has far more there: a band with its A and P spreads the sharp lobes' peak over the decades
+// between (−30 % of the tray's highlight over ±1° of views at some level-4 texels; −5.4 % over the whole
+// tray by level 8). The atom's share is fitted to the union's core mass, and the upper part is a band
+// or a second atom, whichever then keeps the union's mass in the LOD camera's cone (kSkirtTan2) better:
+// a band for a sharp cluster over a spread of rough lobes, an atom for two clusters.
+// bench/results/mip.md, "eighth session".
+template <class UnionMass, class MassBound>
+void set_shape(Lobe& m, double A, double P, const UnionMass* union_mass, const MassBound* mass_bound) {
   A = std::max(A, 1e-9);
   P = std::max(P, 1.0);
   const double q = A * P;
   m.alpha2_hi = 0.0f;
   m.skirt = 1.0f;
   if (q > 1.0 + 1e-7) {
-    const double target = std::sqrt(q);
-    double u = std::max(1e-6, SinhcInverse::get().guess(target));
-    double e = std::exp(u);
-    for (int k = 0; k < 8; ++k) {
-      const double inv_e = 1 / e, sh = 0.5 * (e - inv_e), ch = 0.5 * (e + inv_e);
-      // f = sinh(u)/u − T, f' = (u·cosh u − sinh u)/u², so the step f/f' = u·(sinh u − T·u)/(u·cosh u − sinh u).
-      const double den = u * ch - sh;
-      if (!(den > 0)) break;
-      const double step = u * (sh - target * u) / den;
-      const double next = std::max(1e-6, u - step), d = u - next;
-      // e^next = e^u·e^−d; the steps from the tabulated guess are small (|d| ~ 1e-5·u, then ~1e-10),
-      // where e^−d's series to d⁴ is exact to 1e-17: one exponential per shape, not one per step.
-      e = std::abs(d) < 1e-3 ? e * (1 - d * (1 - d * (0.5 - d * (1.0 / 6 - d * (1.0 / 24))))) : std::exp(next);
-      u = next;
-      if (std::abs(step) < 1e-9 * u) break;
-    }
+    const BandSpan span = band_span(q);
     const double g = std::sqrt(A / P);
-    m.alpha2 = static_cast<float>(std::clamp(g / e, 1e-6, 1.0));
-    m.alpha2_hi = static_cast<float>(std::clamp(g * e, double(m.alpha2), 1.0));
+    m.alpha2 = static_cast<float>(std::clamp(g / span.e, 1e-6, 1.0));
+    m.alpha2_hi = static_cast<float>(std::clamp(g * span.e, double(m.alpha2), 1.0));
     m.ggx = 1.0f;
+    if (!union_mass) return;
+    MixtureFit band;
+    band.x = P * g / span.e, band.y = P * g * span.e;
+    // Most unions are near the band's own shape: the bound rules them out without the quadratures.
+    const double band_core = band.mass(1);
+    if (!(band_core < (*mass_bound)(1 / P) * (1 - kAtomCoreShortfall))) return;
+    const double core = (*union_mass)(1 / P);
+    if (!(band_core < core * (1 - kAtomCoreShortfall))) return;
+    const MixtureFit a = fit_atom_band(q, 2 * span.u, core, P), b = fit_two_point(q, core, P);
+    const double cam = (*union_mass)(kSkirtTan2), s = kSkirtTan2 * P;
+    // (Taking the band whenever it is within 1 % of the cone, to save the second fit, raised polished
+    // granite's highlight at level 7 from +1.6 % to +3.3 %: the better of the two compounds.)
+    const MixtureFit& f = std::abs(a.mass(s) - cam) <= std::abs(b.mass(s) - cam) ? a : b;
+    // The upper end at least 0.2 % above the atom: what the MIP file stores as a mixture (0.1 %,
+    // brdf_pyramid.h) once α is rounded to a half (5e-4 on α²).
+    const double l = std::clamp(f.x / P, 1e-6, 1.0);
+    if (l * 1.002 > 1.0) return;
+    m.alpha2 = static_cast<float>(l);
+    m.alpha2_hi = static_cast<float>(std::clamp(f.y / P, l * 1.002, 1.0));
+    m.ggx = static_cast<float>(std::clamp(f.beta, 1e-3, 1.0));
+    m.skirt = f.two_point ? 0.0f : 1.0f;
   } else {
     m.alpha2 = static_cast<float>(std::clamp(1.0 / P, 1e-6, 1.0));
     m.ggx = static_cast<float>(std::clamp(q, 0.0, 1.0));
@@ -595,6 +800,7 @@ void set_shape(Lobe& m, double A, double P, double cone_mass = -1) {
     // smooth: regula falsi with the Illinois rule (halve the value kept at an end that stays twice),
     // to 1e-4 of mass (the members' masses are good to 2e-4).
     const double R2 = kSkirtTan2;
+    const double cone_mass = union_mass && P * R2 > kSkirtMinPeak ? (*union_mass)(R2) : -1.0;
     const auto share = [&](double c) { return 2.0 * c * q / (1.0 + std::sqrt(1.0 + 4.0 * c * q * (c - 1.0))); };
     const auto excess = [&](double t) {
       const double c = double(series_exp(static_cast<float>(t))), mu = share(c), a2 = A / mu;
@@ -650,6 +856,27 @@ Merged merge_union(std::span<const Member> u, const UnionTerms* terms, float spr
   const bool by_amp = K > 0;
   if (!by_amp)
     for (const Member& x : u) K += x.sum->weight;
+  const glm::dvec3& n = mb.summary.n;
+  // The union's π·D at the merged normal, and its mass within slope radius² R² of it (each per unit of
+  // K, as A and P below).
+  const auto union_centre = [&] {
+    double centre = 0;
+    for (const Member& x : u) {
+      const Summary& a = *x.sum;
+      centre += (by_amp ? a.amp : a.weight) * kPi * d_at_tan2(a.d_shape, tan2_between(a.n, n));
+    }
+    return centre / K;
+  };
+  const auto union_mass = [&](double R2) {
+    const double R = std::sqrt(R2);
+    double mass = 0;
+    for (const Member& x : u) {
+      const Summary& a = *x.sum;
+      const double t = tan2_between(a.n, n);
+      if (std::isfinite(t)) mass += (by_amp ? a.amp : a.weight) * cone_mass_at(a.d_shape, std::sqrt(t), R);
+    }
+    return mass / K;
+  };
   // Moments of the union about the merged normal: the tails add (A), and each lobe's peak, widened
   // by its tilt to the merged normal (LEAN: α² + tan²θ, Olano & Baker 2010), adds (P_lean). When A and
   // that P make a spread core (A·P < 1: narrow lobes spread by their normals), P_lean overestimates
@@ -657,10 +884,11 @@ Merged merge_union(std::span<const Member> u, const UnionTerms* terms, float spr
   // levels (+8 % at granite's mirror pairs by level 8); the union's exact D at the merged normal
   // (P_centre) alone underestimates it for the next level (−9 %: the union's core is flatter than a
   // spread core's). The spread core takes a blend, kLeanPeakShareSpread of P_lean; a roughness
-  // mixture keeps P_lean (a blend there moved metal-tray's off-specular level means by 5–7 %).
-  // bench/results/mip.md, "2026-11-23, second session".
+  // mixture keeps P_lean for its band (a blend there moved metal-tray's off-specular level means by
+  // 5–7 %), and so does its atom where it gets one (set_shape; P_centre there raised polished granite's
+  // highlight by 2–3 % and lowered the tray's glow under a 45° sun by 1–2 %). bench/results/mip.md,
+  // "2026-11-23, second session" and "eighth session".
   double A = 0, P_lean = 0;
-  const glm::dvec3& n = mb.summary.n;
   for (const Member& x : u) {
     const Summary& a = *x.sum;
     const double k = by_amp ? a.amp : a.weight;
@@ -669,33 +897,21 @@ Merged merge_union(std::span<const Member> u, const UnionTerms* terms, float spr
     P_lean += k / (1.0 / a.peak + spread_scale * t);
   }
   double P = P_lean;
-  if (A * P_lean < K * K) {
-    double P_centre = 0;
-    for (const Member& x : u) {
-      const Summary& a = *x.sum;
-      P_centre += (by_amp ? a.amp : a.weight) * kPi * d_at_tan2(a.d_shape, tan2_between(a.n, n));
-    }
-    P = (1.0 - kLeanPeakShareSpread) * P_centre + kLeanPeakShareSpread * P_lean;
-  }
+  if (A * P_lean < K * K) P = (1.0 - kLeanPeakShareSpread) * union_centre() * K + kLeanPeakShareSpread * P_lean;
   // A spread core narrower than a few degrees gets a skirt fitted to the union's mass in the cone of
   // kSkirtTan2 (set_shape): with its peak and tail kept, a one-width core puts into that cone the
   // mass the union spreads just outside it (texels tilted by 1–3°), +2 to +3.5 % on polished granite's
   // highlight from level 5 on. Wider cores (the tile roof's slopes, honed granite) keep c = 1: their
   // unions have no such shoulder, and slopes stop adding at their tilts. bench/results/mip.md,
-  // "sixth session" and "seventh session".
-  double cone = -1;
-  if (A * P < K * K && P / K * kSkirtTan2 > kSkirtMinPeak) {
-    const double R = std::sqrt(kSkirtTan2);
-    cone = 0;
-    for (const Member& x : u) {
-      const Summary& a = *x.sum;
-      const double t = tan2_between(a.n, n);
-      if (std::isfinite(t)) cone += (by_amp ? a.amp : a.weight) * cone_mass_at(a.d_shape, std::sqrt(t), R);
-    }
-    cone /= K;
-  }
+  // "sixth session" and "seventh session". A roughness mixture whose union is sharper at its centre
+  // than a log-uniform band gets an atom, fitted to the union's mass within the core (set_shape).
+  const auto mass_bound = [&](double R2) {
+    double mass = 0;
+    for (const Member& x : u) mass += (by_amp ? x.sum->amp : x.sum->weight) * centred_cone_mass(x.sum->d_shape, R2);
+    return mass / K;
+  };
   Merged best{mb.lobe, mb.summary, 0};
-  set_shape(best.lobe, A / K, P / K, cone);
+  set_shape(best.lobe, A / K, P / K, &union_mass, &mass_bound);
   best.summary = summarize(best.lobe);
   if (terms) best.cost = union_cost(u, terms->self, terms->horizon, best.summary, by_amp, peak_weight);
   return best;
@@ -717,11 +933,16 @@ void keep_specular_flux(std::span<const Member> u, Merged& m) {
   auto albedo = [&](const Lobe& l) {
     double spec = 0;
     if (l.alpha2_hi > l.alpha2) {
-      // A roughness mixture reflects the mean of its components' albedos over log-uniform α²
-      // (midpoint rule in log α², 8 points).
-      const double lo = series_log(double(l.alpha2)), step = series_log(double(l.alpha2_hi) / double(l.alpha2)) / 8;
-      const double f0 = mean3(l.f0);
-      for (int k = 0; k < 8; ++k) spec += t.ggx_albedo_at_log(lo + (k + 0.5) * step, f0) / 8;
+      // A roughness mixture reflects the mean of its components' albedos: its band's over log-uniform α²
+      // (midpoint rule in log α², 8 points), or its upper atom's, and its lower atom's.
+      const double lo = series_log(double(l.alpha2)), f0 = mean3(l.f0);
+      if (l.skirt == 0.0f) {
+        spec = t.ggx_albedo_at_log(series_log(double(l.alpha2_hi)), f0);
+      } else {
+        const double step = series_log(double(l.alpha2_hi) / double(l.alpha2)) / 8;
+        for (int k = 0; k < 8; ++k) spec += t.ggx_albedo_at_log(lo + (k + 0.5) * step, f0) / 8;
+      }
+      spec = l.ggx * spec + (1 - l.ggx) * t.ggx_albedo_at_log(lo, f0);
     } else {
       spec = l.skirt > 1.0f ? l.ggx * t.albedo(l.alpha2, mean3(l.f0), 1.0) +
                                   (1 - l.ggx) * t.albedo(double(l.alpha2) * l.skirt, mean3(l.f0), 0.0)

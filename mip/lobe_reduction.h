@@ -12,7 +12,10 @@
 // lobe is the one shape of lobe.h with that A and P: a log-uniform mixture of GGX roughness when
 // A·P ≥ 1 (roughness spread: heavier tails than one GGX), a GGX core with a Beckmann share when
 // A·P < 1 (normal spread: lighter tails); a core narrower than ~4° also matches a third moment, its
-// mass within 2.8° of its normal, with a Beckmann share wider than the GGX one (its skirt). For two
+// mass within 2.8° of its normal, with a Beckmann share wider than the GGX one (its skirt), and a
+// mixture whose union is much sharper at its centre than the log-uniform band (sharp lobes with rough
+// ones) matches its mass within its core, with a GGX atom at its lower end under the band or under a
+// second atom. For two
 // GGX lobes of α² 0.03 and 0.12 this keeps D within 1.5 % from the peak to 45° off it, where any
 // single GGX misses by 15-35 %; the metal-tray level means, which the lobes' tails carry under oblique
 // light, stay within 2 % to the coarsest level (bench/results/mip.md).

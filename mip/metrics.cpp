@@ -216,12 +216,19 @@ glm::dvec3 directional_albedo(std::span<const Lobe> lobes, const glm::dvec3& wi,
           wo = glm::dvec3(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1 - u1)));
         } else {
           // t = tan²θh with density D(h)·cosθh: GGX t = α²·u/(1 − u) (Walter et al. 2007, eq. 35/36),
-          // Beckmann t = −α²·ln(1 − u) (eq. 28), chosen in the lobe's shares; the log-uniform mixture by
-          // inverting its CDF ln(h(l + t)/(l(h + t)))/ln(h/l) = u.
+          // Beckmann t = −α²·ln(1 − u) (eq. 28), chosen in the lobe's shares; a roughness mixture's
+          // band by inverting its CDF ln(h(l + t)/(l(h + t)))/ln(h/l) = u, its atoms as GGX.
           double tan2;
-          if (shape.lmean > 0) {
-            const double lo = a2, hi = shape.alpha2_hi, r = std::pow(hi / lo, u1);
-            tan2 = hi * lo * (r - 1) / std::max(1e-300, hi - r * lo);
+          if (shape.alpha2_hi > 0) {
+            const double lo = a2, hi = shape.alpha2_hi;
+            if (rng.next_double() >= shape.ggx) {
+              tan2 = lo * u1 / std::max(1e-300, 1 - u1);
+            } else if (shape.two_point) {
+              tan2 = hi * u1 / std::max(1e-300, 1 - u1);
+            } else {
+              const double r = std::pow(hi / lo, u1);
+              tan2 = hi * lo * (r - 1) / std::max(1e-300, hi - r * lo);
+            }
           } else if (rng.next_double() >= shape.ggx) {
             tan2 = -a2 * std::log1p(-std::min(u1, 1 - 1e-16));
           } else {

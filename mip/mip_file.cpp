@@ -62,7 +62,7 @@ void pack_lobe(const Lobe& l, float* out) {
   out[7] = l.normal.x, out[8] = l.normal.y, out[9] = l.normal.z;
   out[10] = std::sqrt(l.alpha2);  // exact: a stored α² is the square of a half (round_to_stored)
   out[11] = lobe_shape_code(l);
-  out[12] = l.skirt;
+  out[12] = lobe_skirt_code(l);
 }
 Lobe unpack_lobe(int version, const float* in) {
   Lobe l;
@@ -73,7 +73,9 @@ Lobe unpack_lobe(int version, const float* in) {
   l.alpha2 = version >= 4 ? in[10] * in[10] : in[10];
   if (version >= 3) {
     set_lobe_shape_code(l, in[11]);
-    if (version >= 4) l.skirt = in[12];
+    // Version 4 had no atoms: its mixtures are bands of share 1 and its skirt channel holds 1 for them.
+    if (version >= 5) set_lobe_skirt_code(l, in[12]);
+    else if (version == 4 && l.alpha2_hi == 0.0f) l.skirt = in[12];
   } else if (version == 2) {
     l.alpha2_hi = in[11];
     l.ggx = in[12];

@@ -17,15 +17,19 @@
 //   lobeK.F0.R/G/B              mean specular reflectance at normal incidence            half
 //   lobeK.N.X/Y/Z               mean unit normal of the lobe, unnormalized               float
 //   lobeK.alpha                 GGX α of the lobe about normalize(N), α² its square (a
-//                               roughness mixture's lower end; lobe.h)                   half
-//   lobeK.shape                 ln(α² upper end / α²) > 0 for a roughness mixture, −μ for
-//                               a GGX core with Beckmann share 1 − μ (−1: plain GGX)      half
-//   lobeK.skirt                 c ≥ 1: the Beckmann share's α² is c·alpha2 (1 otherwise)   half
+//                               roughness mixture's lower end, its atom; lobe.h)          half
+//   lobeK.shape                 ln(α² upper end / α²) > 0 for a roughness mixture with a
+//                               band, −(1 + that) < −1 for a two-point mixture, −μ for a
+//                               GGX core with Beckmann share 1 − μ (−1: plain GGX)        half
+//   lobeK.skirt                 a core's c ≥ 1 (the Beckmann share's α² is c·alpha2); a
+//                               mixture's upper share β, as β ≤ ½ or β − 1 ∈ (−½, 0]; 1
+//                               otherwise (brdf_pyramid.h, lobe_skirt_code)             half
 // Level 0's BRDF pyramid is its parameters (one lobe per texel) and is not stored twice.
 // Attributes on every subimage: svbrdf:mip_version (int, kMipFileVersion), svbrdf:level (int),
 // svbrdf:max_lobes (int, the --lobes the file was built with), svbrdf:slots (int, S_L).
 // A file whose version is newer than kMipFileVersion is refused: its layout may mean other things.
-// Older versions still read: version 3 stored lobeK.alpha2 (α², float) in place of lobeK.alpha and
+// Older versions still read: version 4's mixtures had no atom (β = 1; its skirt channel held 1 for
+// them); version 3 stored lobeK.alpha2 (α², float) in place of lobeK.alpha and
 // lacks lobeK.skirt (c = 1); version 2 stored α² so too and the shape as lobeK.alpha2_hi (float, 0: not a mixture)
 // and lobeK.ggx (half, μ) and the weight as a float (38 bytes a lobe); version 1 (before the lobe
 // shapes of lobe.h) lacks both shape channels, and its lobes read as plain GGX.
@@ -35,7 +39,7 @@
 
 namespace svbrdf {
 
-inline constexpr int kMipFileVersion = 4;
+inline constexpr int kMipFileVersion = 5;
 
 // Throws svbrdf::Error naming the file when it cannot be written.
 void write_mip_file(const std::filesystem::path& path, const MipData& mip);

@@ -3,6 +3,8 @@
 // the deterministic trilinear parameter lookup.
 #include <gtest/gtest.h>
 
+#include <array>
+
 #include <cmath>
 
 #include "appearance/rng.h"
@@ -98,7 +100,13 @@ TEST(LobeMixtureBsdf, SamplingMatchesItsPdfAndIntegral) {
   // A coarse texel of the bumpy wall and one of the tray: spread lobes and a sharp one.
   const MipData wall = build_mip(synthetic::painted_wall(16));
   const MipData tray = build_mip(synthetic::tray(16));
-  for (const LobeMixtureBsdf& bsdf : {LobeMixtureBsdf(wall.brdf.texel(2, 1, 2)), LobeMixtureBsdf(tray.brdf.texel(3, 0, 1))}) {
+  // And roughness mixtures with atoms (lobe.h): one under a band, one under a second atom.
+  std::array<Lobe, 2> atoms{lobe_from_texel(glm::vec3(0.9f), 1.0f, 0.08f, glm::normalize(glm::vec3(0.1f, 0.0f, 1.0f)), 0.5f),
+                            lobe_from_texel(glm::vec3(0.5f), 0.5f, 0.1f, glm::normalize(glm::vec3(-0.1f, 0.1f, 1.0f)), 0.5f)};
+  atoms[0].alpha2_hi = 0.2f, atoms[0].ggx = 0.3f;
+  atoms[1].alpha2_hi = 0.05f, atoms[1].ggx = 0.5f, atoms[1].skirt = 0.0f;
+  for (const LobeMixtureBsdf& bsdf : {LobeMixtureBsdf(wall.brdf.texel(2, 1, 2)), LobeMixtureBsdf(tray.brdf.texel(3, 0, 1)),
+                                      LobeMixtureBsdf(std::span<const Lobe>(atoms))}) {
     ASSERT_GT(bsdf.size(), 0);
     const glm::vec3 wo = glm::normalize(glm::vec3(0.4f, -0.2f, 0.8f));
     // Bins: 8 in cos²θ (equal cosine-weighted mass) × 8 in φ; expected mass by midpoint quadrature.

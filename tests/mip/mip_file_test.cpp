@@ -43,14 +43,18 @@ MaterialTexels mixed_material(int w, int h) {
 
 TEST(MipFile, RoundTripIsBitIdentical) {
   testing::TempDir dir;
-  int skirts = 0;  // lobes whose skirt (version 4's channel) is not 1: the polished granite has them
+  int skirts = 0;  // spread cores whose skirt is not 1: the polished granite has them
+  int atoms = 0;   // roughness mixtures with an atom (version 5): the tray's texels in the mixed material
   for (auto [w, h] : {std::pair{16, 16}, std::pair{12, 5}, std::pair{64, 0}}) {
     BrdfBuildOptions o;
     o.reduction.max_lobes = 3;
     const MipData a =
         build_mip(h > 0 ? mixed_material(w, h) : generate_material(MaterialRecipe{"granite", "polished", w, 25}).texels, o);
     for (int l = 1; l < a.levels(); ++l)
-      for (const Lobe& lobe : a.brdf.level(l).all_lobes()) skirts += lobe.skirt != 1.0f;
+      for (const Lobe& lobe : a.brdf.level(l).all_lobes()) {
+        skirts += lobe.alpha2_hi == 0.0f && lobe.skirt != 1.0f;
+        atoms += lobe.alpha2_hi > 0.0f && lobe.ggx < 1.0f;
+      }
     std::string name = "m";  // appended, not concatenated: GCC 12 -O3 warns falsely otherwise (PR 105651)
     name += std::to_string(w);
     name += ".exr";
@@ -76,6 +80,7 @@ TEST(MipFile, RoundTripIsBitIdentical) {
     }
   }
   EXPECT_GT(skirts, 0);
+  EXPECT_GT(atoms, 0);
 }
 
 TEST(MipFile, OpenImageIOToolsListIt) {
@@ -133,9 +138,12 @@ TEST(MipFile, RefusesNewerVersionsForeignAndMissingFiles) {
   EXPECT_NE(read_error(dir / "short.exr").find("short.exr"), std::string::npos);
 }
 
-// Rewrites a current MIP file as an older version wrote it: version 2 stored a lobe's shape as
+// Rewrites a current MIP file as an older version wrote it: version 4 had no atoms (a mixture's shape
+// code was its span, its skirt channel 1), version 3 no skirt channel, version 2 stored a lobe's shape as
 // lobeK.alpha2_hi (float, 0: not a mixture) and lobeK.ggx (half, μ), version 1 had neither. The shape
-// code is decoded here as mip_file.h documents it: > 0 is ln(α² upper end / α²), else −μ.
+// code is decoded here as mip_file.h documents it: > 0 is ln(α² upper end / α²), < −1 is −(1 + that)
+// for a two-point mixture, else −μ. A mixture's atom has no place in the older versions and is dropped
+// (they read it as the band alone, β = 1).
 void write_as_older_version(const std::filesystem::path& from, const std::filesystem::path& to, int version) {
   std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(from.string());
   ASSERT_TRUE(in);
@@ -156,14 +164,32 @@ void write_as_older_version(const std::filesystem::path& from, const std::filesy
       int alpha = -1;    // ≥ 0: the α channel, and `from` is the shape code: write the α² upper end
       bool ggx = false;  // write μ from the shape code `from`
       bool square = false;  // write from² (α² from α)
+      bool span = false;    // write the shape code `from` as version 4 did (a mixture's span)
+      int shape = -1;       // ≥ 0: `from` is the skirt channel and this its lobe's shape code (version 4)
     };
+    // A shape code's mixture span (0: not a mixture).
+    const auto span_of = [](float code) { return code > 0 ? code : code < -1 ? -code - 1 : 0.0f; };
     std::vector<Out> outs;
     for (int c = 0; c < src.nchannels; ++c) {
       const std::string& name = src.channelnames[static_cast<std::size_t>(c)];
-      // The skirt (version 4) is not in older files.
-      if (name.size() > 6 && name.compare(name.size() - 6, 6, ".skirt") == 0) continue;
+      // The skirt (version 4) is not in older files; version 4 wrote 1 there for mixtures.
+      if (name.size() > 6 && name.compare(name.size() - 6, 6, ".skirt") == 0) {
+        if (version == 4) {
+          const std::string shape = name.substr(0, name.size() - 6) + ".shape";
+          int sc = -1;
+          for (int k = 0; k < src.nchannels; ++k)
+            if (src.channelnames[static_cast<std::size_t>(k)] == shape) sc = k;
+          ASSERT_GE(sc, 0);
+          Out o{c};
+          o.shape = sc;
+          outs.push_back(o);
+          dst.channelnames.push_back(name);
+          dst.channelformats.push_back(src.channelformat(c));
+        }
+        continue;
+      }
       // Older versions store α² as a float where version 4 stores α as a half.
-      if (name.size() > 6 && name.compare(name.size() - 6, 6, ".alpha") == 0) {
+      if (name.size() > 6 && name.compare(name.size() - 6, 6, ".alpha") == 0 && version < 4) {
         outs.push_back({c, -1, false, true});
         dst.channelnames.push_back(name + "2");
         dst.channelformats.push_back(OIIO::TypeDesc::FLOAT);
@@ -185,6 +211,14 @@ void write_as_older_version(const std::filesystem::path& from, const std::filesy
         }
         continue;
       }
+      if (name.size() > 6 && name.compare(name.size() - 6, 6, ".shape") == 0) {
+        Out o{c};
+        o.span = true;
+        outs.push_back(o);
+        dst.channelnames.push_back(name);
+        dst.channelformats.push_back(src.channelformat(c));
+        continue;
+      }
       outs.push_back({c});
       dst.channelnames.push_back(name);
       dst.channelformats.push_back(src.channelformat(c));
@@ -198,11 +232,15 @@ void write_as_older_version(const std::filesystem::path& from, const std::filesy
         const float v = px[outs[k].from];
         float& o = kept[t * outs.size() + k];
         if (outs[k].alpha >= 0)
-          o = v > 0 ? static_cast<float>(double(px[outs[k].alpha] * px[outs[k].alpha]) * std::exp(double(v))) : 0.0f;
+          o = span_of(v) > 0 ? static_cast<float>(double(px[outs[k].alpha] * px[outs[k].alpha]) * std::exp(double(span_of(v)))) : 0.0f;
         else if (outs[k].square)
           o = v * v;
         else if (outs[k].ggx)
-          o = v > 0 ? 1.0f : -v;
+          o = span_of(v) > 0 ? 1.0f : -v;
+        else if (outs[k].span)
+          o = span_of(v) > 0 ? span_of(v) : v;
+        else if (outs[k].shape >= 0)
+          o = span_of(px[outs[k].shape]) > 0 ? 1.0f : v;
         else
           o = v;
       }
@@ -222,15 +260,18 @@ void write_as_older_version(const std::filesystem::path& from, const std::filesy
   ASSERT_TRUE(out->close());
 }
 
-// Version-3 and -2 files read with the lobe shapes they stored (and no skirt); version-1 files (before
-// the lobe shapes of lobe.h) as plain GGX lobes; every other channel as stored.
+// Version-4, -3 and -2 files read with the lobe shapes they stored (mixtures without atoms; no skirt
+// before version 4); version-1 files (before the lobe shapes of lobe.h) as plain GGX lobes; every other
+// channel as stored.
 TEST(MipFile, ReadsOlderVersions) {
   testing::TempDir dir;
-  const MipData mip = build_mip(synthetic::tray(8));
-  write_mip_file(dir / "v4.exr", mip);
-  for (int version : {1, 2, 3}) {
+  // The fingerprinted tray at 64²: its pyramid holds every lobe shape, mixtures with atoms among them.
+  const MipData mip = build_mip(generate_material(MaterialRecipe{"metal-tray", "steel", 64, 24}).texels);
+  write_mip_file(dir / "v5.exr", mip);
+  int atoms = 0;
+  for (int version : {1, 2, 3, 4}) {
     const auto old = dir / ("v" + std::to_string(version) + ".exr");
-    write_as_older_version(dir / "v4.exr", old, version);
+    write_as_older_version(dir / "v5.exr", old, version);
     const MipData back = read_mip_file(old);
     ASSERT_EQ(back.levels(), mip.levels());
     int shaped = 0;
@@ -244,19 +285,22 @@ TEST(MipFile, ReadsOlderVersions) {
         EXPECT_EQ(b[k].alpha2, a[k].alpha2);
         EXPECT_EQ(b[k].normal, a[k].normal);
         EXPECT_EQ(b[k].diffuse, a[k].diffuse);
+        const bool mixture = a[k].alpha2_hi > 0;
         if (version == 1) {
           EXPECT_EQ(b[k].alpha2_hi, 0.0f);
           EXPECT_EQ(b[k].ggx, 1.0f);
         } else {
           EXPECT_EQ(b[k].alpha2_hi, a[k].alpha2_hi);
-          EXPECT_EQ(b[k].ggx, a[k].ggx);
+          EXPECT_EQ(b[k].ggx, mixture ? 1.0f : a[k].ggx);  // a mixture's atom dropped: the band alone
         }
-        EXPECT_EQ(b[k].skirt, 1.0f);
-        shaped += a[k].alpha2_hi > 0 || a[k].ggx != 1.0f;
+        EXPECT_EQ(b[k].skirt, version == 4 && !mixture ? a[k].skirt : 1.0f);
+        shaped += mixture || a[k].ggx != 1.0f;
+        atoms += version == 4 && mixture && a[k].ggx < 1.0f;
       }
     }
     EXPECT_GT(shaped, 0) << "the tray's pyramid should hold shaped lobes, or this test shows nothing";
   }
+  EXPECT_GT(atoms, 0) << "the tray's pyramid should hold mixtures with atoms, or the version-4 case shows little";
 }
 
 }  // namespace
