@@ -33,9 +33,6 @@ float to_half(float x) {
   std::memcpy(&r, &b, sizeof r);
   return r;
 }
-}  // namespace
-
-namespace {
 bool is_mixture(const Lobe& lobe) { return lobe.alpha2_hi > lobe.alpha2 * 1.001f; }
 }  // namespace
 

@@ -145,12 +145,11 @@ LobeShape<T> lobe_shape(const Lobe& lobe, bool with_nodes = true) {
   s.alpha2 = T(lobe.alpha2);
   s.ggx = std::clamp(T(lobe.ggx), T(0), T(1));
   s.skirt = std::max(T(1), T(lobe.skirt));
-  if (lobe.alpha2_hi > lobe.alpha2 * 1.0001f && lobe.skirt == 0.0f) {
+  if (lobe.alpha2_hi > lobe.alpha2 * 1.0001f) {
     s.alpha2_hi = T(lobe.alpha2_hi);
-    s.two_point = true;
-    s.skirt = 1;
-  } else if (lobe.alpha2_hi > lobe.alpha2 * 1.0001f) {
-    s.alpha2_hi = T(lobe.alpha2_hi);
+    s.two_point = lobe.skirt == 0.0f;  // (s.skirt is 1 for either kind: a mixture has no skirt)
+  }
+  if (s.alpha2_hi > 0 && !s.two_point) {
     T x, span;  // h/l − 1 and ln(h/l)
     if constexpr (std::is_same_v<T, float>) {
       // Both from the one float ratio, so that x/span (smooth in the ratio) keeps its precision.

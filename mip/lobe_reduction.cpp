@@ -609,29 +609,43 @@ struct MixtureFit {
   }
 };
 
-// Finds where f (continuous) crosses 0 on [lo, hi], f(lo) and f(hi) of opposite signs: regula falsi
-// with the Illinois rule (halve the value kept at an end that stays twice), to |f| < tol or 40 steps.
+// Finds where f (continuous) crosses 0 on [lo, hi], given f_lo = f(lo) and f_hi = f(hi) (of opposite
+// signs; else the end nearer 0): `bisections` halvings first (where f is flat at the ends, as a sigmoid
+// is), then regula falsi with the Illinois rule (halve the value kept at an end that stays twice), to
+// |f| < tol or max_steps steps in all.
 template <class F>
-double illinois_root(F&& f, double lo, double hi, double tol) {
-  double f_lo = f(lo), f_hi = f(hi), t = lo;
+double illinois_root(F&& f, double lo, double f_lo, double hi, double f_hi, double tol, int bisections = 0,
+                     int max_steps = 40) {
   if (!(f_lo * f_hi < 0)) return std::abs(f_lo) <= std::abs(f_hi) ? lo : hi;
+  double t = lo;
   int kept = 0;  // +1: lo moved last, −1: hi moved last
-  for (int it = 0; it < 40; ++it) {
-    t = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+  for (int it = 0; it < max_steps; ++it) {
+    const bool falsi = it >= bisections;
+    t = falsi ? (lo * f_hi - hi * f_lo) / (f_hi - f_lo) : 0.5 * (lo + hi);
     const double v = f(t);
     if (std::abs(v) < tol) break;
     if ((v < 0) == (f_lo < 0)) {
       lo = t, f_lo = v;
-      if (kept == 1) f_hi *= 0.5;
+      if (falsi && kept == 1) f_hi *= 0.5;
       kept = 1;
     } else {
       hi = t, f_hi = v;
-      if (kept == -1) f_lo *= 0.5;
+      if (falsi && kept == -1) f_lo *= 0.5;
       kept = -1;
     }
   }
   return t;
 }
+
+// The atom-and-band family's quadratic in β at t = ln(y/x) (fit_atom_band): a·b·β² − (b − a)·β + (q − 1)
+// with a = 1 − g, b = k − 1, g = (1 − e^−t)/t, k = (e^t − 1)/t; its discriminant, and e^t.
+struct AtomBandTerms {
+  double a, b, disc, e;
+  static AtomBandTerms at(double q, double t) {
+    const double e = std::exp(t), g = (1 - 1 / e) / t, k = (e - 1) / t, a = 1 - g, b = k - 1;
+    return {a, b, (b - a) * (b - a) - 4 * a * b * (q - 1), e};
+  }
+};
 
 // Where the atom-and-band family's two roots meet (fit_atom_band), as a function of q alone: tabulated
 // over ln q ∈ [0, 40] by bisection once, and read slightly above (1e-4), where the roots are real.
@@ -640,10 +654,6 @@ class FoldTable {
   static const FoldTable& get() {
     static const FoldTable t;
     return t;
-  }
-  static double disc(double q, double t) {
-    const double e = std::exp(t), g = (1 - 1 / e) / t, k = (e - 1) / t, a = 1 - g, b = k - 1;
-    return (b - a) * (b - a) - 4 * a * b * (q - 1);
   }
   double t_min(double q) const {
     const double x = std::clamp(series_log(q) / kMaxLnQ, 0.0, 1.0) * (kSize - 1);
@@ -659,7 +669,7 @@ class FoldTable {
     for (int k = 0; k < kSize; ++k) {
       const double q = std::exp(kMaxLnQ * k / (kSize - 1)) * (1 + 1e-9);
       double lo = 1e-6, hi = 60;
-      for (int it = 0; it < 60; ++it) (disc(q, 0.5 * (lo + hi)) < 0 ? lo : hi) = 0.5 * (lo + hi);
+      for (int it = 0; it < 60; ++it) (AtomBandTerms::at(q, 0.5 * (lo + hi)).disc < 0 ? lo : hi) = 0.5 * (lo + hi);
       t_[static_cast<std::size_t>(k)] = hi;
     }
   }
@@ -668,25 +678,24 @@ class FoldTable {
 
 // The atom and a log-uniform band [x, y] over it, with core mass `core`. In t = ln(y/x), with
 // g = (1 − e^−t)/t and k = (e^t − 1)/t, the peak gives x = 1 − β(1 − g) and the tail x(1 + β(k − 1)) = q, so
-// a·b·β² − (b − a)·β + (q − 1) = 0 with a = 1 − g, b = k − 1. Its roots meet at t_min; from the band alone
+// β solves AtomBandTerms' quadratic. Its roots meet at t_min; from the band alone
 // (β = 1 at t = t_band, the log-uniform mixture) the upper root runs down to t_min and the lower one on to
 // β → 0 as t → ∞, and along that path the core mass rises from the band's to ½: the root on the branch
 // that holds `core`, with y ≤ y_max (α² ≤ 1).
 MixtureFit fit_atom_band(double q, double t_band, double core, double y_max) {
   const auto at = [&](double t, bool upper_root) {
-    const double e = std::exp(t), g = (1 - 1 / e) / t, k = (e - 1) / t, a = 1 - g, b = k - 1;
-    const double disc = (b - a) * (b - a) - 4 * a * b * (q - 1);
+    const AtomBandTerms c = AtomBandTerms::at(q, t);
     MixtureFit f;
-    f.beta = std::clamp(((b - a) + (upper_root ? 1 : -1) * std::sqrt(std::max(0.0, disc))) / (2 * a * b), 0.0, 1.0);
-    f.x = 1 - f.beta * a;
-    f.y = f.x * e;
+    f.beta = std::clamp(((c.b - c.a) + (upper_root ? 1 : -1) * std::sqrt(std::max(0.0, c.disc))) / (2 * c.a * c.b), 0.0, 1.0);
+    f.x = 1 - f.beta * c.a;
+    f.y = f.x * c.e;
     return f;
   };
   const double t_min = std::min(FoldTable::get().t_min(q), t_band);
   const bool upper_root = core <= at(t_min, true).mass(1, t_min);
   const double t_end = upper_root ? t_band : std::max(t_min, std::min(40.0, std::log(y_max)));
-  const double t = illinois_root([&](double t) { return at(t, upper_root).mass(1, t) - core; }, t_min, t_end, 1e-5);
-  return at(t, upper_root);
+  const auto excess = [&](double t) { return at(t, upper_root).mass(1, t) - core; };
+  return at(illinois_root(excess, t_min, excess(t_min), t_end, excess(t_end), 1e-5), upper_root);
 }
 
 // Two atoms at x and y with core mass `core`: the moments give β = y(1 − x)/(y − x) and
@@ -707,7 +716,8 @@ MixtureFit fit_two_point(double q, double core, double y_max) {
   const double Y = y_max, qa = Y - 1, qb = q - Y * Y, qc = Y * (Y - q);
   const double x_max = qa > 0 ? (-qb - std::sqrt(std::max(0.0, qb * qb - 4 * qa * qc))) / (2 * qa) : kHi;
   const double hi = std::clamp(x_max, kLo, kHi);
-  return at(illinois_root([&](double x) { return at(x).mass(1) - core; }, kLo, hi, 1e-5));
+  const auto excess = [&](double x) { return at(x).mass(1) - core; };
+  return at(illinois_root(excess, kLo, excess(kLo), hi, excess(hi), 1e-5));
 }
 
 // Where a log-uniform band's core mass falls this far below the union's, the union is sharper at its
@@ -797,8 +807,9 @@ void set_shape(Lobe& m, double A, double P, const UnionMass* union_mass, const M
     // rises to μ (α² = A/μ) with c = μ(1 − μ)/(AP − μ²), i.e. μ = 2c·AP/(1 + √(1 + 4c·AP·(c − 1)))
     // (μ = AP at c = 1, → √AP as c grows). That moves mass from inside the cone of kSkirtTan2 to just
     // outside it; c is solved for the union's mass in the cone, in ln c ∈ [0, ln 10⁴] where the mass is
-    // smooth: regula falsi with the Illinois rule (halve the value kept at an end that stays twice),
-    // to 1e-4 of mass (the members' masses are good to 2e-4).
+    // smooth: 4 bisections (the mass is a sigmoid in ln c, flat until the skirt reaches the cone and
+    // again once it is far outside), then regula falsi with the Illinois rule, to 1e-4 of mass (the
+    // members' masses are good to 2e-4); c = 10⁴ where even that skirt keeps too much in the cone.
     const double R2 = kSkirtTan2;
     const double cone_mass = union_mass && P * R2 > kSkirtMinPeak ? (*union_mass)(R2) : -1.0;
     const auto share = [&](double c) { return 2.0 * c * q / (1.0 + std::sqrt(1.0 + 4.0 * c * q * (c - 1.0))); };
@@ -810,25 +821,8 @@ void set_shape(Lobe& m, double A, double P, const UnionMass* union_mass, const M
     constexpr int kBisections = 4;
     double f_lo;
     if (cone_mass >= 0 && q > 1e-9 && q < 1 - 1e-6 && (f_lo = excess(0.0)) > 1e-4) {
-      double lo = 0.0, hi = kMaxLnSkirt, f_hi = excess(hi), t = hi;
-      int kept = 0;  // +1: lo moved last, −1: hi moved last
-      for (int it = 0; it < 60 && f_hi < 0; ++it) {
-        // The mass is a sigmoid in ln c (flat until the skirt reaches the cone, flat again once it is
-        // far outside): bisect first, to find the slope.
-        t = it < kBisections ? 0.5 * (lo + hi) : (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
-        const double f = excess(t);
-        if (std::abs(f) < 1e-4) break;
-        const bool falsi = it >= kBisections;
-        if (f > 0) {
-          lo = t, f_lo = f;
-          if (falsi && kept == 1) f_hi *= 0.5;
-          kept = 1;
-        } else {
-          hi = t, f_hi = f;
-          if (falsi && kept == -1) f_lo *= 0.5;
-          kept = -1;
-        }
-      }
+      const double f_hi = excess(kMaxLnSkirt);
+      const double t = f_hi < 0 ? illinois_root(excess, 0.0, f_lo, kMaxLnSkirt, f_hi, 1e-4, kBisections, 60) : kMaxLnSkirt;
       const double c = double(series_exp(static_cast<float>(t))), mu = share(c);
       if (c > 1.0001) {
         m.alpha2 = static_cast<float>(std::clamp(A / mu, 1e-6, 1.0));
