@@ -430,7 +430,7 @@ struct Merged {
   double cost = 0;
 };
 
-// The inverse of sinh(u)/u = T (T ≥ 1) to ~1e-5, for set_shape's Newton iteration to start from
+// The inverse of sinh(u)/u = T (T ≥ 1) to ~1e-5, for band_span's Newton iteration to start from
 // (one step then reaches 1e-10): tabulated over w = ln(1 + √(T − 1)), in which u is smooth (u ≈ √(6(T − 1))
 // near T = 1, ≈ ln(2T·ln 2T) far out), by bisection once.
 class SinhcInverse {
