@@ -132,6 +132,8 @@ TEST(LodFilters, FamiliesFromSixteenTimesOn) {
 
 // The same assertion at the report's --full size (4096 samples per pixel, a noise floor 16× lower) on
 // the glossy families' highlights from 256× on. Disabled: it fails today, and takes 6–12 minutes.
+// At these sample counts (as at the 256 of the test above) each sample's footprint is 1/8 of the
+// pixel's (renderer.h), so 256× reads MIP level 5 and 1024× level 7 of the 256² textures.
 // Measured in the eighth session (2026-11-24, with roughness mixtures' atoms), brdf's relative MSE over
 // the floor and flux bias (allowed: 1.5×, and 1 % plus 0.3–0.4 % of noise), at 256× and 1024×:
 //   metal-tray-steel head-on sun-0: 1.3× and −0.2 % (passes), 2.4× and −1.0 %;
