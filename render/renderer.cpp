@@ -53,6 +53,11 @@ Rng pixel_rng(std::uint64_t seed, int x, int y, int width, std::uint32_t index) 
   return Rng(pixel_seed(seed, x, y, width), index);
 }
 
+float resolve_footprint_scale(float scale, int spp) {
+  if (scale > 0.0f) return scale;
+  return std::max(0.125f, 1.0f / std::sqrt(static_cast<float>(std::max(spp, 1))));
+}
+
 Film render(const RenderWorld& world, const RenderOptions& opt, RenderStats* stats) {
   const int w = world.camera->width(), h = world.camera->height();
   Film film(w, h);
@@ -61,8 +66,7 @@ Film render(const RenderWorld& world, const RenderOptions& opt, RenderStats* sta
   if (world.mips) world.mips->prepare(opt.integrator.filter);
   IntegratorSettings integrator = opt.integrator;
   integrator.aovs = opt.aovs;
-  if (!(integrator.footprint_scale > 0.0f))
-    integrator.footprint_scale = std::max(0.125f, 1.0f / std::sqrt(static_cast<float>(spp)));
+  integrator.footprint_scale = resolve_footprint_scale(integrator.footprint_scale, spp);
   // Four passes over the image, each a quarter of the samples of every pixel, back to back: a pixel's
   // samples that follow one another find its texels in the cache (with 16 passes of 4 samples the
   // texture streamed through the cache 16 times: 7 % of the frame on DamagedHelmet,

@@ -60,6 +60,11 @@ struct RenderStats {
 // not in stats), and resolves a footprint_scale of 0 to pbrt-v4's max(1/8, 1/√spp).
 Film render(const RenderWorld& world, const RenderOptions& options, RenderStats* stats = nullptr);
 
+// The footprint scale a render uses: `scale` where given (> 0), else pbrt-v4's max(1/8, 1/√spp) — each of
+// the pixel's spp jittered samples filters its share of the pixel, so the MIP lookups read
+// log2(1/scale) levels finer than the whole pixel's footprint.
+float resolve_footprint_scale(float scale, int spp);
+
 // The random-number generator of sample `index` of pixel (x, y): independent of everything else. It
 // is Rng(pixel_seed(seed, x, y, width), index); the renderer mixes a pixel's seed once for all its samples.
 std::uint64_t pixel_seed(std::uint64_t seed, int x, int y, int width);

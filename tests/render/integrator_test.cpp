@@ -326,7 +326,7 @@ TEST(Integrator, DeterministicAcrossThreadCounts) {
   const Film f = render(prepared.world(), o);
   IntegratorSettings integ = o.integrator;
   integ.aovs = false;
-  integ.footprint_scale = std::max(0.125f, 1.0f / std::sqrt(8.0f));  // what render() resolves 0 to
+  integ.footprint_scale = resolve_footprint_scale(0.0f, 8);  // what render() resolves 0 to
   int differ = 0;
   for (int y = 0; y < setup.height; ++y)
     for (int x = 0; x < setup.width; ++x) {
@@ -546,6 +546,16 @@ TEST(Camera, DifferentialsAtKnownDistance) {
   cam.approximate_dp(p, n, ax, ay);
   EXPECT_NEAR(glm::length(ax - dpdx), 0.0f, 1e-3f * pixel);
   EXPECT_NEAR(glm::length(ay - dpdy), 0.0f, 1e-3f * pixel);
+}
+
+// The footprint scale of a render: pbrt-v4's max(1/8, 1/√spp) unless given.
+TEST(Renderer, FootprintScaleIsPbrtsDefaultUnlessGiven) {
+  EXPECT_FLOAT_EQ(resolve_footprint_scale(0.0f, 1), 1.0f);
+  EXPECT_FLOAT_EQ(resolve_footprint_scale(0.0f, 4), 0.5f);
+  EXPECT_FLOAT_EQ(resolve_footprint_scale(0.0f, 16), 0.25f);
+  EXPECT_FLOAT_EQ(resolve_footprint_scale(0.0f, 64), 0.125f);
+  EXPECT_FLOAT_EQ(resolve_footprint_scale(0.0f, 4096), 0.125f);
+  EXPECT_FLOAT_EQ(resolve_footprint_scale(0.3f, 4096), 0.3f);
 }
 
 }  // namespace
