@@ -11,6 +11,7 @@
 #include "base/error.h"
 #include "base/markup_escape.h"
 #include "render/output.h"
+#include "render/renderer.h"
 #include "scenes/json.h"
 #include "textures/image.h"
 
@@ -243,6 +244,27 @@ fs::path write_lod_report(const LodResults& r, const LodManifest& m, const fs::p
       "; noise floor: the same with seed " + std::to_string(r.options.second_seed) + "; filters with seed " +
       std::to_string(r.options.filter_seed) + ". Size: " + markup_escape(info.size_name) + ". " +
       fmt("%.0f", r.seconds) + " s.</p>\n");
+  {
+    // Which MIP levels the distances read: each camera sample filters its share of the pixel, so a
+    // distance's level is not log₂ k (bench/results/mip.md, ninth session).
+    const double scale = resolve_footprint_scale(r.options.footprint_scale, r.options.spp);
+    int size = 0;
+    bool one_size = true;
+    for (const LodCase& c : m.cases) {
+      if (size != 0 && c.texture_size != size) one_size = false;
+      size = c.texture_size;
+    }
+    const double coarsest = one_size && size > 0 ? std::floor(std::log2(double(size))) : INFINITY;
+    std::string levels;
+    for (std::size_t i = 0; i < m.distances.size(); ++i)
+      levels += (i ? ", level " : "level ") + json::number_text(std::clamp(std::log2(m.distances[i] * scale), 0.0, coarsest)) +
+                " at " + json::number_text(m.distances[i]) + "×";
+    add("<p>Under the MIP filters each camera sample filters its own share of the pixel: its footprint is scaled by " +
+        json::number_text(scale) + " (the renderer's default, max(1/8, 1/√spp), unless set), so at k × d₁ the lookups "
+        "read MIP level log₂(k × " + json::number_text(scale) + "), clamped to the pyramid's levels" +
+        (std::isfinite(coarsest) ? " (0 to " + json::number_text(coarsest) + " for the " + std::to_string(size) + "² textures)" : "") +
+        ": " + levels + ".</p>\n");
+  }
   if (!info.command.empty()) add("<p class=\"note\">Made by <code>" + markup_escape(info.command) + "</code>.</p>\n");
   add("<p>Metrics over the object's pixels (those whose depth is positive in the ground truth): relative MSE "
       "Σ(X−R)²/ΣR² over pixels and RGB channels; flux bias ΣX/ΣR − 1; peak ratio max Y(X) / max Y(R) (Y: luminance). "

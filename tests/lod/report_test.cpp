@@ -140,6 +140,13 @@ TEST(LodReport, ProgramBadInputAndASmallRun) {
   EXPECT_EQ(ok.status, 0) << ok.err;
   EXPECT_EQ(ok.err, "");
   EXPECT_TRUE(fs::exists(dir / "r" / "index.html"));
+  // The page says which MIP level the distance reads: at 4 samples per pixel each sample's footprint is
+  // max(1/8, 1/√4) = 1/2 of the pixel's, so 1024× reads log₂(512) = 9, clamped to the 256² textures' 8.
+  const std::string html = slurp(dir / "r" / "index.html");
+  EXPECT_NE(html.find("scaled by 0.5 "), std::string::npos);
+  const std::size_t said = html.find("Under the MIP");
+  ASSERT_NE(said, std::string::npos);
+  EXPECT_NE(html.find("level 8 at 1024×", said), std::string::npos) << html.substr(said, 600);
 }
 
 }  // namespace
