@@ -38,6 +38,7 @@ int main(int argc, char** argv) {
   bool full = false, quiet = false;
   int spp = 0, threads = 0;
   double min_distance = 0.0;
+  float footprint_scale = 0.0f;
   std::vector<std::string> cases, lights, views, filters;
   app.add_option("--manifest", manifest, "LOD manifest (default: the one the build baked beside this program)");
   app.add_option("-o,--out", out, "report directory (index.html and img/)");
@@ -45,6 +46,10 @@ int main(int argc, char** argv) {
   app.add_option("--spp", spp, "samples per pixel of every render (overrides the size)")->check(CLI::PositiveNumber);
   app.add_option("--threads", threads, "worker threads (0: all cores)")->check(CLI::NonNegativeNumber);
   app.add_option("--min-distance", min_distance, "skip cameras nearer than this multiple of d1");
+  app.add_option("--footprint-scale", footprint_scale,
+                 "the filters' footprint scale: at k x d1 they read MIP level log2(k x scale) (default 0: the "
+                 "renderer's max(1/8, 1/sqrt(spp)); 1: each sample filters the whole pixel)")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--case", cases, "only these cases (repeatable)");
   app.add_option("--light", lights, "only these lights (repeatable)");
   app.add_option("--view", views, "only these views: head-on, mirror (repeatable)");
@@ -68,6 +73,7 @@ int main(int argc, char** argv) {
     o.spp = spp > 0 ? spp : full ? 4096 : 256;
     o.threads = threads;
     o.min_distance = min_distance;
+    o.footprint_scale = footprint_scale;
     o.cases = cases, o.lights = lights, o.views = views;
     if (!filters.empty()) o.filters = filters;
     if (!quiet) o.progress = [](const std::string& s) { std::fprintf(stderr, "svbrdf-lod-report: %s\n", s.c_str()); };

@@ -130,7 +130,8 @@ TEST(LodReport, ProgramBadInputAndASmallRun) {
   const std::string exe = SVBRDF_LOD_REPORT;
   const std::string out = " --out '" + (dir / "r").string() + "'";
   for (const std::string& args : {std::string("--bogus"), std::string("--case nope"), std::string("--light dusk"),
-                                  std::string("--manifest /nonexistent/manifest.json"), std::string("--spp 0")}) {
+                                  std::string("--manifest /nonexistent/manifest.json"), std::string("--spp 0"),
+                                  std::string("--footprint-scale -1")}) {
     const auto r = run_command(exe + " " + args + out, dir.path());
     EXPECT_EQ(r.status, 2) << args << ": " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
@@ -147,6 +148,13 @@ TEST(LodReport, ProgramBadInputAndASmallRun) {
   const std::size_t said = html.find("Under the MIP");
   ASSERT_NE(said, std::string::npos);
   EXPECT_NE(html.find("level 8 at 1024×", said), std::string::npos) << html.substr(said, 600);
+  // With --footprint-scale 1 each sample filters the whole pixel: k× reads level log₂ k (64× level 6).
+  const auto whole = run_command(exe + " --spp 4 --footprint-scale 1 --case printed-paper-text --light sun-0 --min-distance 1024 -q" +
+                                     " --out '" + (dir / "r1").string() + "'", dir.path());
+  EXPECT_EQ(whole.status, 0) << whole.err;
+  const std::string html1 = slurp(dir / "r1" / "index.html");
+  EXPECT_NE(html1.find("scaled by 1 "), std::string::npos);
+  EXPECT_NE(html1.find("level 6 at 64×"), std::string::npos);
 }
 
 }  // namespace
