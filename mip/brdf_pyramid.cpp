@@ -232,7 +232,48 @@ BrdfPyramid BrdfPyramid::build(const MaterialTexels& m, const BrdfBuildOptions& 
   for (int level = 1; level < n; ++level)
     p.levels_.push_back(level_from_below(p.level0_, level, p.levels_.back(), m, options,
                                          stats ? &(*stats)[static_cast<std::size_t>(level)] : nullptr));
+  if (options.radial_correction && n > kFirstCorrectedLevel) p.build_corrections(m);
   return p;
+}
+
+void BrdfPyramid::build_corrections(const MaterialTexels& m) {
+  float roughness_min = 1.0f;
+  for (float r : m.roughness) roughness_min = std::min(roughness_min, r);
+  const double alpha_min = std::max(double(roughness_min) * roughness_min, 1e-3);  // lobe_from_texel's α
+  grid_ = RadialGrid::for_sharpest(alpha_min * alpha_min);
+  // The true profiles of the level below, carried up exactly (area-weighted means of the children's).
+  std::vector<RadialProfile> below;
+  for (int level = kFirstCorrectedLevel; level < levels(); ++level) {
+    const Extent e = extent(level);
+    const std::size_t texels = static_cast<std::size_t>(e.width) * e.height;
+    std::vector<RadialProfile> truth(texels, RadialProfile{});
+    BrdfLevel& out = levels_[static_cast<std::size_t>(level)];
+    out.correction.assign(texels, RadialCorrection{});
+    tbb::parallel_for(0, e.height, [&](int j) {
+      std::array<Lobe, kUnionCap> buf;
+      for (int i = 0; i < e.width; ++i) {
+        const std::size_t t = static_cast<std::size_t>(j) * e.width + i;
+        if (level == kFirstCorrectedLevel) {
+          const int cnt = gather_children(level0_, level, i, j, levels_[static_cast<std::size_t>(level - 1)], m, buf);
+          add_to_profile(grid_, std::span<const Lobe>(buf.data(), static_cast<std::size_t>(cnt)), truth[t]);
+        } else {
+          const Span cx = child_span(level0_.width, level, i), cy = child_span(level0_.height, level, j);
+          const double total = static_cast<double>(level0_span(level0_.width, level, i).size()) *
+                               level0_span(level0_.height, level, j).size();
+          const int fine_width = extent(level - 1).width;
+          for (int y = cy.begin; y < cy.end; ++y)
+            for (int x = cx.begin; x < cx.end; ++x) {
+              const double share = static_cast<double>(level0_span(level0_.width, level - 1, x).size()) *
+                                   level0_span(level0_.height, level - 1, y).size() / total;
+              const RadialProfile& c = below[static_cast<std::size_t>(y) * fine_width + x];
+              for (std::size_t r = 0; r < RadialGrid::kNodes; ++r) truth[t][r] += share * c[r];
+            }
+        }
+        out.correction[t] = correction_to(grid_, truth[t], out.texel_lobes(t));
+      }
+    });
+    below = std::move(truth);
+  }
 }
 
 BrdfPyramid BrdfPyramid::from_levels(const MaterialTexels& m, int max_lobes, std::vector<BrdfLevel> coarse) {

@@ -24,6 +24,7 @@
 #include "mip/lobe.h"
 #include "mip/lobe_reduction.h"
 #include "mip/pyramid_shape.h"
+#include "mip/radial_correction.h"
 #include "textures/material_texels.h"
 
 namespace svbrdf {
@@ -35,6 +36,7 @@ struct BrdfLevel {
   std::vector<Lobe> single;           // per texel: its lobe, when it has exactly one
   std::vector<Lobe> lobes;            // the lobes of texels with two or more, in row-major texel order
   std::vector<std::uint32_t> first;   // per texel: where its lobes start in `lobes` (texels with ≥ 2)
+  std::vector<RadialCorrection> correction;  // per texel from kFirstCorrectedLevel on (radial_correction.h), else empty
 
   // Texel t's lobes: a view into the level.
   std::span<const Lobe> texel_lobes(std::size_t t) const {
@@ -73,6 +75,7 @@ struct BrdfLevelStats {
 
 struct BrdfBuildOptions {
   ReductionOptions reduction{};
+  bool radial_correction = true;  // radial_correction.h, from kFirstCorrectedLevel on
   int stats_samples = 0;  // texels per level whose reduction error is measured (0: none)
 };
 
@@ -138,8 +141,17 @@ class BrdfPyramid {
   }
   // Bytes per texel of a level as the MIP file stores it (fixed slots; memory holds fewer).
   int bytes_per_texel(int level) const { return this->level(level).slots * kBytesPerLobe; }
+  // The radial correction of texel (i, j) of `level`, or null (below kFirstCorrectedLevel, or none built).
+  const RadialCorrection* correction(int level, int i, int j) const {
+    const BrdfLevel& l = levels_[static_cast<std::size_t>(level)];
+    if (l.correction.empty()) return nullptr;
+    return &l.correction[static_cast<std::size_t>(j) * l.extent.width + i];
+  }
+  const RadialGrid& radial_grid() const { return grid_; }
 
  private:
+  // The radial corrections of the levels from kFirstCorrectedLevel on (radial_correction.h).
+  void build_corrections(const MaterialTexels& level0);
   // A Lobe may straddle two cache lines: both are asked for.
   static void prefetch_single(const BrdfLevel& l, std::size_t t) {
     const char* p = reinterpret_cast<const char*>(l.single.data() + t);
@@ -149,6 +161,7 @@ class BrdfPyramid {
 
   Extent level0_{};
   int max_lobes_ = 1;
+  RadialGrid grid_{};
   std::vector<BrdfLevel> levels_;
 };
 

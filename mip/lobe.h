@@ -254,8 +254,9 @@ T lobe_d(const LobeShape<T>& s, T ch, const glm::vec<3, T>& nxh) {
 }
 
 // The glTF terms of a lobe for one pair, given its two sides: 0.96·(1 − w)·ρ/π + D·V·(F0 + (1 − F0)·w).
+// spec_scale multiplies the specular term (a coarse texel's radial correction, radial_correction.h).
 template <class T>
-glm::vec<3, T> lobe_brdf(const Lobe& lobe, const LobeShape<T>& s, const PairTerms<T>& p, T ci, T co) {
+glm::vec<3, T> lobe_brdf(const Lobe& lobe, const LobeShape<T>& s, const PairTerms<T>& p, T ci, T co, T spec_scale = T(1)) {
   using V3 = glm::vec<3, T>;
   constexpr T kInvPi = T(0.318309886183790671537767526745);
   const T ch = glm::dot(s.n, p.h);
@@ -316,19 +317,19 @@ glm::vec<3, T> lobe_brdf(const Lobe& lobe, const LobeShape<T>& s, const PairTerm
   }
   const T w = p.fresnel_w;
   const V3 f0(lobe.f0), rho(lobe.diffuse);
-  return (T(0.96) * (T(1) - w) * kInvPi) * rho + (vis * d) * (f0 + (V3(1) - f0) * w);
+  return (T(0.96) * (T(1) - w) * kInvPi) * rho + (vis * d * spec_scale) * (f0 + (V3(1) - f0) * w);
 }
 
 // weight · f_eff of one lobe for one pair (see the top of this file), in precision T.
 template <class T>
-glm::vec<3, T> lobe_eval(const Lobe& lobe, const LobeShape<T>& s, const PairTerms<T>& p) {
+glm::vec<3, T> lobe_eval(const Lobe& lobe, const LobeShape<T>& s, const PairTerms<T>& p, T spec_scale = T(1)) {
   using V3 = glm::vec<3, T>;
   if (!p.valid || !s.valid) return V3(0);
   const LobeSide<T> i = lobe_wi_side(s, glm::dot(s.n, p.wi));
   if (!(i.factor > 0)) return V3(0);
   const LobeSide<T> o = lobe_wo_side(s, glm::dot(s.n, p.wo));
   if (!(o.factor > 0)) return V3(0);
-  return (T(lobe.weight) * i.factor * o.factor * p.inv_wi_z) * lobe_brdf(lobe, s, p, i.c, o.c);
+  return (T(lobe.weight) * i.factor * o.factor * p.inv_wi_z) * lobe_brdf(lobe, s, p, i.c, o.c, spec_scale);
 }
 
 template <class T>

@@ -25,6 +25,7 @@ float ggx_reflection_pdf(float alpha2, float co, float ch, float sin2h) {
 }  // namespace
 
 void LobeMixtureBsdf::assign(std::span<const Lobe> lobes) {
+  correction_ = nullptr;
   count_ = 0;
   for (const Lobe& l : lobes) {
     if (count_ == kMaxLobes) break;
@@ -44,7 +45,8 @@ Rgb LobeMixtureBsdf::eval(const glm::vec3& wi, const glm::vec3& wo) const {
   const PairTerms<float> p = pair_terms<float>(wi, wo);
   if (!p.valid) return Rgb(0);
   Rgb f(0);
-  for (int k = 0; k < count_; ++k) f += lobe_eval(slot(k).lobe, slot(k).shape, p);
+  const float scale = correction_ ? correction_at(*correction_, *grid_, p.h) : 1.0f;
+  for (int k = 0; k < count_; ++k) f += lobe_eval(slot(k).lobe, slot(k).shape, p, scale);
   return f;
 }
 

@@ -21,6 +21,7 @@
 #include "appearance/frame.h"
 #include "mip/lobe.h"
 #include "mip/lobe_reduction.h"
+#include "mip/radial_correction.h"
 
 namespace svbrdf {
 
@@ -34,6 +35,13 @@ class LobeMixtureBsdf final : public Bsdf {
   // Becomes the mixture of `lobes` (the first kMaxLobes), in place: a path reuses one object for
   // every hit rather than constructing (and, in std::optional, zero-filling) 0.9 KB per bounce.
   void assign(std::span<const Lobe> lobes);
+
+  // The texel's radial correction (radial_correction.h): eval multiplies every lobe's specular term by
+  // R(θh). Null: none. assign() clears it; both pointers must outlive the object's use.
+  void set_correction(const RadialCorrection* correction, const RadialGrid* grid) {
+    correction_ = correction;
+    grid_ = grid;
+  }
 
   int size() const { return count_; }
   const Lobe& lobe(int k) const { return slot(k).lobe; }
@@ -65,6 +73,8 @@ class LobeMixtureBsdf final : public Bsdf {
   const Slot& slot(int k) const { return slots_[static_cast<std::size_t>(k)].s; }
   std::array<SlotStorage, kMaxLobes> slots_;
   int count_ = 0;
+  const RadialCorrection* correction_ = nullptr;
+  const RadialGrid* grid_ = nullptr;
 };
 
 }  // namespace svbrdf

@@ -158,7 +158,9 @@ LobeMixtureBsdf lookup_brdf(const MipData& mip, const Footprint& footprint, floa
   if (mip.brdf.levels() == 0) return {};
   const FilterTap t = select_tap(mip.brdf.level0(), mip.brdf.levels(), footprint, u, max_probes);
   Lobe scratch;
-  return LobeMixtureBsdf(brdf_texel(mip, t.level, t.i, t.j, scratch));
+  LobeMixtureBsdf b(brdf_texel(mip, t.level, t.i, t.j, scratch));
+  if (t.level >= 1) b.set_correction(mip.brdf.correction(t.level, t.i, t.j), &mip.brdf.radial_grid());
+  return b;
 }
 
 ParamTexel filter_params(const ParamPyramid& pyramid, const Footprint& footprint, int max_probes) {

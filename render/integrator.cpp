@@ -152,6 +152,7 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
       emission = emission_at(sp, *w.textures);
       Lobe scratch;
       lobe_bsdf.assign(mip->lobes_at(choice, scratch));
+      lobe_bsdf.set_correction(mip->correction_at(choice), &mip->brdf().radial_grid());
       bsdf = &lobe_bsdf;
       if (depth == 0 && s.aovs) {
         out.albedo = base_color_at(sp, *w.textures);

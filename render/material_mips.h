@@ -99,6 +99,10 @@ class MaterialMip {
   };
   Choice choose(TextureFilter filter, const Footprint& texture_footprint, const Rgb& tint, float u) const;
   std::span<const Lobe> lobes_at(const Choice& choice, Lobe& scratch) const;
+  // The chosen texel's radial correction (brdf filter, coarse levels), or null.
+  const RadialCorrection* correction_at(const Choice& c) const {
+    return c.tap.level >= 1 ? brdf_.correction(c.tap.level, c.tap.i, c.tap.j) : nullptr;
+  }
 
   // The level-0 texel (column, row) nearest to a texture-space uv under the sampler's wrap modes.
   glm::ivec2 nearest_texel(glm::vec2 uv) const;

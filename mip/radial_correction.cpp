@@ -1,0 +1,66 @@
+#include "mip/radial_correction.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/packing.hpp>
+
+#include "mip/azimuthal_mean.h"
+
+namespace svbrdf {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+// θ of node 1 against the sharpest lobe's α: inside its core, where a sharp lobe's profile turns.
+constexpr double kInnerPerAlpha = 1.0;
+constexpr double kInnerMin = 0.03 * kPi / 180, kInnerMax = 1.0 * kPi / 180;
+
+float to_half(float x) { return glm::unpackHalf1x16(glm::packHalf1x16(x)); }
+}  // namespace
+
+RadialGrid RadialGrid::for_sharpest(double alpha2_min) {
+  RadialGrid g;
+  g.inner = std::clamp(kInnerPerAlpha * std::sqrt(std::max(alpha2_min, 0.0)), kInnerMin, kInnerMax);
+  const double u1 = 1.0 - std::cos(g.inner), un = 1.0 - std::cos(kOuterDeg * kPi / 180);
+  const double step = std::log(un / u1) / (kNodes - 2);
+  g.u1 = static_cast<float>(u1);
+  g.log_u1 = static_cast<float>(std::log(u1));
+  g.inv_step = static_cast<float>(1.0 / step);
+  g.theta[0] = 0.0;
+  for (int r = 1; r < kNodes; ++r) g.theta[static_cast<std::size_t>(r)] = std::acos(1.0 - u1 * std::exp(step * (r - 1)));
+  return g;
+}
+
+void add_to_profile(const RadialGrid& grid, std::span<const Lobe> lobes, RadialProfile& profile) {
+  for (const Lobe& l : lobes) {
+    if (!(l.weight > 0)) continue;
+    const LobeShape<double> s = lobe_shape<double>(l, false);
+    for (std::size_t r = 0; r < RadialGrid::kNodes; ++r) profile[r] += double(l.weight) * azimuthal_mean_d(s, grid.theta[r]);
+  }
+}
+
+RadialCorrection correction_to(const RadialGrid& grid, const RadialProfile& truth, std::span<const Lobe> lobes) {
+  RadialProfile own{};
+  add_to_profile(grid, lobes, own);
+  RadialCorrection c;
+  for (std::size_t r = 0; r < RadialGrid::kNodes; ++r)
+    c.ratio[r] = to_half(own[r] > 0 && truth[r] > 0 ? static_cast<float>(truth[r] / own[r]) : 1.0f);
+  return c;
+}
+
+float correction_at(const RadialCorrection& c, const RadialGrid& grid, const glm::vec3& h) {
+  // u = 1 − cos θ as sin²θ/(1 + cos θ): precise at the smallest angles in single precision.
+  const float u = (h.x * h.x + h.y * h.y) / (1.0f + std::max(h.z, 0.0f));
+  if (!(u > grid.u1)) {
+    const float x = std::max(0.0f, u) / grid.u1;
+    return c.ratio[0] + (c.ratio[1] - c.ratio[0]) * x;
+  }
+  const float t = (std::log(u) - grid.log_u1) * grid.inv_step;
+  if (t >= RadialGrid::kNodes - 2) return c.ratio[RadialGrid::kNodes - 1];
+  const int r = static_cast<int>(t);
+  const float x = t - static_cast<float>(r);
+  const std::size_t i = static_cast<std::size_t>(r) + 1;
+  return c.ratio[i] + (c.ratio[i + 1] - c.ratio[i]) * x;
+}
+
+}  // namespace svbrdf

@@ -1,0 +1,56 @@
+#pragma once
+// A coarse texel's radial correction (bench/results/mip.md, eleventh session).
+//
+// The reduction (lobe_reduction.h) fits each merge by moments; its errors are small per merge but
+// compound over the levels, and far away, where a pixel sees a handful of coarse texels, they show as
+// a highlight a percent too bright or too dark and a few percent off in shape (polished granite +1.3 %
+// at 1024×). They live mostly in the radial profile of the texel's D about the geometric normal, and
+// that profile averages linearly: the union's profile is the area-weighted mean of its children's.
+// So from level kFirstCorrectedLevel on, the build carries the true profile P(θ) = Σ w·⟨D⟩(θ)
+// (azimuthal_mean.h) up the pyramid exactly — at the first corrected level from its children's lobes,
+// above it as the mean of the children's true profiles — and each texel keeps the ratio
+//   R(θ) = P_true(θ) / P_own(θ)
+// of the true profile to its own lobes' at kNodes nodes; the specular term of each of its lobes is
+// multiplied by R(θh). The lobes keep everything else: their normals (the texel's anisotropy), colors,
+// V and Fresnel. R is smooth (12 nodes do what 96 did), it is 1 where the lobes are exact, and it
+// corrects nothing the lobes get right.
+//
+// Nodes: θ = 0, and 11 with u = 1 − cos θ log-spaced from u(θ_in) to u(40°), θ_in a fraction of the
+// pyramid's sharpest level-0 lobe (RadialGrid); R is linear in ln u between them (linear in u to the
+// first), and held at its last value beyond.
+#include <array>
+#include <span>
+
+#include "mip/lobe.h"
+
+namespace svbrdf {
+
+inline constexpr int kFirstCorrectedLevel = 4;
+
+struct RadialGrid {
+  static constexpr int kNodes = 12;
+  static constexpr double kOuterDeg = 30.0;
+  double inner = 0.0;    // θ of node 1, radians
+  float log_u1 = 0.0f;   // ln u of node 1
+  float inv_step = 0.0f; // 1 / (ln u step between nodes)
+  float u1 = 0.0f;
+  std::array<double, kNodes> theta{};  // the nodes' θ
+
+  // The grid for a pyramid whose sharpest level-0 lobe has α² = alpha2_min.
+  static RadialGrid for_sharpest(double alpha2_min);
+};
+
+using RadialProfile = std::array<double, RadialGrid::kNodes>;
+
+struct RadialCorrection {
+  std::array<float, RadialGrid::kNodes> ratio{};  // half floats (the MIP file's)
+};
+
+// profile += Σ over lobes of weight·⟨D⟩ at the grid's nodes.
+void add_to_profile(const RadialGrid& grid, std::span<const Lobe> lobes, RadialProfile& profile);
+// The correction that takes lobes' own profile to `truth`.
+RadialCorrection correction_to(const RadialGrid& grid, const RadialProfile& truth, std::span<const Lobe> lobes);
+// R at the unit half vector h (geometric tangent frame).
+float correction_at(const RadialCorrection& c, const RadialGrid& grid, const glm::vec3& h);
+
+}  // namespace svbrdf
