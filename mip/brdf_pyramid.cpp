@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <cstdlib>
 #include <string>
 
 #include <glm/gtc/packing.hpp>
@@ -243,17 +244,19 @@ void BrdfPyramid::build_corrections(const MaterialTexels& m) {
   grid_ = RadialGrid::for_sharpest(alpha_min * alpha_min);
   // The true profiles of the level below, carried up exactly (area-weighted means of the children's).
   std::vector<RadialProfile> below;
-  for (int level = kFirstCorrectedLevel; level < levels(); ++level) {
+  const int truth_from = std::getenv("TRUTH") ? std::atoi(std::getenv("TRUTH")) : kFirstCorrectedLevel;  // EXPERIMENT
+  for (int level = truth_from; level < levels(); ++level) {
     const Extent e = extent(level);
     const std::size_t texels = static_cast<std::size_t>(e.width) * e.height;
     std::vector<RadialProfile> truth(texels, RadialProfile{});
     BrdfLevel& out = levels_[static_cast<std::size_t>(level)];
-    out.correction.assign(texels, RadialCorrection{});
+    const bool apply = level >= kFirstCorrectedLevel;
+    if (apply) out.correction.assign(texels, RadialCorrection{});
     tbb::parallel_for(0, e.height, [&](int j) {
       std::array<Lobe, kUnionCap> buf;
       for (int i = 0; i < e.width; ++i) {
         const std::size_t t = static_cast<std::size_t>(j) * e.width + i;
-        if (level == kFirstCorrectedLevel) {
+        if (level == truth_from) {
           const int cnt = gather_children(level0_, level, i, j, levels_[static_cast<std::size_t>(level - 1)], m, buf);
           add_to_profile(grid_, std::span<const Lobe>(buf.data(), static_cast<std::size_t>(cnt)), truth[t]);
         } else {
@@ -269,7 +272,7 @@ void BrdfPyramid::build_corrections(const MaterialTexels& m) {
               for (std::size_t r = 0; r < RadialGrid::kNodes; ++r) truth[t][r] += share * c[r];
             }
         }
-        out.correction[t] = correction_to(grid_, truth[t], out.texel_lobes(t));
+        if (apply) out.correction[t] = correction_to(grid_, truth[t], out.texel_lobes(t));
       }
     });
     below = std::move(truth);

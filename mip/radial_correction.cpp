@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include <glm/gtc/packing.hpp>
 
@@ -35,7 +36,11 @@ void add_to_profile(const RadialGrid& grid, std::span<const Lobe> lobes, RadialP
   for (const Lobe& l : lobes) {
     if (!(l.weight > 0)) continue;
     const LobeShape<double> s = lobe_shape<double>(l, false);
-    for (std::size_t r = 0; r < RadialGrid::kNodes; ++r) profile[r] += double(l.weight) * azimuthal_mean_d(s, grid.theta[r]);
+    // Weighted by the lobe's specular reflectance: R corrects the light the lobes reflect, and lobes of
+    // different F0 (a metal's clean and its oily texels) carry different shares of it at each angle.
+    static const bool plain = std::getenv("PLAINW") != nullptr;  // EXPERIMENT
+    const double f0 = plain ? 1.0 : (double(l.f0.x) + l.f0.y + l.f0.z) / 3.0;
+    for (std::size_t r = 0; r < RadialGrid::kNodes; ++r) profile[r] += double(l.weight) * f0 * azimuthal_mean_d(s, grid.theta[r]);
   }
 }
 
