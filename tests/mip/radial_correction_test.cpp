@@ -1,0 +1,131 @@
+// The coarse texels' radial correction (mip/radial_correction.h): what it carries up the pyramid is
+// the exact area-weighted mean of the first corrected level's union profile (a linear identity,
+// computed here from that level's children directly), it is 1 where the lobes are exact, and its
+// lookup returns the stored ratios at the nodes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "mip/mip_data.h"
+#include "mip/pyramid_shape.h"
+#include "mip/radial_correction.h"
+#include "tests/mip/synthetic_materials.h"
+
+namespace svbrdf {
+namespace {
+
+// Σ over a level's texels of area share × (what the texel reflects at the nodes after correction).
+RadialProfile corrected_level_profile(const MipData& mip, int level) {
+  const BrdfPyramid& p = mip.brdf;
+  const Extent e = p.extent(level), e0 = p.level0();
+  RadialProfile out{};
+  for (int j = 0; j < e.height; ++j)
+    for (int i = 0; i < e.width; ++i) {
+      const double share = double(level0_span(e0.width, level, i).size()) * level0_span(e0.height, level, j).size() /
+                           (double(e0.width) * e0.height);
+      RadialProfile own{};
+      add_to_profile(p.radial_grid(), p.texel(level, i, j), own);
+      const RadialCorrection* c = p.correction(level, i, j);
+      EXPECT_NE(c, nullptr);
+      if (!c) continue;
+      for (std::size_t r = 0; r < RadialGrid::kNodes; ++r) out[r] += share * c->ratio[r] * own[r];
+    }
+  return out;
+}
+
+// Σ over the level below the first corrected one of area share × its lobes' profile: the union the
+// correction starts from.
+RadialProfile union_profile(const MipData& mip) {
+  const BrdfPyramid& p = mip.brdf;
+  const int level = kFirstCorrectedLevel - 1;
+  const Extent e = p.extent(level), e0 = p.level0();
+  RadialProfile out{};
+  for (int j = 0; j < e.height; ++j)
+    for (int i = 0; i < e.width; ++i) {
+      const double share = double(level0_span(e0.width, level, i).size()) * level0_span(e0.height, level, j).size() /
+                           (double(e0.width) * e0.height);
+      RadialProfile own{};
+      add_to_profile(p.radial_grid(), p.texel(level, i, j), own);
+      for (std::size_t r = 0; r < RadialGrid::kNodes; ++r) out[r] += share * own[r];
+    }
+  return out;
+}
+
+TEST(RadialCorrection, EveryCorrectedLevelReflectsItsUnionsProfile) {
+  struct Case {
+    const char* name;
+    MaterialTexels m;
+  };
+  const Case cases[] = {{"granite 64x64", synthetic::granite(64)}, {"tray 64x64", synthetic::tray(64)},
+                        {"sandstone 72x40", synthetic::sandstone(72)}};
+  for (const Case& c : cases) {
+    MaterialTexels m = c.m;
+    if (std::string(c.name).find("72x40") != std::string::npos) {
+      // A non-power-of-two, non-square level 0: the last texel of a level takes the remainder.
+      MaterialTexels cut(72, 40);
+      for (int y = 0; y < 40; ++y)
+        for (int x = 0; x < 72; ++x) {
+          const std::size_t s = static_cast<std::size_t>(y) * 72 + x, d = s;
+          cut.base_color[d] = m.base_color[s], cut.metallic[d] = m.metallic[s], cut.roughness[d] = m.roughness[s],
+          cut.normal[d] = m.normal[s];
+        }
+      m = cut;
+    }
+    const MipData mip = build_mip(m, {});
+    ASSERT_GT(mip.levels(), kFirstCorrectedLevel) << c.name;
+    const RadialProfile want = union_profile(mip);
+    for (int level = kFirstCorrectedLevel; level < mip.levels(); ++level) {
+      const RadialProfile got = corrected_level_profile(mip, level);
+      for (std::size_t r = 0; r < RadialGrid::kNodes; ++r)
+        // The ratios are half floats: 2⁻¹¹ relative each.
+        EXPECT_NEAR(got[r], want[r], 1e-3 * want[r]) << c.name << ", level " << level << ", node " << r;
+    }
+    // Below the first corrected level there is none.
+    EXPECT_EQ(mip.brdf.correction(kFirstCorrectedLevel - 1, 0, 0), nullptr);
+  }
+}
+
+TEST(RadialCorrection, IsOneWhereTheLobesAreExact) {
+  // Every texel alike: each coarse texel's lobes are its union exactly.
+  MaterialTexels m(64, 64);
+  for (std::size_t k = 0; k < m.size(); ++k) {
+    m.base_color[k] = glm::vec3(0.9f, 0.8f, 0.7f);
+    m.metallic[k] = 1.0f;
+    m.roughness[k] = 0.2f;
+    m.normal[k] = glm::normalize(glm::vec3(0.1f, -0.05f, 1.0f));
+  }
+  const MipData mip = build_mip(m, {});
+  for (int level = kFirstCorrectedLevel; level < mip.levels(); ++level) {
+    const RadialCorrection* c = mip.brdf.correction(level, 0, 0);
+    ASSERT_NE(c, nullptr);
+    for (float r : c->ratio) EXPECT_NEAR(r, 1.0f, 1e-3f) << "level " << level;
+  }
+}
+
+TEST(RadialCorrection, LookupReturnsTheRatiosAtTheNodesAndHoldsTheLastBeyond) {
+  const RadialGrid g = RadialGrid::for_sharpest(1e-4);
+  RadialCorrection c;
+  for (std::size_t r = 0; r < RadialGrid::kNodes; ++r) c.ratio[r] = 1.0f + 0.01f * static_cast<float>(r * r);
+  for (std::size_t r = 0; r < RadialGrid::kNodes; ++r) {
+    const double t = g.theta[r];
+    const glm::vec3 h(static_cast<float>(std::sin(t)), 0.0f, static_cast<float>(std::cos(t)));
+    EXPECT_NEAR(correction_at(c, g, h), c.ratio[r], 2e-4f) << "node " << r;
+  }
+  // Between two nodes: between their ratios.
+  const double mid = std::sqrt(g.theta[4] * g.theta[5]);
+  const float v = correction_at(c, g, glm::vec3(static_cast<float>(std::sin(mid)), 0.0f, static_cast<float>(std::cos(mid))));
+  EXPECT_GT(v, c.ratio[4]);
+  EXPECT_LT(v, c.ratio[5]);
+  // Past the outer node: the last ratio.
+  EXPECT_FLOAT_EQ(correction_at(c, g, glm::normalize(glm::vec3(1.0f, 0.0f, 0.5f))), c.ratio[RadialGrid::kNodes - 1]);
+}
+
+TEST(RadialCorrection, NoneWhenTurnedOff) {
+  BrdfBuildOptions o;
+  o.radial_correction = false;
+  const MipData mip = build_mip(synthetic::tray(64), o);
+  EXPECT_EQ(mip.brdf.correction(kFirstCorrectedLevel, 0, 0), nullptr);
+}
+
+}  // namespace
+}  // namespace svbrdf
