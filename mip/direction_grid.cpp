@@ -43,7 +43,7 @@ namespace {
 // pair loop: the sides, and the visibility's sqrt(α² + (1 − α²)·cos²) per direction. The same
 // formulas as lobe.h term by term (the tests hold the two to rounding).
 template <class T>
-void accumulate(const Lobe& lobe, double scale, std::span<glm::dvec3> table) {
+void accumulate(const Lobe& lobe, double scale, std::span<glm::dvec3> table, const float* spec_scale) {
   using V3 = glm::vec<3, T>;
   const DirectionGrid& grid = DirectionGrid::get();
   const LobeShape<T> shape = lobe_shape<T>(lobe);
@@ -57,7 +57,8 @@ void accumulate(const Lobe& lobe, double scale, std::span<glm::dvec3> table) {
         pt = &grid.pair_d(pr);
       else
         pt = &grid.pair_f(pr);
-      table[static_cast<std::size_t>(pr)] += scale * glm::dvec3(lobe_eval(lobe, shape, *pt));
+      const T k = spec_scale ? T(spec_scale[pr]) : T(1);
+      table[static_cast<std::size_t>(pr)] += scale * glm::dvec3(lobe_eval(lobe, shape, *pt, k));
     }
     return;
   }
@@ -93,6 +94,12 @@ void accumulate(const Lobe& lobe, double scale, std::span<glm::dvec3> table) {
     const T* hy = cols->hy.data() + i * nd;
     const T* hz = cols->hz.data() + i * nd;
     const T* fw = cols->w.data() + i * nd;
+    static const std::array<float, DirectionGrid::kPairs> kOnes = [] {
+      std::array<float, DirectionGrid::kPairs> a{};
+      a.fill(1.0f);
+      return a;
+    }();
+    const float* ks = (spec_scale ? spec_scale : kOnes.data()) + i * nd;
     // Branch-free over wo, so it vectorizes; a wo with factor 0 contributes 0 (its cosine is
     // clamped positive, so nothing divides by 0).
     for (int o = 0; o < nd; ++o) {
@@ -102,7 +109,7 @@ void accumulate(const Lobe& lobe, double scale, std::span<glm::dvec3> table) {
       // denom ≥ α²·(n·h)² + |n×h|² > 0 for α² ≥ 1e-6, so the division is always safe to execute.
       const T d = (ch > 0 ? T(1) : T(0)) * (a2_pi / (denom * denom));
       const T vis = T(0.5) / (cosine[static_cast<std::size_t>(o)] * gi + ci * root[static_cast<std::size_t>(o)]);
-      const T w = fw[o], s = vis * d, k = fi * wo_factor[static_cast<std::size_t>(o)];
+      const T w = fw[o], s = vis * d * T(ks[o]), k = fi * wo_factor[static_cast<std::size_t>(o)];
       out_r[static_cast<std::size_t>(o)] = k * ((T(1) - w) * rho_r + s * (f0r + (T(1) - f0r) * w));
       out_g[static_cast<std::size_t>(o)] = k * ((T(1) - w) * rho_g + s * (f0g + (T(1) - f0g) * w));
       out_b[static_cast<std::size_t>(o)] = k * ((T(1) - w) * rho_b + s * (f0b + (T(1) - f0b) * w));
@@ -118,10 +125,10 @@ void accumulate(const Lobe& lobe, double scale, std::span<glm::dvec3> table) {
 }  // namespace
 
 void accumulate_lobe_double(const Lobe& lobe, double scale, std::span<glm::dvec3> table) {
-  accumulate<double>(lobe, scale, table);
+  accumulate<double>(lobe, scale, table, nullptr);
 }
-void accumulate_lobe_float(const Lobe& lobe, double scale, std::span<glm::dvec3> table) {
-  accumulate<float>(lobe, scale, table);
+void accumulate_lobe_float(const Lobe& lobe, double scale, std::span<glm::dvec3> table, const float* spec_scale) {
+  accumulate<float>(lobe, scale, table, spec_scale);
 }
 
 }  // namespace svbrdf

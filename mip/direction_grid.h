@@ -51,6 +51,7 @@ inline BrdfTable make_table() { return BrdfTable(DirectionGrid::kPairs, glm::dve
 // table += scale · (lobe's weighted f_eff) for every pair, the lobe evaluated in double precision
 // (the exact reference) or in float (what the renderer evaluates), accumulated in double.
 void accumulate_lobe_double(const Lobe& lobe, double scale, std::span<glm::dvec3> table);
-void accumulate_lobe_float(const Lobe& lobe, double scale, std::span<glm::dvec3> table);
+// spec_scale: null, or per pair a factor on the specular term (a coarse texel's radial correction).
+void accumulate_lobe_float(const Lobe& lobe, double scale, std::span<glm::dvec3> table, const float* spec_scale = nullptr);
 
 }  // namespace svbrdf

@@ -77,8 +77,7 @@ BrdfTable level_mean(const MipData& mip, MipMode mode, int level) {
           const int i = t % e.width, j = t / e.width;
           const double w = texel_area(e0, level, i, j) / total;
           if (mode == MipMode::brdf) {
-            Lobe scratch;
-            for (const Lobe& l : brdf_texel(mip, level, i, j, scratch)) accumulate_lobe_float(l, w, acc);
+            accumulate_brdf_texel(mip, level, i, j, w, acc);
           } else {
             const ParamBaseline b = mode == MipMode::toksvig ? ParamBaseline::toksvig
                                     : mode == MipMode::vmf   ? ParamBaseline::vmf

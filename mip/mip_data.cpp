@@ -2,8 +2,10 @@
 
 #include <chrono>
 #include <string>
+#include <vector>
 
 #include "base/error.h"
+#include "mip/direction_grid.h"
 #include "mip/exact_reference.h"
 
 namespace svbrdf {
@@ -53,6 +55,21 @@ ParamBaseline baseline_of(MipMode m) {
 }
 }  // namespace
 
+void accumulate_brdf_texel(const MipData& mip, int level, int i, int j, double weight, std::span<glm::dvec3> acc) {
+  const RadialCorrection* c = level >= 1 ? mip.brdf.correction(level, i, j) : nullptr;
+  const float* scales = nullptr;
+  static thread_local std::vector<float> per_pair;
+  if (c) {
+    const DirectionGrid& g = DirectionGrid::get();
+    per_pair.resize(DirectionGrid::kPairs);
+    for (int p = 0; p < DirectionGrid::kPairs; ++p)
+      per_pair[static_cast<std::size_t>(p)] = correction_at(*c, mip.brdf.radial_grid(), g.pair_f(p).h);
+    scales = per_pair.data();
+  }
+  Lobe scratch;
+  for (const Lobe& l : brdf_texel(mip, level, i, j, scratch)) accumulate_lobe_float(l, weight, acc, scales);
+}
+
 glm::dvec3 mode_eval(const MipData& mip, MipMode mode, int level, int i, int j, const glm::dvec3& wi,
                      const glm::dvec3& wo) {
   if (mode == MipMode::exact) return ExactReference(mip.level0).eval(level, i, j, wi, wo);
@@ -60,7 +77,9 @@ glm::dvec3 mode_eval(const MipData& mip, MipMode mode, int level, int i, int j, 
   if (mode == MipMode::brdf) {
     glm::dvec3 sum(0);
     Lobe scratch;
-    for (const Lobe& l : brdf_texel(mip, level, i, j, scratch)) sum += glm::dvec3(lobe_eval<float>(l, p));
+    const RadialCorrection* c = level >= 1 ? mip.brdf.correction(level, i, j) : nullptr;
+    const float k = c ? correction_at(*c, mip.brdf.radial_grid(), p.h) : 1.0f;
+    for (const Lobe& l : brdf_texel(mip, level, i, j, scratch)) sum += glm::dvec3(lobe_eval<float>(l, lobe_shape<float>(l), p, k));
     return sum;
   }
   return glm::dvec3(lobe_eval<float>(param_lobe(mip.param.texel(level, i, j), baseline_of(mode)), p));
@@ -70,8 +89,7 @@ BrdfTable mode_table(const MipData& mip, MipMode mode, int level, int i, int j) 
   if (mode == MipMode::exact) return ExactReference(mip.level0).table(level, i, j);
   BrdfTable t = make_table();
   if (mode == MipMode::brdf) {
-    Lobe scratch;
-    for (const Lobe& l : brdf_texel(mip, level, i, j, scratch)) accumulate_lobe_float(l, 1.0, t);
+    accumulate_brdf_texel(mip, level, i, j, 1.0, t);
   } else {
     accumulate_lobe_float(param_lobe(mip.param.texel(level, i, j), baseline_of(mode)), 1.0, t);
   }
