@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <cstdlib>
 #include <string>
 
 #include <glm/gtc/packing.hpp>
@@ -86,6 +85,7 @@ void round_to_stored(Lobe& lobe) {
     lobe.diffuse[c] = to_half(lobe.diffuse[c]);
     lobe.f0[c] = to_half(lobe.f0[c]);
   }
+  lobe.normal = round_normal(lobe.normal);
   const float skirt_code = lobe_skirt_code(lobe);
   set_lobe_shape_code(lobe, lobe_shape_code(lobe));
   set_lobe_skirt_code(lobe, skirt_code);
@@ -244,19 +244,17 @@ void BrdfPyramid::build_corrections(const MaterialTexels& m) {
   grid_ = RadialGrid::for_sharpest(alpha_min * alpha_min);
   // The true profiles of the level below, carried up exactly (area-weighted means of the children's).
   std::vector<RadialProfile> below;
-  const int truth_from = std::getenv("TRUTH") ? std::atoi(std::getenv("TRUTH")) : kFirstCorrectedLevel;  // EXPERIMENT
-  for (int level = truth_from; level < levels(); ++level) {
+  for (int level = kFirstCorrectedLevel; level < levels(); ++level) {
     const Extent e = extent(level);
     const std::size_t texels = static_cast<std::size_t>(e.width) * e.height;
     std::vector<RadialProfile> truth(texels, RadialProfile{});
     BrdfLevel& out = levels_[static_cast<std::size_t>(level)];
-    const bool apply = level >= kFirstCorrectedLevel;
-    if (apply) out.correction.assign(texels, RadialCorrection{});
+    out.correction.assign(texels, RadialCorrection{});
     tbb::parallel_for(0, e.height, [&](int j) {
       std::array<Lobe, kUnionCap> buf;
       for (int i = 0; i < e.width; ++i) {
         const std::size_t t = static_cast<std::size_t>(j) * e.width + i;
-        if (level == truth_from) {
+        if (level == kFirstCorrectedLevel) {
           const int cnt = gather_children(level0_, level, i, j, levels_[static_cast<std::size_t>(level - 1)], m, buf);
           add_to_profile(grid_, std::span<const Lobe>(buf.data(), static_cast<std::size_t>(cnt)), truth[t]);
         } else {
@@ -272,15 +270,17 @@ void BrdfPyramid::build_corrections(const MaterialTexels& m) {
               for (std::size_t r = 0; r < RadialGrid::kNodes; ++r) truth[t][r] += share * c[r];
             }
         }
-        if (apply) out.correction[t] = correction_to(grid_, truth[t], out.texel_lobes(t));
+        out.correction[t] = correction_to(grid_, truth[t], out.texel_lobes(t));
       }
     });
     below = std::move(truth);
   }
 }
 
-BrdfPyramid BrdfPyramid::from_levels(const MaterialTexels& m, int max_lobes, std::vector<BrdfLevel> coarse) {
+BrdfPyramid BrdfPyramid::from_levels(const MaterialTexels& m, int max_lobes, std::vector<BrdfLevel> coarse,
+                                     const RadialGrid& grid) {
   BrdfPyramid p;
+  p.grid_ = grid;
   p.level0_ = {m.width, m.height};
   p.max_lobes_ = max_lobes;
   const int n = level_count(p.level0_);
@@ -297,7 +297,8 @@ BrdfPyramid BrdfPyramid::from_levels(const MaterialTexels& m, int max_lobes, std
     for (std::size_t t = 0, next = 0; packed && t < texels; next += c.counts[t] >= 2 ? c.counts[t] : 0, ++t)
       packed = c.counts[t] <= c.slots && c.first[t] <= c.lobes.size() &&
                (c.counts[t] < 2 || (c.first[t] == next && next + c.counts[t] <= c.lobes.size()));
-    if (!packed) throw Error("BRDF pyramid: level " + std::to_string(l + 1) + " has the wrong shape");
+    if (!packed || !(c.correction.empty() || c.correction.size() == texels) || (!c.correction.empty() && !(grid.inner > 0)))
+      throw Error("BRDF pyramid: level " + std::to_string(l + 1) + " has the wrong shape");
     p.levels_.push_back(std::move(c));
   }
   return p;

@@ -25,6 +25,7 @@
 #include "mip/lobe_reduction.h"
 #include "mip/pyramid_shape.h"
 #include "mip/radial_correction.h"
+#include "mip/stored_normal.h"
 #include "textures/material_texels.h"
 
 namespace svbrdf {
@@ -96,22 +97,24 @@ float lobe_skirt_code(const Lobe& lobe);
 void set_lobe_skirt_code(Lobe& lobe, float code);
 
 // Rounds a lobe to what the MIP file stores: weight, colors, α (the square root of alpha2), shape code
-// and skirt as half floats, the normal as 32-bit floats. The BRDF pyramid holds its lobes so rounded,
+// and skirt as half floats, the normal as stored_normal.h codes it. The BRDF pyramid holds its lobes so rounded,
 // which is what makes the file's round trip bit-identical and what its figures measure.
 void round_to_stored(Lobe& lobe);
 
-// Bytes a stored lobe takes: the normal (3) as 32-bit floats; weight, ρ (3), F0 (3), α, the shape code
-// and the skirt as half floats.
-inline constexpr int kBytesPerLobe = 3 * 4 + 10 * 2;
+// Bytes a stored lobe takes: the normal's direction as a 32-bit code (stored_normal.h); weight, ρ (3),
+// F0 (3), the normal's length deficit, α, the shape code and the skirt as half floats.
+inline constexpr int kBytesPerLobe = 4 + 11 * 2;
 
 class BrdfPyramid {
  public:
   BrdfPyramid() = default;
   static BrdfPyramid build(const MaterialTexels& level0, const BrdfBuildOptions& options = {},
                            std::vector<BrdfLevelStats>* stats = nullptr);
-  // From stored levels ≥ 1 (the MIP file) and the level-0 texels' extent; throws svbrdf::Error when
-  // the shapes do not form a pyramid.
-  static BrdfPyramid from_levels(const MaterialTexels& level0, int max_lobes, std::vector<BrdfLevel> coarse);
+  // From stored levels ≥ 1 (the MIP file), their radial corrections' grid (for levels whose
+  // `correction` is not empty) and the level-0 texels' extent; throws svbrdf::Error when the shapes do
+  // not form a pyramid.
+  static BrdfPyramid from_levels(const MaterialTexels& level0, int max_lobes, std::vector<BrdfLevel> coarse,
+                                 const RadialGrid& grid = {});
 
   int levels() const { return static_cast<int>(levels_.size()); }
   Extent level0() const { return level0_; }
@@ -140,7 +143,10 @@ class BrdfPyramid {
     __builtin_prefetch(l.first.data() + t);
   }
   // Bytes per texel of a level as the MIP file stores it (fixed slots; memory holds fewer).
-  int bytes_per_texel(int level) const { return this->level(level).slots * kBytesPerLobe; }
+  int bytes_per_texel(int level) const {
+    const BrdfLevel& l = this->level(level);
+    return l.slots * kBytesPerLobe + (l.correction.empty() ? 0 : kBytesPerCorrection);
+  }
   // The radial correction of texel (i, j) of `level`, or null (below kFirstCorrectedLevel, or none built).
   const RadialCorrection* correction(int level, int i, int j) const {
     const BrdfLevel& l = levels_[static_cast<std::size_t>(level)];

@@ -1,8 +1,12 @@
 #include "mip/mip_file.h"
 
+#include <Imath/half.h>
 #include <OpenImageIO/imageio.h>
 
+#include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <map>
 #include <memory>
 #include <string>
@@ -10,6 +14,7 @@
 
 #include "base/atomic_file.h"
 #include "base/error.h"
+#include "mip/stored_normal.h"
 
 namespace svbrdf {
 
@@ -19,68 +24,138 @@ namespace fs = std::filesystem;
 
 const char* const kParamChannels[8] = {"param.R",         "param.G",   "param.B",   "param.metallic",
                                        "param.roughness", "param.N.X", "param.N.Y", "param.N.Z"};
-// Version 4: 32 bytes a lobe (kBytesPerLobe): α (not α²) as a half, which frees the two bytes of the
-// skirt. Version 3 had α² as a float and no skirt (c = 1).
-constexpr int kLobeChannels = 13;
-const char* const kLobeSuffix[kLobeChannels] = {"weight", "diffuse.R", "diffuse.G", "diffuse.B", "F0.R",  "F0.G", "F0.B",
-                                                "N.X",    "N.Y",       "N.Z",       "alpha",     "shape", "skirt"};
-bool lobe_channel_is_half(int c) { return c <= 6 || c >= 10; }
-// Versions 1 and 2 have the first 10 and then α² as a float (weight as a float too); version 2 then the
-// shape as two channels, version 1 nothing (plain GGX lobes).
-constexpr int kCommonLobeChannels = 10;
-const char* const kShapeSuffixV2[2] = {"alpha2_hi", "ggx"};
-// Version 4: all; version 3: all but the skirt; version 2: the common ones, α² and the two shape
-// channels; version 1: the common ones and α².
-int lobe_channels(int version) {
-  return version >= 4 ? kLobeChannels : version == 3 ? kLobeChannels - 1 : kCommonLobeChannels + (version == 2 ? 3 : 1);
+
+// What a lobe channel holds, whichever version wrote it.
+enum class Role {
+  weight, diffuse_r, diffuse_g, diffuse_b, f0_r, f0_g, f0_b,
+  normal_x, normal_y, normal_z,            // versions 1–5: the normal as three floats
+  normal_direction, normal_deficit,        // version 6: stored_normal.h
+  alpha,                                   // version ≥ 4: α (half)
+  alpha2,                                  // versions 1–3: α² (float)
+  shape, skirt,                            // version ≥ 3 (skirt: ≥ 4)
+  alpha2_hi, ggx,                          // version 2's shape
+  count
+};
+struct LobeChannel {
+  const char* suffix;
+  Role role;
+  OIIO::TypeDesc::BASETYPE format;  // as this version writes it
+};
+
+// A lobe's channels in the given version. Version 6: 26 bytes a lobe (kBytesPerLobe), the normal as an
+// octahedral code and a length deficit; version 5 had the normal as three floats (32 bytes), version 4
+// too but no atoms; version 3 α² as a float and no skirt; version 2 the shape as α²'s upper end and μ;
+// version 1 no shape (plain GGX).
+std::vector<LobeChannel> lobe_channels(int version) {
+  using B = OIIO::TypeDesc::BASETYPE;
+  const B h = OIIO::TypeDesc::HALF, f = OIIO::TypeDesc::FLOAT;
+  std::vector<LobeChannel> c = {{"weight", Role::weight, version >= 3 ? h : f},
+                                {"diffuse.R", Role::diffuse_r, h}, {"diffuse.G", Role::diffuse_g, h},
+                                {"diffuse.B", Role::diffuse_b, h}, {"F0.R", Role::f0_r, h},
+                                {"F0.G", Role::f0_g, h},           {"F0.B", Role::f0_b, h}};
+  if (version >= 6) {
+    c.push_back({"N.dir", Role::normal_direction, OIIO::TypeDesc::UINT});
+    c.push_back({"N.deficit", Role::normal_deficit, h});
+  } else {
+    c.insert(c.end(), {{"N.X", Role::normal_x, f}, {"N.Y", Role::normal_y, f}, {"N.Z", Role::normal_z, f}});
+  }
+  if (version >= 4) c.insert(c.end(), {{"alpha", Role::alpha, h}, {"shape", Role::shape, h}, {"skirt", Role::skirt, h}});
+  else if (version == 3) c.insert(c.end(), {{"alpha2", Role::alpha2, f}, {"shape", Role::shape, h}});
+  else if (version == 2) c.insert(c.end(), {{"alpha2", Role::alpha2, f}, {"alpha2_hi", Role::alpha2_hi, f}, {"ggx", Role::ggx, h}});
+  else c.push_back({"alpha2", Role::alpha2, f});
+  return c;
 }
-std::string lobe_suffix(int version, int c) {
-  if (c < kCommonLobeChannels) return kLobeSuffix[c];
-  if (c == kCommonLobeChannels) return version >= 4 ? "alpha" : "alpha2";
-  return version >= 3 ? kLobeSuffix[c] : kShapeSuffixV2[c - kCommonLobeChannels - 1];
-}
+
+constexpr const char* kRadialInner = "svbrdf:radial_inner";
+std::string radial_channel(int node) { return "radial.R" + std::to_string(node); }
 
 std::string where(const fs::path& p) { return p.string(); }
 
-void pack_param(const ParamTexel& t, float* out) {
-  out[0] = t.base_color.r, out[1] = t.base_color.g, out[2] = t.base_color.b;
-  out[3] = t.metallic, out[4] = t.roughness;
-  out[5] = t.normal.x, out[6] = t.normal.y, out[7] = t.normal.z;
+// One texel's channel values by role: floats, and the normal's code.
+struct LobeValues {
+  std::array<float, static_cast<std::size_t>(Role::count)> v{};
+  std::uint32_t direction = 0;
+  float& operator[](Role r) { return v[static_cast<std::size_t>(r)]; }
+  float operator[](Role r) const { return v[static_cast<std::size_t>(r)]; }
+};
+
+LobeValues pack_lobe(const Lobe& l) {
+  LobeValues out;
+  out[Role::weight] = l.weight;
+  out[Role::diffuse_r] = l.diffuse.r, out[Role::diffuse_g] = l.diffuse.g, out[Role::diffuse_b] = l.diffuse.b;
+  out[Role::f0_r] = l.f0.r, out[Role::f0_g] = l.f0.g, out[Role::f0_b] = l.f0.b;
+  const StoredNormal n = store_normal(l.normal);  // exact: the pyramid's normals are decoded codes
+  out.direction = n.direction;
+  out[Role::normal_deficit] = n.deficit;
+  out[Role::alpha] = std::sqrt(l.alpha2);  // exact: a stored α² is the square of a half (round_to_stored)
+  out[Role::shape] = lobe_shape_code(l);
+  out[Role::skirt] = lobe_skirt_code(l);
+  return out;
 }
-ParamTexel unpack_param(const float* in) {
-  ParamTexel t;
-  t.base_color = {in[0], in[1], in[2]};
-  t.metallic = in[3];
-  t.roughness = in[4];
-  t.normal = {in[5], in[6], in[7]};
-  return t;
-}
-void pack_lobe(const Lobe& l, float* out) {
-  out[0] = l.weight;
-  out[1] = l.diffuse.r, out[2] = l.diffuse.g, out[3] = l.diffuse.b;
-  out[4] = l.f0.r, out[5] = l.f0.g, out[6] = l.f0.b;
-  out[7] = l.normal.x, out[8] = l.normal.y, out[9] = l.normal.z;
-  out[10] = std::sqrt(l.alpha2);  // exact: a stored α² is the square of a half (round_to_stored)
-  out[11] = lobe_shape_code(l);
-  out[12] = lobe_skirt_code(l);
-}
-Lobe unpack_lobe(int version, const float* in) {
+Lobe unpack_lobe(int version, const LobeValues& in) {
   Lobe l;
-  l.weight = in[0];
-  l.diffuse = {in[1], in[2], in[3]};
-  l.f0 = {in[4], in[5], in[6]};
-  l.normal = {in[7], in[8], in[9]};
-  l.alpha2 = version >= 4 ? in[10] * in[10] : in[10];
+  l.weight = in[Role::weight];
+  l.diffuse = {in[Role::diffuse_r], in[Role::diffuse_g], in[Role::diffuse_b]};
+  l.f0 = {in[Role::f0_r], in[Role::f0_g], in[Role::f0_b]};
+  if (version >= 6) l.normal = load_normal(StoredNormal{in.direction, in[Role::normal_deficit]});
+  else l.normal = {in[Role::normal_x], in[Role::normal_y], in[Role::normal_z]};
+  l.alpha2 = version >= 4 ? in[Role::alpha] * in[Role::alpha] : in[Role::alpha2];
   if (version >= 3) {
-    set_lobe_shape_code(l, in[11]);
+    set_lobe_shape_code(l, in[Role::shape]);
     // Version 4 had no atoms: its mixtures are bands of share 1 and its skirt channel holds 1 for them.
-    if (version >= 5) set_lobe_skirt_code(l, in[12]);
-    else if (version == 4 && l.alpha2_hi == 0.0f) l.skirt = in[12];
+    if (version >= 5) set_lobe_skirt_code(l, in[Role::skirt]);
+    else if (version == 4 && l.alpha2_hi == 0.0f) l.skirt = in[Role::skirt];
   } else if (version == 2) {
-    l.alpha2_hi = in[11];
-    l.ggx = in[12];
+    l.alpha2_hi = in[Role::alpha2_hi];
+    l.ggx = in[Role::ggx];
   }
   return l;
+}
+
+// A pixel's channels as the file stores them (OpenEXR's per-channel formats): byte offsets into a
+// native pixel, and typed access.
+struct NativeLayout {
+  std::vector<OIIO::TypeDesc> formats;
+  std::vector<std::size_t> offsets;
+  std::size_t stride = 0;
+  void add(OIIO::TypeDesc f) {
+    formats.push_back(f);
+    offsets.push_back(stride);
+    stride += f.size();
+  }
+};
+
+void put_float(std::byte* px, const NativeLayout& layout, std::size_t c, float v) {
+  std::byte* at = px + layout.offsets[c];
+  if (layout.formats[c] == OIIO::TypeDesc::HALF) {
+    const std::uint16_t bits = Imath::half(v).bits();  // exact: every half channel holds half values
+    std::memcpy(at, &bits, 2);
+  } else {
+    std::memcpy(at, &v, 4);
+  }
+}
+void put_uint(std::byte* px, const NativeLayout& layout, std::size_t c, std::uint32_t v) {
+  std::memcpy(px + layout.offsets[c], &v, 4);
+}
+
+// A channel's value as a float, whatever its stored format; false for a format no MIP file has.
+bool get_float(const std::byte* at, OIIO::TypeDesc f, float& v) {
+  if (f == OIIO::TypeDesc::FLOAT) {
+    std::memcpy(&v, at, 4);
+  } else if (f == OIIO::TypeDesc::HALF) {
+    Imath::half h;
+    std::uint16_t bits;
+    std::memcpy(&bits, at, 2);
+    h.setBits(bits);
+    v = h;
+  } else if (f == OIIO::TypeDesc::UINT) {
+    std::uint32_t u;
+    std::memcpy(&u, at, 4);
+    v = static_cast<float>(u);
+  } else {
+    return false;
+  }
+  return true;
 }
 
 }  // namespace
@@ -88,57 +163,82 @@ Lobe unpack_lobe(int version, const float* in) {
 void write_mip_file(const fs::path& path, const MipData& mip) {
   const int levels = mip.levels();
   if (levels == 0) throw Error(where(path) + ": nothing to write (an empty material)", Error::Kind::internal);
+  const std::vector<LobeChannel> lobe_layout = lobe_channels(kMipFileVersion);
+  const int lobe_nch = static_cast<int>(lobe_layout.size());
+  bool corrected = false;
+  for (int level = 1; level < levels; ++level) corrected |= !mip.brdf.level(level).correction.empty();
   write_atomically(path, [&](const fs::path& tmp) {
     std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(tmp.string());
     if (!out) throw input_error(where(path), "cannot write OpenEXR: " + OIIO::geterror());
     std::vector<OIIO::ImageSpec> specs(static_cast<std::size_t>(levels));
+    std::vector<NativeLayout> layouts(static_cast<std::size_t>(levels));
     for (int level = 0; level < levels; ++level) {
       const Extent e = mip.extent(level);
       const int slots = level == 0 ? 0 : mip.brdf.level(level).slots;
+      const bool radial = level > 0 && !mip.brdf.level(level).correction.empty();
       OIIO::ImageSpec& s = specs[static_cast<std::size_t>(level)];
-      s = OIIO::ImageSpec(e.width, e.height, 8 + slots * kLobeChannels, OIIO::TypeDesc::FLOAT);
+      NativeLayout& layout = layouts[static_cast<std::size_t>(level)];
+      s = OIIO::ImageSpec(e.width, e.height, 0, OIIO::TypeDesc::FLOAT);
       // OpenEXR parts share their display window: every level's is level 0's.
       s.full_x = 0, s.full_y = 0, s.full_width = mip.extent(0).width, s.full_height = mip.extent(0).height;
       s.channelnames.clear();
       s.channelformats.clear();
-      for (const char* c : kParamChannels) s.channelnames.emplace_back(c), s.channelformats.push_back(OIIO::TypeDesc::FLOAT);
+      const auto add = [&](std::string name, OIIO::TypeDesc f) {
+        s.channelnames.push_back(std::move(name));
+        s.channelformats.push_back(f);
+        layout.add(f);
+      };
+      for (const char* c : kParamChannels) add(c, OIIO::TypeDesc::FLOAT);
       for (int k = 0; k < slots; ++k)
-        for (int c = 0; c < kLobeChannels; ++c) {
-          s.channelnames.push_back("lobe" + std::to_string(k) + "." + kLobeSuffix[c]);
-          s.channelformats.push_back(lobe_channel_is_half(c) ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
-        }
+        for (const LobeChannel& c : lobe_layout) add("lobe" + std::to_string(k) + "." + c.suffix, c.format);
+      if (radial)
+        for (int r = 0; r < RadialGrid::kNodes; ++r) add(radial_channel(r), OIIO::TypeDesc::HALF);
+      s.nchannels = static_cast<int>(s.channelnames.size());
       s.attribute("name", "level" + std::to_string(level));
       s.attribute("compression", "zip");
       s.attribute("svbrdf:mip_version", kMipFileVersion);
       s.attribute("svbrdf:level", level);
       s.attribute("svbrdf:max_lobes", mip.brdf.max_lobes());
       s.attribute("svbrdf:slots", slots);
+      if (corrected) s.attribute(kRadialInner, mip.brdf.radial_grid().inner);
     }
     if (!out->open(tmp.string(), levels, specs.data()))
       throw input_error(where(path), "cannot write: " + out->geterror());
     for (int level = 0; level < levels; ++level) {
       const OIIO::ImageSpec& s = specs[static_cast<std::size_t>(level)];
+      const NativeLayout& layout = layouts[static_cast<std::size_t>(level)];
       if (level > 0 && !out->open(tmp.string(), s, OIIO::ImageOutput::AppendSubimage))
         throw input_error(where(path), "cannot write level " + std::to_string(level) + ": " + out->geterror());
       const Extent e = mip.extent(level);
       const std::size_t texels = static_cast<std::size_t>(e.width) * e.height;
-      const int nch = s.nchannels;
-      std::vector<float> buf(texels * static_cast<std::size_t>(nch));
+      std::vector<std::byte> buf(texels * layout.stride);
       const auto params = mip.param.level(level);
       for (std::size_t t = 0; t < texels; ++t) {
-        float* px = buf.data() + t * static_cast<std::size_t>(nch);
-        pack_param(params[t], px);
-        if (level > 0) {
-          // Empty slots: weight 0 (and a plain GGX of α² 1 about the geometric normal, so every
-          // channel holds a meaningful value).
-          static const Lobe kEmpty{0.0f, glm::vec3(0), glm::vec3(0), glm::vec3(0, 0, 1), 1.0f};
-          const BrdfLevel& bl = mip.brdf.level(level);
-          const std::span<const Lobe> lobes = bl.texel_lobes(t);
-          for (int k = 0; k < bl.slots; ++k)
-            pack_lobe(k < static_cast<int>(lobes.size()) ? lobes[static_cast<std::size_t>(k)] : kEmpty, px + 8 + k * kLobeChannels);
+        std::byte* px = buf.data() + t * layout.stride;
+        const ParamTexel& p = params[t];
+        const float param[8] = {p.base_color.r, p.base_color.g, p.base_color.b, p.metallic,
+                                p.roughness,    p.normal.x,     p.normal.y,     p.normal.z};
+        for (std::size_t c = 0; c < 8; ++c) put_float(px, layout, c, param[c]);
+        if (level == 0) continue;
+        // Empty slots: weight 0 (and a plain GGX of α² 1 about the geometric normal, so every channel
+        // holds a meaningful value).
+        static const Lobe kEmpty{0.0f, glm::vec3(0), glm::vec3(0), glm::vec3(0, 0, 1), 1.0f};
+        const BrdfLevel& bl = mip.brdf.level(level);
+        const std::span<const Lobe> lobes = bl.texel_lobes(t);
+        for (int k = 0; k < bl.slots; ++k) {
+          const LobeValues v = pack_lobe(k < static_cast<int>(lobes.size()) ? lobes[static_cast<std::size_t>(k)] : kEmpty);
+          for (int c = 0; c < lobe_nch; ++c) {
+            const std::size_t ch = 8 + static_cast<std::size_t>(k * lobe_nch + c);
+            const LobeChannel& lc = lobe_layout[static_cast<std::size_t>(c)];
+            if (lc.role == Role::normal_direction) put_uint(px, layout, ch, v.direction);
+            else put_float(px, layout, ch, v[lc.role]);
+          }
         }
+        if (!bl.correction.empty())
+          for (int r = 0; r < RadialGrid::kNodes; ++r)
+            put_float(px, layout, 8 + static_cast<std::size_t>(bl.slots * lobe_nch + r), bl.correction[t].ratio[static_cast<std::size_t>(r)]);
       }
-      if (!out->write_image(OIIO::TypeDesc::FLOAT, buf.data()))
+      if (!out->write_image(OIIO::TypeUnknown, buf.data()))
         throw input_error(where(path), "cannot write level " + std::to_string(level) + ": " + out->geterror());
     }
     if (!out->close()) throw input_error(where(path), "cannot finish writing: " + out->geterror());
@@ -163,62 +263,109 @@ MipData read_mip_file(const fs::path& path) {
   if (level0.width <= 0 || level0.height <= 0) throw input_error(where(path), "level 0 has no texels");
   const int levels = level_count(level0);
   const int max_lobes = first.get_int_attribute("svbrdf:max_lobes", 1);
+  const float radial_inner = first.get_float_attribute(kRadialInner, 0.0f);
+  if (first.find_attribute(kRadialInner) && !(radial_inner > 0.0f && radial_inner < 0.5f))
+    throw input_error(where(path), std::string(kRadialInner) + " is " + std::to_string(radial_inner) +
+                                       ", not an angle in (0, 0.5) radians");
+  const std::vector<LobeChannel> lobe_layout = lobe_channels(version);
   MipData mip;
   std::vector<std::vector<ParamTexel>> param_levels;
   std::vector<BrdfLevel> coarse;
   for (int level = 0; level < levels; ++level) {
+    const std::string at_level = "level " + std::to_string(level);
     if (!in->seek_subimage(level, 0))
-      throw input_error(where(path), "level " + std::to_string(level) + " is missing (a " + std::to_string(level0.width) +
-                                         "x" + std::to_string(level0.height) + " level 0 needs " + std::to_string(levels) + ")");
+      throw input_error(where(path), at_level + " is missing (a " + std::to_string(level0.width) + "x" +
+                                         std::to_string(level0.height) + " level 0 needs " + std::to_string(levels) + ")");
     const OIIO::ImageSpec s = in->spec();
     const Extent e = level_extent(level0, level);
     if (s.width != e.width || s.height != e.height)
-      throw input_error(where(path), "level " + std::to_string(level) + " is " + std::to_string(s.width) + "x" +
-                                         std::to_string(s.height) + ", expected " + std::to_string(e.width) + "x" +
-                                         std::to_string(e.height));
+      throw input_error(where(path), at_level + " is " + std::to_string(s.width) + "x" + std::to_string(s.height) +
+                                         ", expected " + std::to_string(e.width) + "x" + std::to_string(e.height));
     if (s.get_int_attribute("svbrdf:mip_version", 0) != version || s.get_int_attribute("svbrdf:level", -1) != level)
       throw input_error(where(path), "subimage " + std::to_string(level) + " is not level " + std::to_string(level) + " of this file");
     const int slots = level == 0 ? 0 : s.get_int_attribute("svbrdf:slots", -1);
     if (level > 0 && (slots < 1 || slots > kMaxLobes))
-      throw input_error(where(path), "level " + std::to_string(level) + " has " + std::to_string(slots) + " lobe slots");
-    // Channels by name: OpenEXR stores them sorted, whatever order they were written in.
+      throw input_error(where(path), at_level + " has " + std::to_string(slots) + " lobe slots");
+    // Channels by name: OpenEXR stores them sorted, whatever order they were written in. Read natively
+    // (each channel in its own format): a normal's 32-bit code does not survive a float.
+    NativeLayout layout;
     std::map<std::string, int> index;
-    for (int c = 0; c < s.nchannels; ++c) index[s.channelnames[static_cast<std::size_t>(c)]] = c;
-    std::vector<int> order;
+    for (int c = 0; c < s.nchannels; ++c) {
+      index[s.channelnames[static_cast<std::size_t>(c)]] = c;
+      layout.add(s.channelformat(c));
+    }
+    std::vector<std::size_t> order;  // byte offsets of the channels read, in the order unpacked
+    std::vector<OIIO::TypeDesc> formats;
     auto need = [&](const std::string& name) {
       const auto it = index.find(name);
-      if (it == index.end()) throw input_error(where(path), "level " + std::to_string(level) + " has no channel " + name);
-      order.push_back(it->second);
+      if (it == index.end()) throw input_error(where(path), at_level + " has no channel " + name);
+      const OIIO::TypeDesc f = layout.formats[static_cast<std::size_t>(it->second)];
+      if (f != OIIO::TypeDesc::FLOAT && f != OIIO::TypeDesc::HALF && f != OIIO::TypeDesc::UINT)
+        throw input_error(where(path), at_level + " channel " + name + " is " + std::string(f.c_str()) +
+                                           ", not a float, half or uint channel");
+      order.push_back(layout.offsets[static_cast<std::size_t>(it->second)]);
+      formats.push_back(f);
     };
     for (const char* c : kParamChannels) need(c);
-    const int lobe_nch = lobe_channels(version);
     for (int k = 0; k < slots; ++k)
-      for (int c = 0; c < lobe_nch; ++c) need("lobe" + std::to_string(k) + "." + lobe_suffix(version, c));
+      for (const LobeChannel& c : lobe_layout) {
+        const std::string name = "lobe" + std::to_string(k) + "." + c.suffix;
+        need(name);
+        if (c.role == Role::normal_direction && formats.back() != OIIO::TypeDesc::UINT)
+          throw input_error(where(path), at_level + " channel " + name + " is " + std::string(formats.back().c_str()) +
+                                             ", not the 32-bit unsigned integer of an octahedral code");
+      }
+    const bool radial = level > 0 && index.count(radial_channel(0)) > 0;
+    if (radial) {
+      if (!(radial_inner > 0.0f))
+        throw input_error(where(path), at_level + " has radial corrections but the file has no " + kRadialInner);
+      for (int r = 0; r < RadialGrid::kNodes; ++r) need(radial_channel(r));
+    }
     const std::size_t texels = static_cast<std::size_t>(e.width) * e.height;
-    const int nch = s.nchannels;
-    std::vector<float> buf(texels * static_cast<std::size_t>(nch));
-    if (!in->read_image(level, 0, 0, nch, OIIO::TypeDesc::FLOAT, buf.data()))
-      throw input_error(where(path), "cannot read level " + std::to_string(level) + ": " + in->geterror());
-    std::vector<float> px(order.size());
+    std::vector<std::byte> buf(texels * layout.stride);
+    if (!in->read_image(level, 0, 0, s.nchannels, OIIO::TypeUnknown, buf.data()))
+      throw input_error(where(path), "cannot read " + at_level + ": " + in->geterror());
     std::vector<ParamTexel> params(texels);
     BrdfLevel bl;
     if (level > 0) {
       bl.reset(e, texels);
       bl.slots = slots;
+      if (radial) bl.correction.resize(texels);
     }
+    const std::size_t lobe_nch = lobe_layout.size();
     for (std::size_t t = 0; t < texels; ++t) {
-      for (std::size_t c = 0; c < order.size(); ++c) px[c] = buf[t * static_cast<std::size_t>(nch) + static_cast<std::size_t>(order[c])];
-      params[t] = unpack_param(px.data());
-      if (level > 0) bl.first[t] = static_cast<std::uint32_t>(bl.lobes.size());
+      const std::byte* px = buf.data() + t * layout.stride;
+      const auto value = [&](std::size_t c) {
+        float v = 0.0f;
+        get_float(px + order[c], formats[c], v);
+        return v;
+      };
+      ParamTexel& p = params[t];
+      p.base_color = {value(0), value(1), value(2)};
+      p.metallic = value(3);
+      p.roughness = value(4);
+      p.normal = {value(5), value(6), value(7)};
+      if (level == 0) continue;
+      bl.first[t] = static_cast<std::uint32_t>(bl.lobes.size());
       // Lobes are packed from slot 0: the first empty slot (weight 0) ends the texel's.
       for (int k = 0; k < slots; ++k) {
-        const Lobe l = unpack_lobe(version, px.data() + 8 + k * lobe_nch);
+        LobeValues v;
+        for (std::size_t c = 0; c < lobe_nch; ++c) {
+          const std::size_t ch = 8 + static_cast<std::size_t>(k) * lobe_nch + c;
+          const Role role = lobe_layout[c].role;
+          if (role == Role::normal_direction) std::memcpy(&v.direction, px + order[ch], 4);
+          else v[role] = value(ch);
+        }
+        const Lobe l = unpack_lobe(version, v);
         if (!(l.weight > 0)) break;
         bl.lobes.push_back(l);
         bl.counts[t] = static_cast<std::uint8_t>(k + 1);
       }
       // A texel's lone lobe goes to its own slot (brdf_pyramid.h).
-      if (level > 0 && bl.counts[t] == 1) bl.single[t] = bl.lobes.back(), bl.lobes.pop_back();
+      if (bl.counts[t] == 1) bl.single[t] = bl.lobes.back(), bl.lobes.pop_back();
+      if (radial)
+        for (int r = 0; r < RadialGrid::kNodes; ++r)
+          bl.correction[t].ratio[static_cast<std::size_t>(r)] = value(8 + static_cast<std::size_t>(slots) * lobe_nch + r);
     }
     if (level == 0) {
       MaterialTexels& m = mip.level0;
@@ -237,7 +384,8 @@ MipData read_mip_file(const fs::path& path) {
   if (in->seek_subimage(levels, 0))
     throw input_error(where(path), "has more subimages than the " + std::to_string(levels) + " levels of its level 0");
   mip.param = ParamPyramid::from_levels(level0, std::move(param_levels));
-  mip.brdf = BrdfPyramid::from_levels(mip.level0, max_lobes, std::move(coarse));
+  mip.brdf = BrdfPyramid::from_levels(mip.level0, max_lobes, std::move(coarse),
+                                      radial_inner > 0.0f ? RadialGrid::with_inner(radial_inner) : RadialGrid{});
   return mip;
 }
 

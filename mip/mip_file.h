@@ -10,13 +10,16 @@
 //   param.N.X, param.N.Y, param.N.Z  mean of the unit shading normals in the tangent frame,
 //                               unnormalized (its length < 1 says how much they spread); at
 //                               level 0 the texel's unit normal                          float
-// and, for L ≥ 1, for each lobe slot k = 0 .. S_L − 1 (lobe.h for the meaning), 32 bytes:
+// and, for L ≥ 1, for each lobe slot k = 0 .. S_L − 1 (lobe.h for the meaning), 26 bytes:
 //   lobeK.weight                fraction of the texel's area, times the lobe's specular-flux
 //                               factor (0: empty slot; slots are packed from 0)          half
 //   lobeK.diffuse.R/G/B         mean diffuse albedo ρ = (1 − metallic)·base color        half
 //   lobeK.F0.R/G/B              mean specular reflectance at normal incidence            half
-//   lobeK.N.X/Y/Z               mean unit normal of the lobe, unnormalized               float
-//   lobeK.alpha                 GGX α of the lobe about normalize(N), α² its square (a
+//   lobeK.N.dir                 the direction of the lobe's mean unit normal, an octahedral
+//                               code (stored_normal.h: x in the low 16 bits, y in the high,
+//                               signed, scaled by 32767)                                  uint
+//   lobeK.N.deficit             1 − the mean normal's length (how much the normals spread) half
+//   lobeK.alpha                 GGX α of the lobe about the normal's direction, α² its square (a
 //                               roughness mixture's lower end, its atom; lobe.h)          half
 //   lobeK.shape                 ln(α² upper end / α²) > 0 for a roughness mixture with a
 //                               band, −(1 + that) < −1 for a two-point mixture, −μ for a
@@ -24,22 +27,28 @@
 //   lobeK.skirt                 a core's c ≥ 1 (the Beckmann share's α² is c·alpha2); a
 //                               mixture's upper share β, as β ≤ ½ or β − 1 ∈ (−½, 0]; 1
 //                               otherwise (brdf_pyramid.h, lobe_skirt_code)             half
+// and, for L ≥ kFirstCorrectedLevel (4), 24 bytes (radial_correction.h):
+//   radial.R0 .. radial.R11     the texel's radial correction: the ratio of its true radial
+//                               profile of reflected light to its lobes' at the 12 nodes of
+//                               the grid svbrdf:radial_inner defines                      half
 // Level 0's BRDF pyramid is its parameters (one lobe per texel) and is not stored twice.
 // Attributes on every subimage: svbrdf:mip_version (int, kMipFileVersion), svbrdf:level (int),
-// svbrdf:max_lobes (int, the --lobes the file was built with), svbrdf:slots (int, S_L).
+// svbrdf:max_lobes (int, the --lobes the file was built with), svbrdf:slots (int, S_L), and, where any
+// level has radial channels, svbrdf:radial_inner (float, radians: θ of the grid's node 1).
 // A file whose version is newer than kMipFileVersion is refused: its layout may mean other things.
-// Older versions still read: version 4's mixtures had no atom (β = 1; its skirt channel held 1 for
-// them); version 3 stored lobeK.alpha2 (α², float) in place of lobeK.alpha and
-// lacks lobeK.skirt (c = 1); version 2 stored α² so too and the shape as lobeK.alpha2_hi (float, 0: not a mixture)
-// and lobeK.ggx (half, μ) and the weight as a float (38 bytes a lobe); version 1 (before the lobe
-// shapes of lobe.h) lacks both shape channels, and its lobes read as plain GGX.
+// Older versions still read: version 5 stored a lobe's normal as three floats lobeK.N.X/Y/Z (32 bytes
+// a lobe) and had no radial corrections; version 4's mixtures had no atom (β = 1; its skirt channel
+// held 1 for them); version 3 stored lobeK.alpha2 (α², float) in place of lobeK.alpha and lacks
+// lobeK.skirt (c = 1); version 2 stored α² so too and the shape as lobeK.alpha2_hi (float, 0: not a
+// mixture) and lobeK.ggx (half, μ) and the weight as a float (38 bytes a lobe); version 1 (before the
+// lobe shapes of lobe.h) lacks both shape channels, and its lobes read as plain GGX.
 #include <filesystem>
 
 #include "mip/mip_data.h"
 
 namespace svbrdf {
 
-inline constexpr int kMipFileVersion = 5;
+inline constexpr int kMipFileVersion = 6;
 
 // Throws svbrdf::Error naming the file when it cannot be written.
 void write_mip_file(const std::filesystem::path& path, const MipData& mip);

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 
 #include <glm/gtc/packing.hpp>
 
@@ -20,9 +19,14 @@ float to_half(float x) { return glm::unpackHalf1x16(glm::packHalf1x16(x)); }
 }  // namespace
 
 RadialGrid RadialGrid::for_sharpest(double alpha2_min) {
+  return with_inner(static_cast<float>(std::clamp(kInnerPerAlpha * std::sqrt(std::max(alpha2_min, 0.0)), kInnerMin, kInnerMax)));
+}
+
+RadialGrid RadialGrid::with_inner(float inner) {
   RadialGrid g;
-  g.inner = std::clamp(kInnerPerAlpha * std::sqrt(std::max(alpha2_min, 0.0)), kInnerMin, kInnerMax);
-  const double u1 = 1.0 - std::cos(g.inner), un = 1.0 - std::cos(kOuterDeg * kPi / 180);
+  g.inner = inner;
+  const double half_inner = std::sin(0.5 * double(inner));
+  const double u1 = 2.0 * half_inner * half_inner, un = 1.0 - std::cos(kOuterDeg * kPi / 180);  // 1 − cos, precise
   const double step = std::log(un / u1) / (kNodes - 2);
   g.u1 = static_cast<float>(u1);
   g.log_u1 = static_cast<float>(std::log(u1));
@@ -38,8 +42,7 @@ void add_to_profile(const RadialGrid& grid, std::span<const Lobe> lobes, RadialP
     const LobeShape<double> s = lobe_shape<double>(l, false);
     // Weighted by the lobe's specular reflectance: R corrects the light the lobes reflect, and lobes of
     // different F0 (a metal's clean and its oily texels) carry different shares of it at each angle.
-    static const bool plain = std::getenv("PLAINW") != nullptr;  // EXPERIMENT
-    const double f0 = plain ? 1.0 : (double(l.f0.x) + l.f0.y + l.f0.z) / 3.0;
+    const double f0 = (double(l.f0.x) + l.f0.y + l.f0.z) / 3.0;
     for (std::size_t r = 0; r < RadialGrid::kNodes; ++r) profile[r] += double(l.weight) * f0 * azimuthal_mean_d(s, grid.theta[r]);
   }
 }

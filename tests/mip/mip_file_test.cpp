@@ -6,12 +6,14 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <cstring>
 #include <memory>
 #include <string>
 
 #include "base/error.h"
 #include "mip/mip_file.h"
+#include "mip/stored_normal.h"
 #include "textures/material_family.h"
 #include "tests/mip/synthetic_materials.h"
 #include "tests/common/temp_dir.h"
@@ -45,6 +47,7 @@ TEST(MipFile, RoundTripIsBitIdentical) {
   testing::TempDir dir;
   int skirts = 0;  // spread cores whose skirt is not 1: the polished granite has them
   int atoms = 0;   // roughness mixtures with an atom (version 5): the tray's texels in the mixed material
+  std::size_t corrected = 0;  // texels with a radial correction (version 6)
   for (auto [w, h] : {std::pair{16, 16}, std::pair{12, 5}, std::pair{64, 0}}) {
     BrdfBuildOptions o;
     o.reduction.max_lobes = 3;
@@ -77,10 +80,18 @@ TEST(MipFile, RoundTripIsBitIdentical) {
       EXPECT_TRUE(same_bits(la.first, lb.first)) << "level " << l;
       EXPECT_TRUE(same_bits(la.lobes, lb.lobes)) << "level " << l;
       EXPECT_TRUE(same_bits(la.single, lb.single)) << "level " << l;
+      ASSERT_EQ(la.correction.size(), lb.correction.size()) << "level " << l;
+      corrected += la.correction.size();
+      for (std::size_t t = 0; t < la.correction.size(); ++t)
+        EXPECT_EQ(std::memcmp(la.correction[t].ratio.data(), lb.correction[t].ratio.data(), sizeof(la.correction[t].ratio)), 0)
+            << "level " << l << " texel " << t;
     }
+    EXPECT_EQ(a.brdf.radial_grid().inner, b.brdf.radial_grid().inner);
+    EXPECT_EQ(std::memcmp(&a.brdf.radial_grid(), &b.brdf.radial_grid(), sizeof(RadialGrid)), 0);
   }
   EXPECT_GT(skirts, 0);
   EXPECT_GT(atoms, 0);
+  EXPECT_GT(corrected, 0u) << "the levels from kFirstCorrectedLevel on should carry radial corrections";
 }
 
 TEST(MipFile, OpenImageIOToolsListIt) {
@@ -138,7 +149,138 @@ TEST(MipFile, RefusesNewerVersionsForeignAndMissingFiles) {
   EXPECT_NE(read_error(dir / "short.exr").find("short.exr"), std::string::npos);
 }
 
-// Rewrites a current MIP file as an older version wrote it: version 4 had no atoms (a mixture's shape
+// Copies a MIP file level by level, in every channel's own format or (all_float) every channel as a
+// float — what `oiiotool -a -d float` makes of it — and without the attribute `drop` (if named).
+void copy_mip_file(const std::filesystem::path& from, const std::filesystem::path& to, bool all_float, const char* drop) {
+  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(from.string());
+  ASSERT_TRUE(in);
+  std::vector<OIIO::ImageSpec> specs;
+  std::vector<std::vector<std::byte>> pixels;
+  for (int level = 0; in->seek_subimage(level, 0); ++level) {
+    OIIO::ImageSpec s = in->spec();
+    const OIIO::TypeDesc format = all_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeUnknown;
+    std::vector<std::byte> px(static_cast<std::size_t>(s.width) * s.height * (all_float ? std::size_t(s.nchannels) * 4 : s.pixel_bytes(true)));
+    ASSERT_TRUE(in->read_image(level, 0, 0, s.nchannels, format, px.data()));
+    if (all_float) s.set_format(OIIO::TypeDesc::FLOAT), s.channelformats.clear();
+    if (drop) s.erase_attribute(drop);
+    specs.push_back(s);
+    pixels.push_back(std::move(px));
+  }
+  in->close();
+  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(to.string());
+  ASSERT_TRUE(out);
+  ASSERT_TRUE(out->open(to.string(), static_cast<int>(specs.size()), specs.data()));
+  for (std::size_t level = 0; level < specs.size(); ++level) {
+    if (level > 0) {
+      ASSERT_TRUE(out->open(to.string(), specs[level], OIIO::ImageOutput::AppendSubimage));
+    }
+    ASSERT_TRUE(out->write_image(all_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeUnknown, pixels[level].data()));
+  }
+  ASSERT_TRUE(out->close());
+}
+
+// A file whose normals' codes were converted to floats (they keep 24 of their 32 bits) is refused, not
+// read with its normals off; so is one with radial corrections but no grid to read them on. A copy in
+// the channels' own formats reads back as the original.
+TEST(MipFile, RefusesCodesConvertedToFloatAndCorrectionsWithoutTheirGrid) {
+  testing::TempDir dir;
+  const MipData mip = build_mip(generate_material(MaterialRecipe{"metal-tray", "steel", 32, 24}).texels);
+  write_mip_file(dir / "tray.exr", mip);
+  copy_mip_file(dir / "tray.exr", dir / "copy.exr", false, nullptr);
+  const MipData copy = read_mip_file(dir / "copy.exr");
+  for (int level = 1; level < mip.levels(); ++level)
+    EXPECT_TRUE(same_bits(copy.brdf.level(level).all_lobes(), mip.brdf.level(level).all_lobes())) << level;
+  copy_mip_file(dir / "tray.exr", dir / "floats.exr", true, nullptr);
+  std::string msg = read_error(dir / "floats.exr");
+  EXPECT_NE(msg.find("floats.exr"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("level 1 channel lobe0.N.dir is float, not the 32-bit unsigned integer"), std::string::npos) << msg;
+  copy_mip_file(dir / "tray.exr", dir / "nogrid.exr", false, "svbrdf:radial_inner");
+  msg = read_error(dir / "nogrid.exr");
+  EXPECT_NE(msg.find("nogrid.exr"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("level " + std::to_string(kFirstCorrectedLevel) + " has radial corrections but the file has no svbrdf:radial_inner"),
+            std::string::npos) << msg;
+}
+
+// Rewrites a version-6 MIP file as version 5 wrote it: the lobes' normals as three floats (N.X, N.Y,
+// N.Z) where version 6 has an octahedral code and a length deficit (stored_normal.h), no radial
+// corrections.
+void write_as_version5(const std::filesystem::path& from, const std::filesystem::path& to) {
+  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(from.string());
+  ASSERT_TRUE(in);
+  std::vector<OIIO::ImageSpec> specs;
+  std::vector<std::vector<float>> pixels;
+  for (int level = 0; in->seek_subimage(level, 0); ++level) {
+    const OIIO::ImageSpec& src = in->spec();
+    const std::size_t texels = static_cast<std::size_t>(src.width) * src.height;
+    std::vector<float> all(texels * static_cast<std::size_t>(src.nchannels));
+    ASSERT_TRUE(in->read_image(level, 0, 0, src.nchannels, OIIO::TypeDesc::FLOAT, all.data()));
+    // The codes, read as what they are (a float holds 24 bits of one).
+    std::vector<std::uint32_t> codes(texels * static_cast<std::size_t>(src.nchannels));
+    ASSERT_TRUE(in->read_image(level, 0, 0, src.nchannels, OIIO::TypeDesc::UINT, codes.data()));
+    OIIO::ImageSpec dst = src;
+    dst.channelnames.clear();
+    dst.channelformats.clear();
+    dst.erase_attribute("svbrdf:radial_inner");
+    dst.attribute("svbrdf:mip_version", 5);
+    // Each output channel: a source channel, or component `axis` of the normal whose code and deficit
+    // are in channels `from` and `deficit`.
+    struct Out {
+      int from;
+      int deficit = -1;
+      int axis = -1;
+    };
+    std::vector<Out> outs;
+    const auto find_channel = [&](const std::string& want) {
+      for (int k = 0; k < src.nchannels; ++k)
+        if (src.channelnames[static_cast<std::size_t>(k)] == want) return k;
+      return -1;
+    };
+    for (int c = 0; c < src.nchannels; ++c) {
+      const std::string& name = src.channelnames[static_cast<std::size_t>(c)];
+      if (name.rfind("radial.", 0) == 0 || (name.size() > 10 && name.compare(name.size() - 10, 10, ".N.deficit") == 0)) continue;
+      if (name.size() > 6 && name.compare(name.size() - 6, 6, ".N.dir") == 0) {
+        const std::string lobe = name.substr(0, name.size() - 6);
+        ASSERT_EQ(src.channelformat(c), OIIO::TypeDesc::UINT) << name;
+        const int deficit = find_channel(lobe + ".N.deficit");
+        ASSERT_GE(deficit, 0);
+        for (int axis = 0; axis < 3; ++axis) {
+          outs.push_back({c, deficit, axis});
+          dst.channelnames.push_back(lobe + ".N." + "XYZ"[axis]);
+          dst.channelformats.push_back(OIIO::TypeDesc::FLOAT);
+        }
+        continue;
+      }
+      outs.push_back({c});
+      dst.channelnames.push_back(name);
+      dst.channelformats.push_back(src.channelformat(c));
+    }
+    dst.nchannels = static_cast<int>(outs.size());
+    std::vector<float> kept(texels * outs.size());
+    for (std::size_t t = 0; t < texels; ++t)
+      for (std::size_t k = 0; k < outs.size(); ++k) {
+        const std::size_t at = t * static_cast<std::size_t>(src.nchannels);
+        const Out& o = outs[k];
+        kept[t * outs.size() + k] =
+            o.axis < 0 ? all[at + static_cast<std::size_t>(o.from)]
+                       : load_normal(StoredNormal{codes[at + static_cast<std::size_t>(o.from)], all[at + static_cast<std::size_t>(o.deficit)]})[o.axis];
+      }
+    specs.push_back(dst);
+    pixels.push_back(std::move(kept));
+  }
+  in->close();
+  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(to.string());
+  ASSERT_TRUE(out);
+  ASSERT_TRUE(out->open(to.string(), static_cast<int>(specs.size()), specs.data()));
+  for (std::size_t level = 0; level < specs.size(); ++level) {
+    if (level > 0) {
+      ASSERT_TRUE(out->open(to.string(), specs[level], OIIO::ImageOutput::AppendSubimage));
+    }
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels[level].data()));
+  }
+  ASSERT_TRUE(out->close());
+}
+
+// Rewrites a version-5 MIP file as an older version wrote it: version 4 had no atoms (a mixture's shape
 // code was its span, its skirt channel 1), version 3 no skirt channel, version 2 stored a lobe's shape as
 // lobeK.alpha2_hi (float, 0: not a mixture) and lobeK.ggx (half, μ), version 1 had neither. The shape
 // code is decoded here as mip_file.h documents it: > 0 is ln(α² upper end / α²), < −1 is −(1 + that)
@@ -259,23 +401,25 @@ void write_as_older_version(const std::filesystem::path& from, const std::filesy
   ASSERT_TRUE(out->close());
 }
 
-// Version-4, -3 and -2 files read with the lobe shapes they stored (mixtures without atoms; no skirt
-// before version 4); version-1 files (before the lobe shapes of lobe.h) as plain GGX lobes; every other
-// channel as stored.
+// Version-5 files read with their normals as stored and no radial corrections; version-4, -3 and -2
+// files with the lobe shapes they stored (mixtures without atoms; no skirt before version 4); version-1
+// files (before the lobe shapes of lobe.h) as plain GGX lobes; every other channel as stored.
 TEST(MipFile, ReadsOlderVersions) {
   testing::TempDir dir;
   // The fingerprinted tray at 64²: its pyramid holds every lobe shape, mixtures with atoms among them.
   const MipData mip = build_mip(generate_material(MaterialRecipe{"metal-tray", "steel", 64, 24}).texels);
-  write_mip_file(dir / "v5.exr", mip);
+  write_mip_file(dir / "v6.exr", mip);
+  write_as_version5(dir / "v6.exr", dir / "v5.exr");
   int atoms = 0;
-  for (int version : {1, 2, 3, 4}) {
+  for (int version : {1, 2, 3, 4, 5}) {
     std::string name = "v";  // appended, not concatenated: GCC 12 -O3 warns falsely otherwise (PR 105651)
     name += std::to_string(version);
     name += ".exr";
     const auto old = dir / name;
-    write_as_older_version(dir / "v5.exr", old, version);
+    if (version < 5) write_as_older_version(dir / "v5.exr", old, version);
     const MipData back = read_mip_file(old);
     ASSERT_EQ(back.levels(), mip.levels());
+    for (int level = 1; level < mip.levels(); ++level) EXPECT_EQ(back.brdf.correction(level, 0, 0), nullptr);
     int shaped = 0;
     for (int level = 1; level < mip.levels(); ++level) {
       const std::vector<Lobe> a = mip.brdf.level(level).all_lobes();
@@ -293,9 +437,10 @@ TEST(MipFile, ReadsOlderVersions) {
           EXPECT_EQ(b[k].ggx, 1.0f);
         } else {
           EXPECT_EQ(b[k].alpha2_hi, a[k].alpha2_hi);
-          EXPECT_EQ(b[k].ggx, mixture ? 1.0f : a[k].ggx);  // a mixture's atom dropped: the band alone
+          // Before version 5 a mixture's atom is dropped: the band alone.
+          EXPECT_EQ(b[k].ggx, mixture && version < 5 ? 1.0f : a[k].ggx);
         }
-        EXPECT_EQ(b[k].skirt, version == 4 && !mixture ? a[k].skirt : 1.0f);
+        EXPECT_EQ(b[k].skirt, version == 5 || (version == 4 && !mixture) ? a[k].skirt : 1.0f);
         shaped += mixture || a[k].ggx != 1.0f;
         atoms += version == 4 && mixture && a[k].ggx < 1.0f;
       }
