@@ -5,6 +5,7 @@
 
 #include <glm/gtc/packing.hpp>
 
+#include "base/series_log.h"
 #include "mip/azimuthal_mean.h"
 
 namespace svbrdf {
@@ -31,6 +32,9 @@ RadialGrid RadialGrid::with_inner(float inner) {
   g.u1 = static_cast<float>(u1);
   g.log_u1 = static_cast<float>(std::log(u1));
   g.inv_step = static_cast<float>(1.0 / step);
+  const double u_fade = 1.0 - std::cos(kFadeEndDeg * kPi / 180);
+  g.log_u_outer = static_cast<float>(std::log(un));
+  g.inv_fade = static_cast<float>(1.0 / std::log(u_fade / un));
   g.theta[0] = 0.0;
   for (int r = 1; r < kNodes; ++r) g.theta[static_cast<std::size_t>(r)] = std::acos(1.0 - u1 * std::exp(step * (r - 1)));
   return g;
@@ -63,8 +67,13 @@ float correction_at(const RadialCorrection& c, const RadialGrid& grid, const glm
     const float x = std::max(0.0f, u) / grid.u1;
     return c.ratio[0] + (c.ratio[1] - c.ratio[0]) * x;
   }
-  const float t = (std::log(u) - grid.log_u1) * grid.inv_step;
-  if (t >= RadialGrid::kNodes - 2) return c.ratio[RadialGrid::kNodes - 1];
+  const float log_u = series_logf(u);  // (std::log is a call: this runs at every eval)
+  const float t = (log_u - grid.log_u1) * grid.inv_step;
+  if (t >= RadialGrid::kNodes - 2) {
+    const float last = c.ratio[RadialGrid::kNodes - 1];
+    const float s = std::min(1.0f, std::max(0.0f, (log_u - grid.log_u_outer) * grid.inv_fade));
+    return last + (1.0f - last) * s;
+  }
   const int r = static_cast<int>(t);
   const float x = t - static_cast<float>(r);
   const std::size_t i = static_cast<std::size_t>(r) + 1;

@@ -18,9 +18,14 @@
 // corrects nothing the lobes get right. Sampling keeps to the lobes (eval carries R, so the estimate
 // f/pdf stays unbiased). The MIP file stores R as 12 halves a texel (mip_file.h).
 //
-// Nodes: θ = 0, and 11 with u = 1 − cos θ log-spaced from u(θ_in) to u(30°), θ_in the α of the
-// pyramid's sharpest level-0 lobe, within 0.03°–1° (RadialGrid); R is linear in ln u between them (linear in u to the
-// first), and held at its last value beyond.
+// Nodes: θ = 0, and 11 with u = 1 − cos θ log-spaced from u(θ_in) to u(10°), θ_in the α of the
+// pyramid's sharpest level-0 lobe, within 0.03°–1° (RadialGrid); R is linear in ln u between them
+// (linear in u to the first), and beyond the last it goes to 1 at 20°, linearly in ln u. The correction
+// is of the highlight's core, where the compounded error showed (the far views head-on and in the
+// mirror configuration). Farther out the premise fails where a texel's normals spread along one axis:
+// the tile roof's isotropic lobes under-fill the plane of its slopes and over-fill the rest at the
+// same θ, so its ratio at 22.5° (< 1) lowered the highlight in that plane further, from −8.3 to −9.9 %
+// of the flux at 1024× under the 45° sun (bench/results/mip.md, twelfth session).
 #include <array>
 #include <span>
 
@@ -32,11 +37,14 @@ inline constexpr int kFirstCorrectedLevel = 4;
 
 struct RadialGrid {
   static constexpr int kNodes = 12;
-  static constexpr double kOuterDeg = 30.0;
+  static constexpr double kOuterDeg = 10.0;    // the last node
+  static constexpr double kFadeEndDeg = 20.0;  // R reaches 1 here
   float inner = 0.0f;    // θ of node 1, radians (a float: the MIP file's svbrdf:radial_inner)
   float log_u1 = 0.0f;   // ln u of node 1
   float inv_step = 0.0f; // 1 / (ln u step between nodes)
   float u1 = 0.0f;
+  float log_u_outer = 0.0f;  // ln u of the last node
+  float inv_fade = 0.0f;     // 1 / (ln u(kFadeEndDeg) − ln u(kOuterDeg))
   std::array<double, kNodes> theta{};  // the nodes' θ
 
   // The grid for a pyramid whose sharpest level-0 lobe has α² = alpha2_min.

@@ -102,7 +102,7 @@ TEST(RadialCorrection, IsOneWhereTheLobesAreExact) {
   }
 }
 
-TEST(RadialCorrection, LookupReturnsTheRatiosAtTheNodesAndHoldsTheLastBeyond) {
+TEST(RadialCorrection, LookupReturnsTheRatiosAtTheNodesAndFadesToOneBeyond) {
   const RadialGrid g = RadialGrid::for_sharpest(1e-4);
   RadialCorrection c;
   for (std::size_t r = 0; r < RadialGrid::kNodes; ++r) c.ratio[r] = 1.0f + 0.01f * static_cast<float>(r * r);
@@ -116,8 +116,19 @@ TEST(RadialCorrection, LookupReturnsTheRatiosAtTheNodesAndHoldsTheLastBeyond) {
   const float v = correction_at(c, g, glm::vec3(static_cast<float>(std::sin(mid)), 0.0f, static_cast<float>(std::cos(mid))));
   EXPECT_GT(v, c.ratio[4]);
   EXPECT_LT(v, c.ratio[5]);
-  // Past the outer node: the last ratio.
-  EXPECT_FLOAT_EQ(correction_at(c, g, glm::normalize(glm::vec3(1.0f, 0.0f, 0.5f))), c.ratio[RadialGrid::kNodes - 1]);
+  // Past the last node R goes to 1 at kFadeEndDeg, linearly in ln(1 − cos θ): halfway there in ln u,
+  // halfway between the last ratio and 1; 1 from there on.
+  const auto at_deg = [&](double deg) {
+    const double t = deg * 3.14159265358979 / 180;
+    return correction_at(c, g, glm::vec3(static_cast<float>(std::sin(t)), 0.0f, static_cast<float>(std::cos(t))));
+  };
+  const double u_last = 1 - std::cos(RadialGrid::kOuterDeg * 3.14159265358979 / 180);
+  const double u_end = 1 - std::cos(RadialGrid::kFadeEndDeg * 3.14159265358979 / 180);
+  const double half_deg = std::acos(1 - std::sqrt(u_last * u_end)) * 180 / 3.14159265358979;
+  const float last = c.ratio[RadialGrid::kNodes - 1];
+  EXPECT_NEAR(at_deg(half_deg), 0.5f * (last + 1.0f), 1e-4f);
+  EXPECT_FLOAT_EQ(at_deg(RadialGrid::kFadeEndDeg + 0.5), 1.0f);
+  EXPECT_FLOAT_EQ(at_deg(60.0), 1.0f);
 }
 
 TEST(RadialCorrection, NoneWhenTurnedOff) {
