@@ -127,10 +127,11 @@ class BrdfPyramid {
     assert(level >= 1);
     const BrdfLevel& l = levels_[static_cast<std::size_t>(level)];
     const std::size_t t = static_cast<std::size_t>(j) * l.extent.width + i;
-    // The three reads a texel may need are issued together: the count, the single slot and the
-    // index into the packed lobes (the branch on the count would otherwise order them).
+    // The reads a texel may need are issued together: the count, the single slot, the index into the
+    // packed lobes (the branch on the count would otherwise order them) and the radial correction.
     prefetch_single(l, t);
     __builtin_prefetch(l.first.data() + t);
+    prefetch_correction(l, t);
     return l.texel_lobes(t);
   }
   // Asks the memory system for what texel(level, i, j) reads first, for a caller with other work to
@@ -141,6 +142,7 @@ class BrdfPyramid {
     __builtin_prefetch(l.counts.data() + t);
     prefetch_single(l, t);
     __builtin_prefetch(l.first.data() + t);
+    prefetch_correction(l, t);
   }
   // Bytes per texel of a level as the MIP file stores it (fixed slots; memory holds fewer).
   int bytes_per_texel(int level) const {
@@ -159,6 +161,12 @@ class BrdfPyramid {
   // The radial corrections of the levels from kFirstCorrectedLevel on (radial_correction.h).
   void build_corrections(const MaterialTexels& level0);
   // A Lobe may straddle two cache lines: both are asked for.
+  static void prefetch_correction(const BrdfLevel& l, std::size_t t) {
+    if (l.correction.empty()) return;
+    const char* p = reinterpret_cast<const char*>(l.correction.data() + t);
+    __builtin_prefetch(p);
+    __builtin_prefetch(p + sizeof(RadialCorrection) - 1);
+  }
   static void prefetch_single(const BrdfLevel& l, std::size_t t) {
     const char* p = reinterpret_cast<const char*>(l.single.data() + t);
     __builtin_prefetch(p);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/packing.hpp>
@@ -24,11 +25,13 @@ glm::dvec2 to_octahedron(const glm::dvec3& d) {
   return p;
 }
 
-glm::dvec3 from_octahedron(const glm::dvec2& p) {
+// The point of the octahedron |x| + |y| + |z| = 1 with coordinates p (a direction, not unit).
+glm::dvec3 octahedron_point(const glm::dvec2& p) {
   glm::dvec3 d(p.x, p.y, 1 - std::abs(p.x) - std::abs(p.y));
   if (d.z < 0) d.x = (1 - std::abs(p.y)) * sign_not_zero(p.x), d.y = (1 - std::abs(p.x)) * sign_not_zero(p.y);
-  return glm::normalize(d);
+  return d;
 }
+glm::dvec3 from_octahedron(const glm::dvec2& p) { return glm::normalize(octahedron_point(p)); }
 
 std::uint32_t pack(int qx, int qy) {
   // On the square's edges the fold makes (x, ±1) and (−x, ±1) one direction, (±1, y) and (±1, −y)
@@ -51,21 +54,26 @@ StoredNormal store_normal(const glm::vec3& normal) {
   const glm::dvec3 n(normal);
   const double len = glm::length(n);
   StoredNormal s;
-  const double deficit = std::round(std::clamp(1.0 - len, 0.0, 1.0) / kDeficitStep) * kDeficitStep;
+  // (Casts, not std::round and std::floor: those are calls on the SSE2 baseline.)
+  const double deficit = static_cast<double>(static_cast<std::int64_t>(std::clamp(1.0 - len, 0.0, 1.0) / kDeficitStep + 0.5)) * kDeficitStep;
   s.deficit = glm::unpackHalf1x16(glm::packHalf1x16(static_cast<float>(deficit)));
   if (!(len > 1e-30)) {  // no direction (and NaN): the geometric normal, length 0
     s.direction = pack(0, 0);
     return s;
   }
+  // The code nearest on the sphere among the four around the direction's coordinates; nearest in
+  // the coordinates alone can be 1.5× farther where the map stretches. Compared by cos² = (v·d)²/|v|²
+  // of the unnormalized octahedron points (all four are within a cell of d, so v·d > 0).
   const glm::dvec3 d = n / len;
   const glm::dvec2 p = to_octahedron(d) * kScale;
-  const int x0 = static_cast<int>(std::floor(p.x)), y0 = static_cast<int>(std::floor(p.y));
-  double best = -2.0;
+  const int x0 = static_cast<int>(p.x + 32768.0) - 32768, y0 = static_cast<int>(p.y + 32768.0) - 32768;  // floor
+  double best = -1.0;
   for (int dy = 0; dy <= 1; ++dy)
     for (int dx = 0; dx <= 1; ++dx) {
       const int qx = std::clamp(x0 + dx, -32767, 32767), qy = std::clamp(y0 + dy, -32767, 32767);
-      const double cosine = glm::dot(from_octahedron(glm::dvec2(qx, qy) / kScale), d);
-      if (cosine > best) best = cosine, s.direction = pack(qx, qy);
+      const glm::dvec3 v = octahedron_point(glm::dvec2(qx, qy) / kScale);
+      const double c = glm::dot(v, d), score = c > 0 ? c * c / glm::dot(v, v) : -1.0;
+      if (score > best) best = score, s.direction = pack(qx, qy);
     }
   return s;
 }
