@@ -149,6 +149,38 @@ TEST(MipFile, RefusesNewerVersionsForeignAndMissingFiles) {
   EXPECT_NE(read_error(dir / "short.exr").find("short.exr"), std::string::npos);
 }
 
+// Calls f(input, level, spec, texels, the level's pixels as floats) for each level of a MIP file.
+template <class F>
+void for_each_level(const std::filesystem::path& from, F f) {
+  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(from.string());
+  ASSERT_TRUE(in);
+  for (int level = 0; in->seek_subimage(level, 0); ++level) {
+    const OIIO::ImageSpec src = in->spec();
+    const std::size_t texels = static_cast<std::size_t>(src.width) * src.height;
+    std::vector<float> all(texels * static_cast<std::size_t>(src.nchannels));
+    ASSERT_TRUE(in->read_image(level, 0, 0, src.nchannels, OIIO::TypeDesc::FLOAT, all.data()));
+    f(*in, level, src, texels, all);
+  }
+  in->close();
+}
+
+// Writes one subimage a level from pixels in `format` (TypeUnknown: each channel in its spec's format),
+// converted to the specs' formats.
+template <class T>
+void write_levels(const std::filesystem::path& to, const std::vector<OIIO::ImageSpec>& specs,
+                  const std::vector<std::vector<T>>& pixels, OIIO::TypeDesc format) {
+  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(to.string());
+  ASSERT_TRUE(out);
+  ASSERT_TRUE(out->open(to.string(), static_cast<int>(specs.size()), specs.data()));
+  for (std::size_t level = 0; level < specs.size(); ++level) {
+    if (level > 0) {
+      ASSERT_TRUE(out->open(to.string(), specs[level], OIIO::ImageOutput::AppendSubimage));
+    }
+    ASSERT_TRUE(out->write_image(format, pixels[level].data()));
+  }
+  ASSERT_TRUE(out->close());
+}
+
 // Copies a MIP file level by level, in every channel's own format or (all_float) every channel as a
 // float — what `oiiotool -a -d float` makes of it — and without the attribute `drop` (if named).
 void copy_mip_file(const std::filesystem::path& from, const std::filesystem::path& to, bool all_float, const char* drop) {
@@ -167,16 +199,7 @@ void copy_mip_file(const std::filesystem::path& from, const std::filesystem::pat
     pixels.push_back(std::move(px));
   }
   in->close();
-  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(to.string());
-  ASSERT_TRUE(out);
-  ASSERT_TRUE(out->open(to.string(), static_cast<int>(specs.size()), specs.data()));
-  for (std::size_t level = 0; level < specs.size(); ++level) {
-    if (level > 0) {
-      ASSERT_TRUE(out->open(to.string(), specs[level], OIIO::ImageOutput::AppendSubimage));
-    }
-    ASSERT_TRUE(out->write_image(all_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeUnknown, pixels[level].data()));
-  }
-  ASSERT_TRUE(out->close());
+  write_levels(to, specs, pixels, all_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeUnknown);
 }
 
 // A file whose normals' codes were converted to floats (they keep 24 of their 32 bits) is refused, not
@@ -205,18 +228,13 @@ TEST(MipFile, RefusesCodesConvertedToFloatAndCorrectionsWithoutTheirGrid) {
 // N.Z) where version 6 has an octahedral code and a length deficit (stored_normal.h), no radial
 // corrections.
 void write_as_version5(const std::filesystem::path& from, const std::filesystem::path& to) {
-  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(from.string());
-  ASSERT_TRUE(in);
   std::vector<OIIO::ImageSpec> specs;
   std::vector<std::vector<float>> pixels;
-  for (int level = 0; in->seek_subimage(level, 0); ++level) {
-    const OIIO::ImageSpec& src = in->spec();
-    const std::size_t texels = static_cast<std::size_t>(src.width) * src.height;
-    std::vector<float> all(texels * static_cast<std::size_t>(src.nchannels));
-    ASSERT_TRUE(in->read_image(level, 0, 0, src.nchannels, OIIO::TypeDesc::FLOAT, all.data()));
+  for_each_level(from, [&](OIIO::ImageInput& in, int level, const OIIO::ImageSpec& src, std::size_t texels,
+                           const std::vector<float>& all) {
     // The codes, read as what they are (a float holds 24 bits of one).
     std::vector<std::uint32_t> codes(texels * static_cast<std::size_t>(src.nchannels));
-    ASSERT_TRUE(in->read_image(level, 0, 0, src.nchannels, OIIO::TypeDesc::UINT, codes.data()));
+    ASSERT_TRUE(in.read_image(level, 0, 0, src.nchannels, OIIO::TypeDesc::UINT, codes.data()));
     OIIO::ImageSpec dst = src;
     dst.channelnames.clear();
     dst.channelformats.clear();
@@ -266,18 +284,8 @@ void write_as_version5(const std::filesystem::path& from, const std::filesystem:
       }
     specs.push_back(dst);
     pixels.push_back(std::move(kept));
-  }
-  in->close();
-  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(to.string());
-  ASSERT_TRUE(out);
-  ASSERT_TRUE(out->open(to.string(), static_cast<int>(specs.size()), specs.data()));
-  for (std::size_t level = 0; level < specs.size(); ++level) {
-    if (level > 0) {
-      ASSERT_TRUE(out->open(to.string(), specs[level], OIIO::ImageOutput::AppendSubimage));
-    }
-    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels[level].data()));
-  }
-  ASSERT_TRUE(out->close());
+  });
+  write_levels(to, specs, pixels, OIIO::TypeDesc::FLOAT);
 }
 
 // Rewrites a version-5 MIP file as an older version wrote it: version 4 had no atoms (a mixture's shape
@@ -287,15 +295,10 @@ void write_as_version5(const std::filesystem::path& from, const std::filesystem:
 // for a two-point mixture, else −μ. A mixture's atom has no place in the older versions and is dropped
 // (they read it as the band alone, β = 1).
 void write_as_older_version(const std::filesystem::path& from, const std::filesystem::path& to, int version) {
-  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(from.string());
-  ASSERT_TRUE(in);
   std::vector<OIIO::ImageSpec> specs;
   std::vector<std::vector<float>> pixels;
-  for (int level = 0; in->seek_subimage(level, 0); ++level) {
-    const OIIO::ImageSpec& src = in->spec();
-    const std::size_t texels = static_cast<std::size_t>(src.width) * src.height;
-    std::vector<float> all(texels * static_cast<std::size_t>(src.nchannels));
-    ASSERT_TRUE(in->read_image(level, 0, 0, src.nchannels, OIIO::TypeDesc::FLOAT, all.data()));
+  for_each_level(from, [&](OIIO::ImageInput&, int, const OIIO::ImageSpec& src, std::size_t texels,
+                           const std::vector<float>& all) {
     OIIO::ImageSpec dst = src;
     dst.channelnames.clear();
     dst.channelformats.clear();
@@ -387,18 +390,8 @@ void write_as_older_version(const std::filesystem::path& from, const std::filesy
       }
     specs.push_back(dst);
     pixels.push_back(std::move(kept));
-  }
-  in->close();
-  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(to.string());
-  ASSERT_TRUE(out);
-  ASSERT_TRUE(out->open(to.string(), static_cast<int>(specs.size()), specs.data()));
-  for (std::size_t level = 0; level < specs.size(); ++level) {
-    if (level > 0) {
-      ASSERT_TRUE(out->open(to.string(), specs[level], OIIO::ImageOutput::AppendSubimage));
-    }
-    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels[level].data()));
-  }
-  ASSERT_TRUE(out->close());
+  });
+  write_levels(to, specs, pixels, OIIO::TypeDesc::FLOAT);
 }
 
 // Version-5 files read with their normals as stored and no radial corrections; version-4, -3 and -2

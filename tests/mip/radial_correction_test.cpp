@@ -14,8 +14,9 @@
 namespace svbrdf {
 namespace {
 
-// Σ over a level's texels of area share × (what the texel reflects at the nodes after correction).
-RadialProfile corrected_level_profile(const MipData& mip, int level) {
+// Σ over a level's texels of area share × its lobes' profile × ratio(texel, node).
+template <class Ratio>
+RadialProfile area_weighted_profile(const MipData& mip, int level, Ratio ratio) {
   const BrdfPyramid& p = mip.brdf;
   const Extent e = p.extent(level), e0 = p.level0();
   RadialProfile out{};
@@ -25,30 +26,23 @@ RadialProfile corrected_level_profile(const MipData& mip, int level) {
                            (double(e0.width) * e0.height);
       RadialProfile own{};
       add_to_profile(p.radial_grid(), p.texel(level, i, j), own);
-      const RadialCorrection* c = p.correction(level, i, j);
-      EXPECT_NE(c, nullptr);
-      if (!c) continue;
-      for (std::size_t r = 0; r < RadialGrid::kNodes; ++r) out[r] += share * c->ratio[r] * own[r];
+      for (std::size_t r = 0; r < RadialGrid::kNodes; ++r) out[r] += share * ratio(i, j, r) * own[r];
     }
   return out;
 }
 
-// Σ over the level below the first corrected one of area share × its lobes' profile: the union the
-// correction starts from.
+// What a level reflects at the nodes after correction.
+RadialProfile corrected_level_profile(const MipData& mip, int level) {
+  return area_weighted_profile(mip, level, [&](int i, int j, std::size_t r) {
+    const RadialCorrection* c = mip.brdf.correction(level, i, j);
+    EXPECT_NE(c, nullptr);
+    return c ? double(c->ratio[r]) : 0.0;
+  });
+}
+
+// The level below the first corrected one, uncorrected: the union the correction starts from.
 RadialProfile union_profile(const MipData& mip) {
-  const BrdfPyramid& p = mip.brdf;
-  const int level = kFirstCorrectedLevel - 1;
-  const Extent e = p.extent(level), e0 = p.level0();
-  RadialProfile out{};
-  for (int j = 0; j < e.height; ++j)
-    for (int i = 0; i < e.width; ++i) {
-      const double share = double(level0_span(e0.width, level, i).size()) * level0_span(e0.height, level, j).size() /
-                           (double(e0.width) * e0.height);
-      RadialProfile own{};
-      add_to_profile(p.radial_grid(), p.texel(level, i, j), own);
-      for (std::size_t r = 0; r < RadialGrid::kNodes; ++r) out[r] += share * own[r];
-    }
-  return out;
+  return area_weighted_profile(mip, kFirstCorrectedLevel - 1, [](int, int, std::size_t) { return 1.0; });
 }
 
 TEST(RadialCorrection, EveryCorrectedLevelReflectsItsUnionsProfile) {
