@@ -97,8 +97,8 @@ float lobe_skirt_code(const Lobe& lobe);
 void set_lobe_skirt_code(Lobe& lobe, float code);
 
 // Rounds a lobe to what the MIP file stores: weight, colors, α (the square root of alpha2), shape code
-// and skirt as half floats, the normal as stored_normal.h codes it. The BRDF pyramid holds its lobes so rounded,
-// which is what makes the file's round trip bit-identical and what its figures measure.
+// and skirt as half floats, the normal as stored_normal.h codes it. The BRDF pyramid holds its lobes so
+// rounded, which is what makes the file's round trip bit-identical and what its figures measure.
 void round_to_stored(Lobe& lobe);
 
 // Bytes a stored lobe takes: the normal's direction as a 32-bit code (stored_normal.h); weight, ρ (3),
@@ -160,13 +160,14 @@ class BrdfPyramid {
  private:
   // The radial corrections of the levels from kFirstCorrectedLevel on (radial_correction.h).
   void build_corrections(const MaterialTexels& level0);
-  // A Lobe may straddle two cache lines: both are asked for.
+  // A texel's correction (48 B) may straddle two cache lines: both are asked for.
   static void prefetch_correction(const BrdfLevel& l, std::size_t t) {
     if (l.correction.empty()) return;
     const char* p = reinterpret_cast<const char*>(l.correction.data() + t);
     __builtin_prefetch(p);
     __builtin_prefetch(p + sizeof(RadialCorrection) - 1);
   }
+  // A Lobe may straddle two cache lines: both are asked for.
   static void prefetch_single(const BrdfLevel& l, std::size_t t) {
     const char* p = reinterpret_cast<const char*>(l.single.data() + t);
     __builtin_prefetch(p);

@@ -56,11 +56,11 @@ glm::dvec3 mode_eval(const MipData& mip, MipMode mode, int level, int i, int j, 
 // The same over the metric's 4225 pairs.
 BrdfTable mode_table(const MipData& mip, MipMode mode, int level, int i, int j);
 
-// Bytes per texel a mode stores at a level (exact: the level-0 parameters it reads, per covered texel).
 // acc += weight · the BRDF pyramid's texel (level, i, j) over the direction grid's pairs, in float as
 // the renderer evaluates it, with its radial correction (radial_correction.h).
 void accumulate_brdf_texel(const MipData& mip, int level, int i, int j, double weight, std::span<glm::dvec3> acc);
 
+// Bytes per texel a mode stores at a level (exact: the level-0 parameters it reads, per covered texel).
 int mode_bytes_per_texel(const MipData& mip, MipMode mode, int level);
 
 }  // namespace svbrdf

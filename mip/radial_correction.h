@@ -1,5 +1,5 @@
 #pragma once
-// A coarse texel's radial correction (bench/results/mip.md, eleventh session).
+// A coarse texel's radial correction (bench/results/mip.md, eleventh and twelfth sessions).
 //
 // The reduction (lobe_reduction.h) fits each merge by moments; its errors are small per merge but
 // compound over the levels, and far away, where a pixel sees a handful of coarse texels, they show as
@@ -7,9 +7,8 @@
 // at 1024×). They live mostly in the radial profile of the texel's D about the geometric normal, and
 // that profile averages linearly: the union's profile is the area-weighted mean of its children's.
 // So from level kFirstCorrectedLevel on, the build carries the true profile P(θ) = Σ w·F0·⟨D⟩(θ)
-// (F0 the mean of the lobe's three: the correction is of reflected light, and a metal's clean and oily
-// texels differ in it)
-// (azimuthal_mean.h) up the pyramid exactly — at the first corrected level from its children's lobes,
+// (⟨D⟩ the azimuthal mean, azimuthal_mean.h; F0 the mean of the lobe's three, since the correction is
+// of reflected light and a metal's clean and oily texels differ in it) up the pyramid exactly — at the first corrected level from its children's lobes,
 // above it as the mean of the children's true profiles — and each texel keeps the ratio
 //   R(θ) = P_true(θ) / P_own(θ)
 // of the true profile to its own lobes' at kNodes nodes; the specular term of each of its lobes is
@@ -61,7 +60,7 @@ struct RadialCorrection {
 // Bytes a texel's correction takes in the MIP file.
 inline constexpr int kBytesPerCorrection = RadialGrid::kNodes * 2;
 
-// profile += Σ over lobes of weight·⟨D⟩ at the grid's nodes.
+// profile += Σ over lobes of weight·F0·⟨D⟩ at the grid's nodes.
 void add_to_profile(const RadialGrid& grid, std::span<const Lobe> lobes, RadialProfile& profile);
 // The correction that takes lobes' own profile to `truth`.
 RadialCorrection correction_to(const RadialGrid& grid, const RadialProfile& truth, std::span<const Lobe> lobes);

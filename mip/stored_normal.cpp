@@ -54,13 +54,14 @@ StoredNormal store_normal(const glm::vec3& normal) {
   const glm::dvec3 n(normal);
   const double len = glm::length(n);
   StoredNormal s;
+  if (!(len > 1e-30)) {  // no direction (or not a number): length 0 along the geometric normal
+    s.direction = pack(0, 0);
+    s.deficit = 1.0f;
+    return s;
+  }
   // (Casts, not std::round and std::floor: those are calls on the SSE2 baseline.)
   const double deficit = static_cast<double>(static_cast<std::int64_t>(std::clamp(1.0 - len, 0.0, 1.0) / kDeficitStep + 0.5)) * kDeficitStep;
   s.deficit = glm::unpackHalf1x16(glm::packHalf1x16(static_cast<float>(deficit)));
-  if (!(len > 1e-30)) {  // no direction (and NaN): the geometric normal, length 0
-    s.direction = pack(0, 0);
-    return s;
-  }
   // The code nearest on the sphere among the four around the direction's coordinates; nearest in
   // the coordinates alone can be 1.5× farther where the map stretches. Compared by cos² = (v·d)²/|v|²
   // of the unnormalized octahedron points (all four are within a cell of d, so v·d > 0).
