@@ -11,6 +11,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "appearance/gltf.h"
 #include "appearance/rng.h"
 #include "base/error.h"
 #include "mip/direction_grid.h"
@@ -240,7 +241,7 @@ BrdfPyramid BrdfPyramid::build(const MaterialTexels& m, const BrdfBuildOptions& 
 void BrdfPyramid::build_corrections(const MaterialTexels& m) {
   float roughness_min = 1.0f;
   for (float r : m.roughness) roughness_min = std::min(roughness_min, r);
-  const double alpha_min = std::max(double(roughness_min) * roughness_min, 1e-3);  // lobe_from_texel's α
+  const double alpha_min = gltf_alpha(roughness_min);  // α grows with roughness
   grid_ = RadialGrid::for_sharpest(alpha_min * alpha_min);
   // The true profiles of the level below, carried up exactly (area-weighted means of the children's).
   std::vector<RadialProfile> below;

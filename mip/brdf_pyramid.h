@@ -149,7 +149,8 @@ class BrdfPyramid {
     const BrdfLevel& l = this->level(level);
     return l.slots * kBytesPerLobe + (l.correction.empty() ? 0 : kBytesPerCorrection);
   }
-  // The radial correction of texel (i, j) of `level`, or null (below kFirstCorrectedLevel, or none built).
+  // The radial correction of texel (i, j) of `level` ≥ 0, or null (below kFirstCorrectedLevel, level 0
+  // included, or none built).
   const RadialCorrection* correction(int level, int i, int j) const {
     const BrdfLevel& l = levels_[static_cast<std::size_t>(level)];
     if (l.correction.empty()) return nullptr;

@@ -56,7 +56,7 @@ ParamBaseline baseline_of(MipMode m) {
 }  // namespace
 
 void accumulate_brdf_texel(const MipData& mip, int level, int i, int j, double weight, std::span<glm::dvec3> acc) {
-  const RadialCorrection* c = level >= 1 ? mip.brdf.correction(level, i, j) : nullptr;
+  const RadialCorrection* c = mip.brdf.correction(level, i, j);
   const float* scales = nullptr;
   static thread_local std::vector<float> per_pair;
   if (c) {
@@ -77,7 +77,7 @@ glm::dvec3 mode_eval(const MipData& mip, MipMode mode, int level, int i, int j, 
   if (mode == MipMode::brdf) {
     glm::dvec3 sum(0);
     Lobe scratch;
-    const RadialCorrection* c = level >= 1 ? mip.brdf.correction(level, i, j) : nullptr;
+    const RadialCorrection* c = mip.brdf.correction(level, i, j);
     const float k = c ? correction_at(*c, mip.brdf.radial_grid(), p.h) : 1.0f;
     for (const Lobe& l : brdf_texel(mip, level, i, j, scratch)) sum += glm::dvec3(lobe_eval<float>(l, lobe_shape<float>(l), p, k));
     return sum;

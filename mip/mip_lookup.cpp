@@ -161,7 +161,7 @@ LobeMixtureBsdf lookup_brdf(const MipData& mip, const Footprint& footprint, floa
   const FilterTap t = select_tap(mip.brdf.level0(), mip.brdf.levels(), footprint, u, max_probes);
   Lobe scratch;
   b.assign(brdf_texel(mip, t.level, t.i, t.j, scratch));
-  if (t.level >= 1) b.set_correction(mip.brdf.correction(t.level, t.i, t.j), &mip.brdf.radial_grid());
+  b.set_correction(mip.brdf.correction(t.level, t.i, t.j), &mip.brdf.radial_grid());
   return b;
 }
 
