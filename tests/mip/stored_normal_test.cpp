@@ -55,6 +55,16 @@ TEST(StoredNormal, EncodingADecodedNormalGivesItsCodeBack) {
     ASSERT_EQ(again.direction, s.direction) << k;
     ASSERT_EQ(again.deficit, s.deficit) << k;
   }
+  // Normals of the lower hemisphere just off the planes x = 0 and y = 0: the folded square's edges,
+  // where the four candidate codes straddle the fold.
+  std::normal_distribution<double> g;
+  for (int k = 0; k < 200000; ++k) {
+    const double tiny = 1e-5 * g(rng), a = g(rng), b = -std::abs(g(rng));
+    const glm::dvec3 d = k % 2 ? glm::dvec3(tiny, a, b) : glm::dvec3(a, tiny, b);
+    const StoredNormal s = store_normal(glm::vec3(glm::normalize(d)));
+    const StoredNormal again = store_normal(load_normal(s));
+    ASSERT_EQ(again.direction, s.direction) << d.x << " " << d.y << " " << d.z;
+  }
   std::uniform_int_distribution<int> q(-32767, 32767);
   for (int k = 0; k < 20000; ++k) {
     const int a = q(rng), edge = (k % 2 ? 32767 : -32767);
