@@ -12,10 +12,19 @@
 // terms. The Beckmann share of a spread core has no closed form: the midpoint rule on the arc of φ
 // where lobe_d does not cut it (tan²/b² < 60). Where the circle reaches the lobe's horizon (c ≤ 0 for
 // some φ) or α² ≥ 1 (no real factors), the trapezoid rule over φ.
+#include <array>
+
 #include "mip/lobe.h"
 
 namespace svbrdf {
 
 double azimuthal_mean_d(const LobeShape<double>& shape, double theta);
+// The n-th Fourier coefficient of D over the azimuth ψ measured from the lobe's tilt, ⟨D cos nψ⟩ (D is
+// even in ψ, so its sine coefficients vanish); n = 0 is ⟨D⟩. The same closed forms: the coefficients
+// of 1/(p + q cos ψ) are ρⁿ/√(p² − q²) with ρ = (√(p² − q²) − p)/q, and those of its square −∂/∂p of them.
+// 0 ≤ n ≤ 2.
+double azimuthal_harmonic_d(const LobeShape<double>& shape, double theta, int n);
+// n = 0, 1, 2 at once (they share their roots).
+std::array<double, 3> azimuthal_fourier_d(const LobeShape<double>& shape, double theta);
 
 }  // namespace svbrdf

@@ -1,4 +1,5 @@
-// azimuthal_mean_d against a brute-force mean over azimuth of lobe_d at real half vectors.
+// azimuthal_mean_d and azimuthal_harmonic_d against brute-force means over azimuth of lobe_d at real
+// half vectors.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -23,13 +24,15 @@ Lobe tilted(double tilt_deg, double azimuth_deg = 30.0) {
 
 // The mean of lobe_d over n azimuths of h at polar angle θ about z (the midpoint rule, which is
 // spectrally accurate for a smooth periodic integrand once the points resolve the lobe).
-double brute_force(const LobeShape<double>& s, double theta, int n = 40000) {
+// With harmonic n > 0, the mean of lobe_d·cos n(φ − φ₀), φ₀ the lobe's own azimuth.
+double brute_force(const LobeShape<double>& s, double theta, int n = 40000, int harmonic = 0) {
+  const double phi0 = std::atan2(s.n.y, s.n.x);
   double sum = 0;
   for (int i = 0; i < n; ++i) {
     const double phi = 2 * kPi * (i + 0.5) / n;
     const glm::dvec3 h(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
     const double c = glm::dot(s.n, h);
-    if (c > 0) sum += lobe_d(s, c, glm::cross(s.n, h));
+    if (c > 0) sum += lobe_d(s, c, glm::cross(s.n, h)) * std::cos(harmonic * (phi - phi0));
   }
   return sum / n;
 }
@@ -73,6 +76,22 @@ TEST(AzimuthalMean, MatchesTheMeanOverAzimuthOfEveryLobeKind) {
         const double tol = theta_deg + tilt >= 89.0 ? 1e-3 : k.tolerance;
         EXPECT_NEAR(got, want, tol * scale) << k.name << ", tilt " << tilt << "°, θ " << theta_deg << "°";
       }
+    }
+}
+
+TEST(AzimuthalMean, HarmonicsMatchTheFourierCoefficientsOverAzimuthOfEveryLobeKind) {
+  for (double tilt : {1.0, 5.0, 20.0})
+    for (const Kind& k : kinds(tilt)) {
+      const LobeShape<double> s = lobe_shape<double>(k.lobe, false);
+      for (int n : {1, 2})
+        for (double theta_deg : {0.5, 1.0, 4.0, 5.0, 12.0, 30.0, 60.0}) {
+          const double theta = theta_deg * kDeg;
+          const double want = brute_force(s, theta, 40000, n), got = azimuthal_harmonic_d(s, theta, n);
+          // Relative to the mean (a coefficient is at most it), or a millionth of the peak far out.
+          const double scale = std::max(brute_force(s, theta), 1e-6 * lobe_d(s, 1.0, glm::dvec3(0)));
+          const double tol = theta_deg + tilt >= 89.0 ? 1e-3 : k.tolerance;
+          EXPECT_NEAR(got, want, tol * scale) << k.name << ", n " << n << ", tilt " << tilt << "°, θ " << theta_deg << "°";
+        }
     }
 }
 
