@@ -245,10 +245,12 @@ void BrdfPyramid::build_corrections(const MaterialTexels& m) {
   grid_ = RadialGrid::for_sharpest(alpha_min * alpha_min);
   // The true profiles of the level below, carried up exactly (area-weighted means of the children's).
   std::vector<RadialProfile> below;
+  std::vector<AzimuthalHarmonics> below_harmonics;
   for (int level = kFirstCorrectedLevel; level < levels(); ++level) {
     const Extent e = extent(level);
     const std::size_t texels = static_cast<std::size_t>(e.width) * e.height;
     std::vector<RadialProfile> truth(texels, RadialProfile{});
+    std::vector<AzimuthalHarmonics> harmonics(texels, AzimuthalHarmonics{});
     BrdfLevel& out = levels_[static_cast<std::size_t>(level)];
     out.correction.assign(texels, RadialCorrection{});
     tbb::parallel_for(0, e.height, [&](int j) {
@@ -257,7 +259,8 @@ void BrdfPyramid::build_corrections(const MaterialTexels& m) {
         const std::size_t t = static_cast<std::size_t>(j) * e.width + i;
         if (level == kFirstCorrectedLevel) {
           const int cnt = gather_children(level0_, level, i, j, levels_[static_cast<std::size_t>(level - 1)], m, buf);
-          add_to_profile(grid_, std::span<const Lobe>(buf.data(), static_cast<std::size_t>(cnt)), truth[t]);
+          const std::span<const Lobe> children(buf.data(), static_cast<std::size_t>(cnt));
+          add_to_profile(grid_, children, truth[t], &harmonics[t]);
         } else {
           const Span cx = child_span(level0_.width, level, i), cy = child_span(level0_.height, level, j);
           const double total = static_cast<double>(level0_span(level0_.width, level, i).size()) *
@@ -267,14 +270,20 @@ void BrdfPyramid::build_corrections(const MaterialTexels& m) {
             for (int x = cx.begin; x < cx.end; ++x) {
               const double share = static_cast<double>(level0_span(level0_.width, level - 1, x).size()) *
                                    level0_span(level0_.height, level - 1, y).size() / total;
-              const RadialProfile& c = below[static_cast<std::size_t>(y) * fine_width + x];
-              for (std::size_t r = 0; r < RadialGrid::kNodes; ++r) truth[t][r] += share * c[r];
+              const std::size_t child = static_cast<std::size_t>(y) * fine_width + x;
+              const RadialProfile& c = below[child];
+              const AzimuthalHarmonics& ch = below_harmonics[child];
+              for (std::size_t r = 0; r < RadialGrid::kNodes; ++r) {
+                truth[t][r] += share * c[r];
+                for (std::size_t k = 0; k < 4; ++k) harmonics[t][r][k] += share * ch[r][k];
+              }
             }
         }
-        out.correction[t] = correction_to(grid_, truth[t], out.texel_lobes(t));
+        out.correction[t] = correction_to(grid_, truth[t], harmonics[t], out.texel_lobes(t));
       }
     });
     below = std::move(truth);
+    below_harmonics = std::move(harmonics);
   }
 }
 

@@ -67,6 +67,8 @@ std::vector<LobeChannel> lobe_channels(int version) {
 }
 
 constexpr const char* kRadialInner = "svbrdf:radial_inner";
+constexpr const char* kRadialOuter = "svbrdf:radial_outer";
+constexpr float kVersion6Outer = 10.0f;  // version 6's grid ended at 10° (it had no svbrdf:radial_outer)
 std::string radial_channel(int node) { return "radial.R" + std::to_string(node); }
 
 std::string where(const fs::path& p) { return p.string(); }
@@ -200,7 +202,10 @@ void write_mip_file(const fs::path& path, const MipData& mip) {
       s.attribute("svbrdf:level", level);
       s.attribute("svbrdf:max_lobes", mip.brdf.max_lobes());
       s.attribute("svbrdf:slots", slots);
-      if (corrected) s.attribute(kRadialInner, mip.brdf.radial_grid().inner);
+      if (corrected) {
+        s.attribute(kRadialInner, mip.brdf.radial_grid().inner);
+        s.attribute(kRadialOuter, mip.brdf.radial_grid().outer_deg);
+      }
     }
     if (!out->open(tmp.string(), levels, specs.data()))
       throw input_error(where(path), "cannot write: " + out->geterror());
@@ -267,6 +272,10 @@ MipData read_mip_file(const fs::path& path) {
   if (first.find_attribute(kRadialInner) && !(radial_inner > 0.0f && radial_inner < 0.5f))
     throw input_error(where(path), std::string(kRadialInner) + " is " + std::to_string(radial_inner) +
                                        ", not an angle in (0, 0.5) radians");
+  const float radial_outer = version >= 7 ? first.get_float_attribute(kRadialOuter, 0.0f) : kVersion6Outer;
+  if (radial_inner > 0.0f && !(radial_outer > radial_inner * 57.2957795f && radial_outer <= 45.0f))
+    throw input_error(where(path), std::string(kRadialOuter) + " is " + std::to_string(radial_outer) +
+                                       ", not an angle in degrees between " + kRadialInner + " and 45");
   const std::vector<LobeChannel> lobe_layout = lobe_channels(version);
   MipData mip;
   std::vector<std::vector<ParamTexel>> param_levels;
@@ -385,7 +394,7 @@ MipData read_mip_file(const fs::path& path) {
     throw input_error(where(path), "has more subimages than the " + std::to_string(levels) + " levels of its level 0");
   mip.param = ParamPyramid::from_levels(level0, std::move(param_levels));
   mip.brdf = BrdfPyramid::from_levels(mip.level0, max_lobes, std::move(coarse),
-                                      radial_inner > 0.0f ? RadialGrid::with_inner(radial_inner) : RadialGrid{});
+                                      radial_inner > 0.0f ? RadialGrid::with_inner(radial_inner, radial_outer) : RadialGrid{});
   return mip;
 }
 

@@ -29,14 +29,17 @@
 //                               otherwise (brdf_pyramid.h, lobe_skirt_code)             half
 // and, for L ≥ kFirstCorrectedLevel (4), 24 bytes (radial_correction.h):
 //   radial.R0 .. radial.R11     the texel's radial correction: the ratio of its true radial
-//                               profile of reflected light to its lobes' at the 12 nodes of
-//                               the grid svbrdf:radial_inner defines                      half
+//                               profile of reflected light to its lobes' (gated beyond 10°)
+//                               at the 12 nodes of the grid svbrdf:radial_inner and
+//                               svbrdf:radial_outer define                                half
 // Level 0's BRDF pyramid is its parameters (one lobe per texel) and is not stored twice.
 // Attributes on every subimage: svbrdf:mip_version (int, kMipFileVersion), svbrdf:level (int),
 // svbrdf:max_lobes (int, the --lobes the file was built with), svbrdf:slots (int, S_L), and, where any
-// level has radial channels, svbrdf:radial_inner (float, radians: θ of the grid's node 1).
+// level has radial channels, svbrdf:radial_inner (float, radians: θ of the grid's node 1) and
+// svbrdf:radial_outer (float, degrees: θ of its last node, RadialGrid::kOuterDeg).
 // A file whose version is newer than kMipFileVersion is refused: its layout may mean other things.
-// Older versions still read: version 5 stored a lobe's normal as three floats lobeK.N.X/Y/Z (32 bytes
+// Older versions still read: version 6 is version 7 without svbrdf:radial_outer, its grid's last node
+// at 10° (and no gate: the same ratios read on that grid); version 5 stored a lobe's normal as three floats lobeK.N.X/Y/Z (32 bytes
 // a lobe) and had no radial corrections; version 4's mixtures had no atom (β = 1; its skirt channel
 // held 1 for them); version 3 stored lobeK.alpha2 (α², float) in place of lobeK.alpha and lacks
 // lobeK.skirt (c = 1); version 2 stored α² so too and the shape as lobeK.alpha2_hi (float, 0: not a
@@ -48,7 +51,7 @@
 
 namespace svbrdf {
 
-inline constexpr int kMipFileVersion = 6;
+inline constexpr int kMipFileVersion = 7;
 
 // Throws svbrdf::Error naming the file when it cannot be written.
 void write_mip_file(const std::filesystem::path& path, const MipData& mip);

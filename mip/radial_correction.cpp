@@ -15,6 +15,10 @@ constexpr double kPi = 3.14159265358979323846;
 // θ of node 1 against the sharpest lobe's α: inside its core, where a sharp lobe's profile turns.
 constexpr double kInnerPerAlpha = 1.0;
 constexpr double kInnerMin = 0.03 * kPi / 180, kInnerMax = 1.0 * kPi / 180;
+// The gate's amplitudes: full correction below kGateOn, none from kGateOff.
+constexpr double kGateOn = 0.05, kGateOff = 0.15;
+
+bool gated(const RadialGrid& grid, std::size_t r) { return grid.theta[r] > RadialGrid::kGateFromDeg * kPi / 180; }
 
 float to_half(float x) { return glm::unpackHalf1x16(glm::packHalf1x16(x)); }
 }  // namespace
@@ -23,16 +27,17 @@ RadialGrid RadialGrid::for_sharpest(double alpha2_min) {
   return with_inner(static_cast<float>(std::clamp(kInnerPerAlpha * std::sqrt(std::max(alpha2_min, 0.0)), kInnerMin, kInnerMax)));
 }
 
-RadialGrid RadialGrid::with_inner(float inner) {
+RadialGrid RadialGrid::with_inner(float inner, float outer_deg) {
   RadialGrid g;
   g.inner = inner;
+  g.outer_deg = outer_deg;
   const double half_inner = std::sin(0.5 * double(inner));
-  const double u1 = 2.0 * half_inner * half_inner, un = 1.0 - std::cos(kOuterDeg * kPi / 180);  // 1 − cos, precise
+  const double u1 = 2.0 * half_inner * half_inner, un = 1.0 - std::cos(outer_deg * kPi / 180);  // 1 − cos, precise
   const double step = std::log(un / u1) / (kNodes - 2);
   g.u1 = static_cast<float>(u1);
   g.log_u1 = static_cast<float>(std::log(u1));
   g.inv_step = static_cast<float>(1.0 / step);
-  const double u_fade = 1.0 - std::cos(kFadeEndDeg * kPi / 180);
+  const double u_fade = 1.0 - std::cos(kFadePerOuter * outer_deg * kPi / 180);
   g.log_u_outer = static_cast<float>(std::log(un));
   g.inv_fade = static_cast<float>(1.0 / std::log(u_fade / un));
   g.theta[0] = 0.0;
@@ -40,23 +45,60 @@ RadialGrid RadialGrid::with_inner(float inner) {
   return g;
 }
 
-void add_to_profile(const RadialGrid& grid, std::span<const Lobe> lobes, RadialProfile& profile) {
+void add_to_profile(const RadialGrid& grid, std::span<const Lobe> lobes, RadialProfile& profile, AzimuthalHarmonics* harmonics) {
   for (const Lobe& l : lobes) {
     if (!(l.weight > 0)) continue;
     const LobeShape<double> s = lobe_shape<double>(l, false);
     // Weighted by the lobe's specular reflectance: R corrects the light the lobes reflect, and lobes of
     // different F0 (a metal's clean and its oily texels) carry different shares of it at each angle.
-    const double f0 = (double(l.f0.x) + l.f0.y + l.f0.z) / 3.0;
-    for (std::size_t r = 0; r < RadialGrid::kNodes; ++r) profile[r] += double(l.weight) * f0 * azimuthal_mean_d(s, grid.theta[r]);
+    const double w = double(l.weight) * (double(l.f0.x) + l.f0.y + l.f0.z) / 3.0;
+    // A lobe's D is even about its own azimuth φ₀, so ⟨D cos n(φ − φ₀)⟩ = Cₙ is all it has:
+    // ⟨D cos nφ⟩ = Cₙ cos nφ₀ and ⟨D sin nφ⟩ = Cₙ sin nφ₀.
+    const double rxy = std::hypot(s.n.x, s.n.y);
+    const double c1 = rxy > 0 ? s.n.x / rxy : 1.0, s1 = rxy > 0 ? s.n.y / rxy : 0.0;
+    const double c2 = c1 * c1 - s1 * s1, s2 = 2 * c1 * s1;
+    for (std::size_t r = 0; r < RadialGrid::kNodes; ++r) {
+      if (!harmonics || !gated(grid, r)) {
+        profile[r] += w * azimuthal_mean_d(s, grid.theta[r]);
+        continue;
+      }
+      const std::array<double, 3> f = azimuthal_fourier_d(s, grid.theta[r]);
+      profile[r] += w * f[0];
+      (*harmonics)[r][0] += w * f[1] * c1;
+      (*harmonics)[r][1] += w * f[1] * s1;
+      (*harmonics)[r][2] += w * f[2] * c2;
+      (*harmonics)[r][3] += w * f[2] * s2;
+    }
   }
 }
 
-RadialCorrection correction_to(const RadialGrid& grid, const RadialProfile& truth, std::span<const Lobe> lobes) {
+double correction_gate(const std::array<double, 4>& t, const std::array<double, 4>& o) {
+  const double amplitude = 2 * (std::hypot(t[0] - o[0], t[1] - o[1]) + std::hypot(t[2] - o[2], t[3] - o[3]));
+  return std::clamp((kGateOff - amplitude) / (kGateOff - kGateOn), 0.0, 1.0);
+}
+
+RadialCorrection correction_to(const RadialGrid& grid, const RadialProfile& truth, const AzimuthalHarmonics& truth_harmonics,
+                               std::span<const Lobe> lobes) {
   RadialProfile own{};
-  add_to_profile(grid, lobes, own);
+  AzimuthalHarmonics own_harmonics{};
+  add_to_profile(grid, lobes, own, &own_harmonics);
   RadialCorrection c;
-  for (std::size_t r = 0; r < RadialGrid::kNodes; ++r)
-    c.ratio[r] = to_half(own[r] > 0 && truth[r] > 0 ? static_cast<float>(truth[r] / own[r]) : 1.0f);
+  // The gate only closes outward: a texel whose lobes miss the truth's azimuthal shape at one node get
+  // no more correction farther out, where the shapes spread wider (the tile roof's slopes: its ratio
+  // returns to an even shape at 30° while the render at 22.5° needs more than any radial ratio gives).
+  double gate = 1.0;
+  for (std::size_t r = 0; r < RadialGrid::kNodes; ++r) {
+    if (!(own[r] > 0 && truth[r] > 0)) {
+      c.ratio[r] = 1.0f;
+      continue;
+    }
+    if (gated(grid, r)) {
+      std::array<double, 4> t{}, o{};
+      for (std::size_t k = 0; k < 4; ++k) t[k] = truth_harmonics[r][k] / truth[r], o[k] = own_harmonics[r][k] / own[r];
+      gate = std::min(gate, correction_gate(t, o));
+    }
+    c.ratio[r] = to_half(static_cast<float>(1 + (truth[r] / own[r] - 1) * (gated(grid, r) ? gate : 1.0)));
+  }
   return c;
 }
 

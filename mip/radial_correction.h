@@ -17,14 +17,23 @@
 // corrects nothing the lobes get right. Sampling keeps to the lobes (eval carries R, so the estimate
 // f/pdf stays unbiased). The MIP file stores R as 12 halves a texel (mip_file.h).
 //
-// Nodes: θ = 0, and 11 with u = 1 − cos θ log-spaced from u(θ_in) to u(10°), θ_in the α of the
+// Nodes: θ = 0, and 11 with u = 1 − cos θ log-spaced from u(θ_in) to u(30°), θ_in the α of the
 // pyramid's sharpest level-0 lobe, within 0.03°–1° (RadialGrid); R is linear in ln u between them
-// (linear in u to the first), and beyond the last it goes to 1 at 20°, linearly in ln u. The correction
-// is of the highlight's core, where the compounded error showed (the far views head-on and in the
-// mirror configuration). Farther out the premise fails where a texel's normals spread along one axis:
-// the tile roof's isotropic lobes under-fill the plane of its slopes and over-fill the rest at the
-// same θ, so its ratio at 22.5° (< 1) lowered the highlight in that plane further, from −8.3 to −9.9 %
-// of the flux at 1024× under the 45° sun (bench/results/mip.md, twelfth session).
+// (linear in u to the first), and beyond the last it goes to 1 at 60°, linearly in ln u. (MIP files of
+// version 6 had the last node at 10° and R at 1 from 20°.)
+//
+// Beyond 10° a texel's correction is gated. There the premise — that the lobes' error is radial — fails
+// where a texel's normals spread along one axis: the tile roof's isotropic lobes under-fill the plane of
+// its slopes and over-fill the rest at the same θ, and a radial ratio below 1 at 22.5° lowered its
+// highlight in that plane further (−8.3 → −9.9 % of the flux at 1024× under the 45° sun; bench/results/
+// mip.md, twelfth session). The build carries the truth's first and second azimuthal harmonics up the
+// pyramid with its profile (they average linearly too; azimuthal_harmonic_d has them in closed form)
+// and compares them, relative to the profile, with the lobes' own: where the two azimuthal shapes
+// differ, by 2 Σₙ |tₙ − oₙ| ≥ 15 % (the ratio's first-order variation over φ), no radial correction is
+// right for every azimuth and the node keeps R = 1; below 5 % all of R; linearly between (correction_gate).
+// The gate only closes outward. On the roof it closes at the first gated node, which keeps the roof
+// where the 10° grid had it; the polished tray's glow at 22.5° (−1.6 % of the flux at level 5 against the
+// exact mean, −0.4 % of it from the levels below 4) keeps most of its correction.
 #include <array>
 #include <span>
 
@@ -36,9 +45,11 @@ inline constexpr int kFirstCorrectedLevel = 4;
 
 struct RadialGrid {
   static constexpr int kNodes = 12;
-  static constexpr double kOuterDeg = 10.0;    // the last node
-  static constexpr double kFadeEndDeg = 20.0;  // R reaches 1 here
+  static constexpr double kOuterDeg = 30.0;       // the last node (MIP files of version 6: 10°)
+  static constexpr double kFadePerOuter = 2.0;    // R reaches 1 at this multiple of the last node's θ
+  static constexpr double kGateFromDeg = 10.0;    // nodes beyond this are gated by the ratio's azimuthal spread
   float inner = 0.0f;    // θ of node 1, radians (a float: the MIP file's svbrdf:radial_inner)
+  float outer_deg = 0.0f;  // θ of the last node, degrees (the MIP file's svbrdf:radial_outer)
   float log_u1 = 0.0f;   // ln u of node 1
   float inv_step = 0.0f; // 1 / (ln u step between nodes)
   float u1 = 0.0f;
@@ -48,11 +59,16 @@ struct RadialGrid {
 
   // The grid for a pyramid whose sharpest level-0 lobe has α² = alpha2_min.
   static RadialGrid for_sharpest(double alpha2_min);
-  // The grid whose node 1 is at θ = inner (0 < inner < kOuterDeg).
-  static RadialGrid with_inner(float inner);
+  // The grid whose node 1 is at θ = inner (0 < inner < outer_deg) and whose last node at outer_deg.
+  static RadialGrid with_inner(float inner, float outer_deg = static_cast<float>(kOuterDeg));
 };
 
 using RadialProfile = std::array<double, RadialGrid::kNodes>;
+// At each node, the first and second azimuthal Fourier coefficients of the same sum about the geometric
+// normal: ⟨·cos φ⟩, ⟨·sin φ⟩, ⟨·cos 2φ⟩, ⟨·sin 2φ⟩ (φ the azimuth of h in the tangent frame). Like the
+// profile they average linearly, so the truth's carry up the pyramid exactly too. Only the gated nodes
+// (beyond kGateFromDeg) have them; the others hold zeros.
+using AzimuthalHarmonics = std::array<std::array<double, 4>, RadialGrid::kNodes>;
 
 struct RadialCorrection {
   std::array<float, RadialGrid::kNodes> ratio{};  // half floats (the MIP file's)
@@ -60,10 +76,18 @@ struct RadialCorrection {
 // Bytes a texel's correction takes in the MIP file.
 inline constexpr int kBytesPerCorrection = RadialGrid::kNodes * 2;
 
-// profile += Σ over lobes of weight·F0·⟨D⟩ at the grid's nodes.
-void add_to_profile(const RadialGrid& grid, std::span<const Lobe> lobes, RadialProfile& profile);
-// The correction that takes lobes' own profile to `truth`.
-RadialCorrection correction_to(const RadialGrid& grid, const RadialProfile& truth, std::span<const Lobe> lobes);
+// profile += Σ over lobes of weight·F0·⟨D⟩ at the grid's nodes, and, when given, harmonics += the same
+// sum's azimuthal harmonics at the gated nodes.
+void add_to_profile(const RadialGrid& grid, std::span<const Lobe> lobes, RadialProfile& profile,
+                    AzimuthalHarmonics* harmonics = nullptr);
+// The correction that takes lobes' own profile to `truth`; beyond kGateFromDeg, only as far as the true
+// and the lobes' azimuthal shapes agree (correction_gate).
+RadialCorrection correction_to(const RadialGrid& grid, const RadialProfile& truth, const AzimuthalHarmonics& truth_harmonics,
+                               std::span<const Lobe> lobes);
+// The share of a node's radial correction that applies, from the relative azimuthal harmonics of the
+// truth (t) and the lobes (o): 1 while the ratio truth/own is nearly flat over the azimuth, 0 where it
+// varies by kGateOff or more (2 Σₙ |tₙ − oₙ|, the first-order amplitude of its variation).
+double correction_gate(const std::array<double, 4>& t, const std::array<double, 4>& o);
 // R at the unit half vector h (geometric tangent frame).
 float correction_at(const RadialCorrection& c, const RadialGrid& grid, const glm::vec3& h);
 

@@ -182,8 +182,10 @@ void write_levels(const std::filesystem::path& to, const std::vector<OIIO::Image
 }
 
 // Copies a MIP file level by level, in every channel's own format or (all_float) every channel as a
-// float — what `oiiotool -a -d float` makes of it — and without the attribute `drop` (if named).
-void copy_mip_file(const std::filesystem::path& from, const std::filesystem::path& to, bool all_float, const char* drop) {
+// float — what `oiiotool -a -d float` makes of it — and without the attribute `drop` (if named), as
+// `version` (if > 0).
+void copy_mip_file(const std::filesystem::path& from, const std::filesystem::path& to, bool all_float, const char* drop,
+                   int version = 0) {
   std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(from.string());
   ASSERT_TRUE(in);
   std::vector<OIIO::ImageSpec> specs;
@@ -195,6 +197,7 @@ void copy_mip_file(const std::filesystem::path& from, const std::filesystem::pat
     ASSERT_TRUE(in->read_image(level, 0, 0, s.nchannels, format, px.data()));
     if (all_float) s.set_format(OIIO::TypeDesc::FLOAT), s.channelformats.clear();
     if (drop) s.erase_attribute(drop);
+    if (version > 0) s.attribute("svbrdf:mip_version", version);
     specs.push_back(s);
     pixels.push_back(std::move(px));
   }
@@ -224,7 +227,27 @@ TEST(MipFile, RefusesCodesConvertedToFloatAndCorrectionsWithoutTheirGrid) {
             std::string::npos) << msg;
 }
 
-// Rewrites a version-6 MIP file as version 5 wrote it: the lobes' normals as three floats (N.X, N.Y,
+// Version 7 added svbrdf:radial_outer (the grid's last node, 30°); version 6's grid ended at 10° and
+// its files read on that grid. A version-7 file without the attribute is refused.
+TEST(MipFile, ReadsTheRadialGridsOuterNodeAndVersionSixsTenDegrees) {
+  testing::TempDir dir;
+  const MipData mip = build_mip(generate_material(MaterialRecipe{"metal-tray", "steel", 32, 24}).texels);
+  write_mip_file(dir / "tray.exr", mip);
+  EXPECT_EQ(read_mip_file(dir / "tray.exr").brdf.radial_grid().outer_deg, float(RadialGrid::kOuterDeg));
+  copy_mip_file(dir / "tray.exr", dir / "v6.exr", false, "svbrdf:radial_outer", 6);
+  const MipData v6 = read_mip_file(dir / "v6.exr");
+  EXPECT_EQ(v6.brdf.radial_grid().outer_deg, 10.0f);
+  EXPECT_EQ(v6.brdf.radial_grid().inner, mip.brdf.radial_grid().inner);
+  const RadialCorrection* c = v6.brdf.correction(kFirstCorrectedLevel, 0, 0);
+  ASSERT_NE(c, nullptr);
+  EXPECT_EQ(std::memcmp(c, mip.brdf.correction(kFirstCorrectedLevel, 0, 0), sizeof(RadialCorrection)), 0);
+  copy_mip_file(dir / "tray.exr", dir / "noouter.exr", false, "svbrdf:radial_outer");
+  const std::string msg = read_error(dir / "noouter.exr");
+  EXPECT_NE(msg.find("noouter.exr"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("svbrdf:radial_outer is 0.000000, not an angle in degrees"), std::string::npos) << msg;
+}
+
+// Rewrites a version-6 or -7 MIP file (their lobes are alike) as version 5 wrote it: the lobes' normals as three floats (N.X, N.Y,
 // N.Z) where version 6 has an octahedral code and a length deficit (stored_normal.h), no radial
 // corrections.
 void write_as_version5(const std::filesystem::path& from, const std::filesystem::path& to) {
@@ -239,6 +262,7 @@ void write_as_version5(const std::filesystem::path& from, const std::filesystem:
     dst.channelnames.clear();
     dst.channelformats.clear();
     dst.erase_attribute("svbrdf:radial_inner");
+    dst.erase_attribute("svbrdf:radial_outer");
     dst.attribute("svbrdf:mip_version", 5);
     // Each output channel: a source channel, or component `axis` of the normal whose code and deficit
     // are in channels `from` and `deficit`.

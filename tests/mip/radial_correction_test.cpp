@@ -14,6 +14,8 @@
 namespace svbrdf {
 namespace {
 
+constexpr double kPi = 3.14159265358979323846;
+
 // Σ over a level's texels of area share × its lobes' profile × ratio(texel, node).
 template <class Ratio>
 RadialProfile area_weighted_profile(const MipData& mip, int level, Ratio ratio) {
@@ -70,7 +72,8 @@ TEST(RadialCorrection, EveryCorrectedLevelReflectsItsUnionsProfile) {
     const RadialProfile want = union_profile(mip);
     for (int level = kFirstCorrectedLevel; level < mip.levels(); ++level) {
       const RadialProfile got = corrected_level_profile(mip, level);
-      for (std::size_t r = 0; r < RadialGrid::kNodes; ++r)
+      // Nodes beyond kGateFromDeg are gated per texel (correction_gate): only the inner ones are exact.
+      for (std::size_t r = 0; r < RadialGrid::kNodes && mip.brdf.radial_grid().theta[r] <= RadialGrid::kGateFromDeg * kPi / 180; ++r)
         // The ratios are half floats: 2⁻¹¹ relative each.
         EXPECT_NEAR(got[r], want[r], 1e-3 * want[r]) << c.name << ", level " << level << ", node " << r;
     }
@@ -96,6 +99,45 @@ TEST(RadialCorrection, IsOneWhereTheLobesAreExact) {
   }
 }
 
+TEST(RadialCorrection, TheGateIsOpenForEqualShapesAndClosedFromFifteenPercent) {
+  const std::array<double, 4> shape{0.3, -0.1, 0.2, 0.05};
+  EXPECT_EQ(correction_gate(shape, shape), 1.0);
+  // The ratio's first-order azimuthal amplitude 2 Σ |tₙ − oₙ|: 0.1 halfway, 0.15 closed.
+  std::array<double, 4> off = shape;
+  off[2] += 0.05;
+  EXPECT_NEAR(correction_gate(off, shape), 0.5, 1e-12);
+  off[0] += 0.025;
+  EXPECT_EQ(correction_gate(off, shape), 0.0);
+}
+
+TEST(RadialCorrection, TheGateClosesOutwardOnly) {
+  const RadialGrid g = RadialGrid::for_sharpest(1e-4);
+  Lobe l;
+  l.weight = 1.0f, l.f0 = glm::vec3(0.9f), l.alpha2 = 0.04f;
+  l.normal = glm::normalize(glm::vec3(0.2f, 0.1f, 1.0f));
+  const std::vector<Lobe> lobes{l};
+  RadialProfile own{};
+  AzimuthalHarmonics own_h{};
+  add_to_profile(g, lobes, own, &own_h);
+  // The truth 10 % brighter at every node with the lobes' azimuthal shape: R = 1.1 everywhere.
+  RadialProfile truth = own;
+  AzimuthalHarmonics truth_h = own_h;
+  for (std::size_t r = 0; r < RadialGrid::kNodes; ++r) {
+    truth[r] *= 1.1;
+    for (double& x : truth_h[r]) x *= 1.1;
+  }
+  const RadialCorrection even = correction_to(g, truth, truth_h, lobes);
+  for (std::size_t r = 0; r < RadialGrid::kNodes; ++r) EXPECT_NEAR(even.ratio[r], 1.1f, 1e-3f) << "node " << r;
+  // The first gated node's shape off by 0.2 in cos 2φ: no correction there or beyond, all of it before.
+  std::size_t first = 0;
+  while (g.theta[first] <= RadialGrid::kGateFromDeg * kPi / 180) ++first;
+  ASSERT_LT(first + 1, RadialGrid::kNodes);
+  truth_h[first][2] += 0.1 * truth[first];
+  const RadialCorrection cut = correction_to(g, truth, truth_h, lobes);
+  for (std::size_t r = 0; r < RadialGrid::kNodes; ++r)
+    EXPECT_NEAR(cut.ratio[r], r < first ? 1.1f : 1.0f, 1e-3f) << "node " << r;
+}
+
 TEST(RadialCorrection, LookupReturnsTheRatiosAtTheNodesAndFadesToOneBeyond) {
   const RadialGrid g = RadialGrid::for_sharpest(1e-4);
   RadialCorrection c;
@@ -117,11 +159,11 @@ TEST(RadialCorrection, LookupReturnsTheRatiosAtTheNodesAndFadesToOneBeyond) {
     return correction_at(c, g, glm::vec3(static_cast<float>(std::sin(t)), 0.0f, static_cast<float>(std::cos(t))));
   };
   const double u_last = 1 - std::cos(RadialGrid::kOuterDeg * 3.14159265358979 / 180);
-  const double u_end = 1 - std::cos(RadialGrid::kFadeEndDeg * 3.14159265358979 / 180);
+  const double u_end = 1 - std::cos((RadialGrid::kFadePerOuter * RadialGrid::kOuterDeg) * 3.14159265358979 / 180);
   const double half_deg = std::acos(1 - std::sqrt(u_last * u_end)) * 180 / 3.14159265358979;
   const float last = c.ratio[RadialGrid::kNodes - 1];
   EXPECT_NEAR(at_deg(half_deg), 0.5f * (last + 1.0f), 1e-4f);
-  EXPECT_FLOAT_EQ(at_deg(RadialGrid::kFadeEndDeg + 0.5), 1.0f);
+  EXPECT_FLOAT_EQ(at_deg((RadialGrid::kFadePerOuter * RadialGrid::kOuterDeg) + 0.5), 1.0f);
   EXPECT_FLOAT_EQ(at_deg(60.0), 1.0f);
 }
 
