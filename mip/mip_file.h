@@ -39,8 +39,8 @@
 // svbrdf:radial_outer (float, degrees: θ of its last node, RadialGrid::kOuterDeg).
 // A file whose version is newer than kMipFileVersion is refused: its layout may mean other things.
 // Older versions still read: version 6 is version 7 without svbrdf:radial_outer, its grid's last node
-// at 10° (and no gate: the same ratios read on that grid); version 5 stored a lobe's normal as three floats lobeK.N.X/Y/Z (32 bytes
-// a lobe) and had no radial corrections; version 4's mixtures had no atom (β = 1; its skirt channel
+// at 10° (its ratios read on that grid); version 5 stored a lobe's normal as three floats
+// lobeK.N.X/Y/Z (32 bytes a lobe) and had no radial corrections; version 4's mixtures had no atom (β = 1; its skirt channel
 // held 1 for them); version 3 stored lobeK.alpha2 (α², float) in place of lobeK.alpha and lacks
 // lobeK.skirt (c = 1); version 2 stored α² so too and the shape as lobeK.alpha2_hi (float, 0: not a
 // mixture) and lobeK.ggx (half, μ) and the weight as a float (38 bytes a lobe); version 1 (before the

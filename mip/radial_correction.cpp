@@ -83,9 +83,9 @@ RadialCorrection correction_to(const RadialGrid& grid, const RadialProfile& trut
   AzimuthalHarmonics own_harmonics{};
   add_to_profile(grid, lobes, own, &own_harmonics);
   RadialCorrection c;
-  // The gate only closes outward: a texel whose lobes miss the truth's azimuthal shape at one node get
-  // no more correction farther out, where the shapes spread wider (the tile roof's slopes: its ratio
-  // returns to an even shape at 30° while the render at 22.5° needs more than any radial ratio gives).
+  // The gate only closes outward: a texel whose lobes miss the truth's azimuthal shape at one node gets
+  // no more correction farther out (the tile roof's shapes agree again at 30°, where its ratio of 0.8
+  // would darken 22.5° in between, which needs more light in the plane of its slopes, not less).
   double gate = 1.0;
   for (std::size_t r = 0; r < RadialGrid::kNodes; ++r) {
     if (!(own[r] > 0 && truth[r] > 0)) {
