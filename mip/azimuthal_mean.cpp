@@ -114,12 +114,6 @@ double azimuthal_mean_d(const LobeShape<double>& s, double theta) {
   return m;
 }
 
-double azimuthal_harmonic_d(const LobeShape<double>& s, double theta, int n) {
-  double out[3];
-  fourier_d(s, theta, n + 1, out);
-  return out[n];
-}
-
 std::array<double, 3> azimuthal_fourier_d(const LobeShape<double>& s, double theta) {
   std::array<double, 3> out;
   fourier_d(s, theta, 3, out.data());

@@ -19,12 +19,10 @@
 namespace svbrdf {
 
 double azimuthal_mean_d(const LobeShape<double>& shape, double theta);
-// The n-th Fourier coefficient of D over the azimuth ψ measured from the lobe's tilt, ⟨D cos nψ⟩ (D is
-// even in ψ, so its sine coefficients vanish); n = 0 is ⟨D⟩. The same closed forms: the coefficients
-// of 1/(p + q cos ψ) are ρⁿ/√(p² − q²) with ρ = (√(p² − q²) − p)/q, and those of its square −∂/∂p of them.
-// 0 ≤ n ≤ 2.
-double azimuthal_harmonic_d(const LobeShape<double>& shape, double theta, int n);
-// n = 0, 1, 2 at once (they share their roots).
+// The Fourier coefficients of D over the azimuth ψ measured from the lobe's tilt, ⟨D cos nψ⟩ for
+// n = 0, 1, 2 (D is even in ψ, so its sine coefficients vanish; n = 0 is ⟨D⟩), at once: they share
+// their roots. The same closed forms: the coefficients of 1/(p + q cos ψ) are ρⁿ/√(p² − q²) with
+// ρ = (√(p² − q²) − p)/q, and those of its square −∂/∂p of them.
 std::array<double, 3> azimuthal_fourier_d(const LobeShape<double>& shape, double theta);
 
 }  // namespace svbrdf

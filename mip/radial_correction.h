@@ -27,7 +27,7 @@
 // its slopes and over-fill the rest at the same θ, and a radial ratio below 1 at 22.5° lowered its
 // highlight in that plane further (−8.3 → −9.9 % of the flux at 1024× under the 45° sun; bench/results/
 // mip.md, twelfth session). The build carries the truth's first and second azimuthal harmonics up the
-// pyramid with its profile (they average linearly too; azimuthal_harmonic_d has them in closed form)
+// pyramid with its profile (they average linearly too; azimuthal_fourier_d has them in closed form)
 // and compares them, relative to the profile, with the lobes' own: where the two azimuthal shapes
 // differ, by 2 Σₙ |tₙ − oₙ| ≥ 15 % (the ratio's first-order variation over φ), no radial correction is
 // right for every azimuth and the node keeps R = 1; below 5 % all of R; linearly between (correction_gate).
