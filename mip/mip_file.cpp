@@ -43,8 +43,8 @@ struct LobeChannel {
 };
 
 // A lobe's channels in the given version. Version 6: 26 bytes a lobe (kBytesPerLobe), the normal as an
-// octahedral code and a length deficit; version 5 had the normal as three floats (32 bytes), version 4
-// too but no atoms; version 3 α² as a float and no skirt; version 2 the shape as α²'s upper end and μ;
+// octahedral code (version 8: warped toward the pole) and a length deficit; version 5 had the normal
+// as three floats (32 bytes), version 4 too but no atoms; version 3 α² as a float and no skirt; version 2 the shape as α²'s upper end and μ;
 // version 1 no shape (plain GGX).
 std::vector<LobeChannel> lobe_channels(int version) {
   using B = OIIO::TypeDesc::BASETYPE;
@@ -99,7 +99,10 @@ Lobe unpack_lobe(int version, const LobeValues& in) {
   l.weight = in[Role::weight];
   l.diffuse = {in[Role::diffuse_r], in[Role::diffuse_g], in[Role::diffuse_b]};
   l.f0 = {in[Role::f0_r], in[Role::f0_g], in[Role::f0_b]};
-  if (version >= 6) l.normal = load_normal(StoredNormal{in.direction, in[Role::normal_deficit]});
+  // Versions 6 and 7 coded the direction linearly in the octahedron's coordinates (stored_normal.h).
+  if (version >= 6)
+    l.normal = load_normal(StoredNormal{in.direction, in[Role::normal_deficit]},
+                           version >= 8 ? NormalCode::warped : NormalCode::linear);
   else l.normal = {in[Role::normal_x], in[Role::normal_y], in[Role::normal_z]};
   l.alpha2 = version >= 4 ? in[Role::alpha] * in[Role::alpha] : in[Role::alpha2];
   if (version >= 3) {

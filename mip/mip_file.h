@@ -16,8 +16,9 @@
 //   lobeK.diffuse.R/G/B         mean diffuse albedo ρ = (1 − metallic)·base color        half
 //   lobeK.F0.R/G/B              mean specular reflectance at normal incidence            half
 //   lobeK.N.dir                 the direction of the lobe's mean unit normal, an octahedral
-//                               code (stored_normal.h: x in the low 16 bits, y in the high,
-//                               signed, scaled by 32767)                                  uint
+//                               code warped toward the pole (stored_normal.h: x in the low 16
+//                               bits, y in the high, signed codes q; c = q/32767 and the
+//                               octahedral coordinate is c·(1/16 + (15/16)·|c|))          uint
 //   lobeK.N.deficit             1 − the mean normal's length (how much the normals spread) half
 //   lobeK.alpha                 GGX α of the lobe about the normal's direction, α² its square (a
 //                               roughness mixture's lower end, its atom; lobe.h)          half
@@ -38,7 +39,8 @@
 // level has radial channels, svbrdf:radial_inner (float, radians: θ of the grid's node 1) and
 // svbrdf:radial_outer (float, degrees: θ of its last node, RadialGrid::kOuterDeg).
 // A file whose version is newer than kMipFileVersion is refused: its layout may mean other things.
-// Older versions still read: version 6 is version 7 without svbrdf:radial_outer, its grid's last node
+// Older versions still read: version 7 is version 8 with the linear octahedral code (the coordinate
+// is c itself); version 6 is version 7 without svbrdf:radial_outer, its grid's last node
 // at 10° (its ratios read on that grid); version 5 stored a lobe's normal as three floats
 // lobeK.N.X/Y/Z (32 bytes a lobe) and had no radial corrections; version 4's mixtures had no atom (β = 1; its skirt channel
 // held 1 for them); version 3 stored lobeK.alpha2 (α², float) in place of lobeK.alpha and lacks
@@ -51,7 +53,7 @@
 
 namespace svbrdf {
 
-inline constexpr int kMipFileVersion = 7;
+inline constexpr int kMipFileVersion = 8;
 
 // Throws svbrdf::Error naming the file when it cannot be written.
 void write_mip_file(const std::filesystem::path& path, const MipData& mip);

@@ -4,12 +4,15 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdint>
 #include <cstring>
 #include <memory>
 #include <string>
+
+#include <glm/geometric.hpp>
 
 #include "base/error.h"
 #include "mip/mip_file.h"
@@ -245,6 +248,56 @@ TEST(MipFile, ReadsTheRadialGridsOuterNodeAndVersionSixsTenDegrees) {
   const std::string msg = read_error(dir / "noouter.exr");
   EXPECT_NE(msg.find("noouter.exr"), std::string::npos) << msg;
   EXPECT_NE(msg.find("svbrdf:radial_outer is 0.000000, not an angle in degrees"), std::string::npos) << msg;
+}
+
+// A lobe's normal decoded from its N.dir code and N.deficit as mip_file.h documents them, independently
+// of stored_normal.cpp: signed 16-bit codes q (x low, y high), c = q/32767, the octahedral coordinate
+// p = c·(1/16 + (15/16)|c|) in version 8 and p = c in versions 6 and 7, the lower half folded over the
+// diagonals.
+glm::dvec3 documented_normal(std::uint32_t code, float deficit, bool warped) {
+  const auto coordinate = [&](std::uint16_t bits) {
+    const double c = std::clamp(static_cast<std::int16_t>(bits) / 32767.0, -1.0, 1.0);
+    return warped ? c * (1.0 / 16 + (15.0 / 16) * std::abs(c)) : c;
+  };
+  const double x = coordinate(static_cast<std::uint16_t>(code & 0xffffu)), y = coordinate(static_cast<std::uint16_t>(code >> 16));
+  glm::dvec3 d(x, y, 1 - std::abs(x) - std::abs(y));
+  if (d.z < 0) d = glm::dvec3((1 - std::abs(y)) * (x < 0 ? -1 : 1), (1 - std::abs(x)) * (y < 0 ? -1 : 1), d.z);
+  return glm::normalize(d) * (1.0 - deficit);
+}
+
+// Version 8 warps the normals' codes toward the pole (stored_normal.h); a version-7 file's codes read on
+// the linear map. The same codes, relabelled as version 7, must read as the linear decoding.
+TEST(MipFile, ReadsNormalCodesAsTheirVersionWroteThem) {
+  testing::TempDir dir;
+  const MipData mip = build_mip(generate_material(MaterialRecipe{"metal-tray", "steel", 32, 24}).texels);
+  write_mip_file(dir / "tray.exr", mip);
+  copy_mip_file(dir / "tray.exr", dir / "v7.exr", false, nullptr, 7);
+  const MipData v8 = read_mip_file(dir / "tray.exr"), v7 = read_mip_file(dir / "v7.exr");
+  int compared = 0, differ = 0;
+  for_each_level(dir / "tray.exr", [&](OIIO::ImageInput& in, int level, const OIIO::ImageSpec& src, std::size_t texels,
+                                       const std::vector<float>& all) {
+    if (level == 0) return;
+    std::vector<std::uint32_t> codes(texels * static_cast<std::size_t>(src.nchannels));
+    ASSERT_TRUE(in.read_image(level, 0, 0, src.nchannels, OIIO::TypeDesc::UINT, codes.data()));
+    const int dir_channel = src.channelindex("lobe0.N.dir"), deficit_channel = src.channelindex("lobe0.N.deficit");
+    ASSERT_GE(dir_channel, 0);
+    ASSERT_GE(deficit_channel, 0);
+    const int width = src.width;
+    for (std::size_t t = 0; t < texels; ++t) {
+      const std::size_t at = t * static_cast<std::size_t>(src.nchannels);
+      const std::uint32_t code = codes[at + static_cast<std::size_t>(dir_channel)];
+      const float deficit = all[at + static_cast<std::size_t>(deficit_channel)];
+      const int i = static_cast<int>(t % static_cast<std::size_t>(width)), j = static_cast<int>(t / static_cast<std::size_t>(width));
+      const glm::dvec3 n8(v8.brdf.texel(level, i, j)[0].normal), n7(v7.brdf.texel(level, i, j)[0].normal);
+      const glm::dvec3 want8 = documented_normal(code, deficit, true), want7 = documented_normal(code, deficit, false);
+      ASSERT_LT(glm::length(n8 - want8), 2e-7) << "level " << level << " texel " << t;
+      ASSERT_LT(glm::length(n7 - want7), 2e-7) << "level " << level << " texel " << t;
+      ++compared;
+      differ += glm::length(want8 - want7) > 1e-6;
+    }
+  });
+  EXPECT_GT(compared, 100);
+  EXPECT_GT(differ, 0) << "no lobe's normal is off the pole: the two decodings cannot be told apart here";
 }
 
 // Rewrites a version-6 or -7 MIP file (their lobes are alike) as version 5 wrote it: the lobes' normals as three floats (N.X, N.Y,
