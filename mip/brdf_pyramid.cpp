@@ -234,11 +234,29 @@ BrdfPyramid BrdfPyramid::build(const MaterialTexels& m, const BrdfBuildOptions& 
   for (int level = 1; level < n; ++level)
     p.levels_.push_back(level_from_below(p.level0_, level, p.levels_.back(), m, options,
                                          stats ? &(*stats)[static_cast<std::size_t>(level)] : nullptr));
-  if (options.radial_correction && n > kFirstCorrectedLevel) p.build_corrections(m);
+  if (options.radial_correction && n > kFirstCorrectedLevel) p.build_corrections(m, options.recentre);
   return p;
 }
 
-void BrdfPyramid::build_corrections(const MaterialTexels& m) {
+namespace {
+
+// Tilts every lobe of texel t by d (radians, in the tangent plane), keeping each normal's length, to the
+// nearest normal the MIP file stores.
+void recentre(BrdfLevel& level, std::size_t t, const glm::dvec2& d) {
+  if (d == glm::dvec2(0.0)) return;
+  const int n = level.counts[t];
+  Lobe* lobes = n == 1 ? &level.single[t] : level.lobes.data() + level.first[t];
+  for (int k = 0; k < n; ++k) {
+    const glm::dvec3 nbar(lobes[k].normal);
+    const double len = glm::length(nbar);
+    if (!(len > 0)) continue;
+    lobes[k].normal = round_normal(glm::vec3(glm::normalize(nbar / len + glm::dvec3(d, 0.0)) * len));
+  }
+}
+
+}  // namespace
+
+void BrdfPyramid::build_corrections(const MaterialTexels& m, bool recentre_lobes) {
   float roughness_min = 1.0f;
   for (float r : m.roughness) roughness_min = std::min(roughness_min, r);
   const double alpha_min = gltf_alpha(roughness_min);  // α grows with roughness
@@ -279,6 +297,7 @@ void BrdfPyramid::build_corrections(const MaterialTexels& m) {
               }
             }
         }
+        if (recentre_lobes) recentre(out, t, recentring_tilt(grid_, harmonics[t], out.texel_lobes(t)));
         out.correction[t] = correction_to(grid_, truth[t], harmonics[t], out.texel_lobes(t));
       }
     });

@@ -77,6 +77,7 @@ struct BrdfLevelStats {
 struct BrdfBuildOptions {
   ReductionOptions reduction{};
   bool radial_correction = true;  // radial_correction.h, from kFirstCorrectedLevel on
+  bool recentre = true;           // and the lobes re-centred before it (radial_correction.h)
   int stats_samples = 0;  // texels per level whose reduction error is measured (0: none)
 };
 
@@ -160,7 +161,7 @@ class BrdfPyramid {
 
  private:
   // The radial corrections of the levels from kFirstCorrectedLevel on (radial_correction.h).
-  void build_corrections(const MaterialTexels& level0);
+  void build_corrections(const MaterialTexels& level0, bool recentre);
   // A texel's correction (48 B) may straddle two cache lines: both are asked for.
   static void prefetch_correction(const BrdfLevel& l, std::size_t t) {
     if (l.correction.empty()) return;

@@ -45,7 +45,9 @@ RadialGrid RadialGrid::with_inner(float inner, float outer_deg) {
   return g;
 }
 
-void add_to_profile(const RadialGrid& grid, std::span<const Lobe> lobes, RadialProfile& profile, AzimuthalHarmonics* harmonics) {
+// add_to_profile at nodes [0, nodes), with the harmonics (when given) from node harmonics_from on.
+void accumulate_profile(const RadialGrid& grid, std::span<const Lobe> lobes, RadialProfile& profile, AzimuthalHarmonics* harmonics,
+                        std::size_t harmonics_from, std::size_t nodes) {
   for (const Lobe& l : lobes) {
     if (!(l.weight > 0)) continue;
     const LobeShape<double> s = lobe_shape<double>(l, false);
@@ -57,8 +59,8 @@ void add_to_profile(const RadialGrid& grid, std::span<const Lobe> lobes, RadialP
     const double rxy = std::hypot(s.n.x, s.n.y);
     const double c1 = rxy > 0 ? s.n.x / rxy : 1.0, s1 = rxy > 0 ? s.n.y / rxy : 0.0;
     const double c2 = c1 * c1 - s1 * s1, s2 = 2 * c1 * s1;
-    for (std::size_t r = 0; r < RadialGrid::kNodes; ++r) {
-      if (!harmonics || !gated(grid, r)) {
+    for (std::size_t r = 0; r < nodes; ++r) {
+      if (!harmonics || r < harmonics_from) {
         profile[r] += w * azimuthal_mean_d(s, grid.theta[r]);
         continue;
       }
@@ -72,6 +74,17 @@ void add_to_profile(const RadialGrid& grid, std::span<const Lobe> lobes, RadialP
   }
 }
 
+void add_to_profile(const RadialGrid& grid, std::span<const Lobe> lobes, RadialProfile& profile, AzimuthalHarmonics* harmonics) {
+  accumulate_profile(grid, lobes, profile, harmonics, 1, RadialGrid::kNodes);
+}
+
+// The first node beyond kGateFromDeg, and so the end of the core.
+std::size_t first_gated(const RadialGrid& grid) {
+  std::size_t r = 0;
+  while (r < RadialGrid::kNodes && !gated(grid, r)) ++r;
+  return r;
+}
+
 double correction_gate(const std::array<double, 4>& t, const std::array<double, 4>& o) {
   const double amplitude = 2 * (std::hypot(t[0] - o[0], t[1] - o[1]) + std::hypot(t[2] - o[2], t[3] - o[3]));
   return std::clamp((kGateOff - amplitude) / (kGateOff - kGateOn), 0.0, 1.0);
@@ -81,7 +94,7 @@ RadialCorrection correction_to(const RadialGrid& grid, const RadialProfile& trut
                                std::span<const Lobe> lobes) {
   RadialProfile own{};
   AzimuthalHarmonics own_harmonics{};
-  add_to_profile(grid, lobes, own, &own_harmonics);
+  accumulate_profile(grid, lobes, own, &own_harmonics, first_gated(grid), RadialGrid::kNodes);  // the gate's harmonics only
   RadialCorrection c;
   // The gate only closes outward: a texel whose lobes miss the truth's azimuthal shape at one node gets
   // no more correction farther out (the tile roof's shapes agree again at 30°, where its ratio of 0.8
@@ -100,6 +113,39 @@ RadialCorrection correction_to(const RadialGrid& grid, const RadialProfile& trut
     c.ratio[r] = to_half(static_cast<float>(1 + (truth[r] / own[r] - 1) * (gated(grid, r) ? gate : 1.0)));
   }
   return c;
+}
+
+// The re-centring's bounds (radial_correction.h): a tenth of the sharpest lobe's width (the
+// linearization's), and 2.5e-4 rad, where a tilt changes a lobe's clipped cosine factor by δ·tan θi,
+// 0.1 % at θi = 75°: past that it trades the exact diffuse moment E[ρ·n] for a shape the tilt does not
+// have (gray granite's albedo at 75° moved by up to 0.8 % at level 7 with the first bound alone).
+constexpr double kMaxTiltPerInner = 0.1;
+constexpr double kMaxTilt = 2.5e-4;
+
+glm::dvec2 recentring_tilt(const RadialGrid& grid, const AzimuthalHarmonics& truth_harmonics, std::span<const Lobe> lobes) {
+  // The lobes' profile and harmonics at the core's nodes, and P' there by a forward difference of 1 % in θ.
+  const std::size_t core = std::min<std::size_t>(first_gated(grid), RadialGrid::kNodes - 1);
+  RadialProfile own{}, above{};
+  AzimuthalHarmonics own_harmonics{};
+  accumulate_profile(grid, lobes, own, &own_harmonics, 1, core);
+  constexpr double kStep = 0.01;
+  RadialGrid shifted = grid;
+  for (std::size_t r = 0; r < core; ++r) shifted.theta[r] *= 1 + kStep;
+  accumulate_profile(shifted, lobes, above, nullptr, 0, core);
+  double pp = 0;
+  glm::dvec2 pd(0.0);
+  for (std::size_t r = 1; r < core; ++r) {
+    const double slope = (above[r] - own[r]) / (kStep * grid.theta[r]);  // P'(θ)
+    const double area = grid.theta[r] * 0.5 * (grid.theta[r + 1] - grid.theta[r - 1]);
+    pp += area * slope * slope;
+    pd += area * slope * glm::dvec2(truth_harmonics[r][0] - own_harmonics[r][0], truth_harmonics[r][1] - own_harmonics[r][1]);
+  }
+  if (!(pp > 0)) return glm::dvec2(0.0);
+  glm::dvec2 d = -2.0 * pd / pp;
+  const double len = glm::length(d);
+  const double cap = std::min(kMaxTilt, kMaxTiltPerInner * grid.inner);
+  if (len > cap) d *= cap / len;
+  return d;
 }
 
 float correction_at(const RadialCorrection& c, const RadialGrid& grid, const glm::vec3& h) {

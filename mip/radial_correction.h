@@ -34,6 +34,17 @@
 // The gate only closes outward. On the roof it closes at the first gated node, which keeps the roof
 // where the 10° grid had it; the polished tray's glow at 22.5° (−1.6 % of the flux at level 5 against the
 // exact mean, −0.4 % of it from the levels below 4) keeps most of its correction.
+//
+// Before its ratio, a texel's lobes are re-centred (recentring_tilt). The truth's first azimuthal
+// harmonics at the nodes within kGateFromDeg say where its highlight's centre is, and a few lobes of a
+// near-mirror miss it: merging sharp lobes a fraction of a degree apart puts the merged peak at the
+// mean of their normals, and which lobes merge is decided where the cost cannot see such distances.
+// On the polished tray (α ≈ 0.005) the whole-texture highlight at level 7 was 1–1.6 % too bright on
+// one side and too dark on the other at 0.1–0.3° (a shift of about 1.5e-5 rad), 76 % of its error
+// over the ±2.5° a far mirror view sees (bench/results/mip.md, fourteenth session). A tilt δ of all
+// the texel's lobes, fitted to those harmonics, moves that centre back; the ratio is then taken
+// against the tilted lobes. It costs no bytes (the normals hold it), but it needs the normals' code
+// to resolve steps of 1e-6 rad near the pole (stored_normal.h).
 #include <array>
 #include <span>
 
@@ -66,8 +77,8 @@ struct RadialGrid {
 using RadialProfile = std::array<double, RadialGrid::kNodes>;
 // At each node, the first and second azimuthal Fourier coefficients of the same sum about the geometric
 // normal: ⟨·cos φ⟩, ⟨·sin φ⟩, ⟨·cos 2φ⟩, ⟨·sin 2φ⟩ (φ the azimuth of h in the tangent frame). Like the
-// profile they average linearly, so the truth's carry up the pyramid exactly too. Only the gated nodes
-// (beyond kGateFromDeg) have them; the others hold zeros.
+// profile they average linearly, so the truth's carry up the pyramid exactly too. Node 0 (θ = 0) holds
+// zeros.
 using AzimuthalHarmonics = std::array<std::array<double, 4>, RadialGrid::kNodes>;
 
 struct RadialCorrection {
@@ -77,7 +88,7 @@ struct RadialCorrection {
 inline constexpr int kBytesPerCorrection = RadialGrid::kNodes * 2;
 
 // profile += Σ over lobes of weight·F0·⟨D⟩ at the grid's nodes, and, when given, harmonics += the same
-// sum's azimuthal harmonics at the gated nodes.
+// sum's azimuthal harmonics.
 void add_to_profile(const RadialGrid& grid, std::span<const Lobe> lobes, RadialProfile& profile,
                     AzimuthalHarmonics* harmonics = nullptr);
 // The correction that takes lobes' own profile to `truth`; beyond kGateFromDeg, only as far as the true
@@ -88,6 +99,14 @@ RadialCorrection correction_to(const RadialGrid& grid, const RadialProfile& trut
 // truth (t) and the lobes (o): 1 while the ratio truth/own is nearly flat over the azimuth, 0 where it
 // varies by kGateOff or more (2 Σₙ |tₙ − oₙ|, the first-order amplitude of its variation).
 double correction_gate(const std::array<double, 4>& t, const std::array<double, 4>& o);
+// The tilt δ (x, y, radians) of all of a texel's lobes that brings their first azimuthal harmonics to
+// the truth's at the nodes within kGateFromDeg (the re-centring above): shifting a profile P(θ) by δ
+// changes ⟨D cos φ⟩ by −½P'(θ)δx and ⟨D sin φ⟩ by −½P'(θ)δy to first order, and δ is their least-squares
+// fit with each node weighted by its ring's area θ·Δθ. P' is the lobes' own, by forward differences
+// of 1 % in θ. |δ| is held to a tenth of the grid's inner node (the linearization's range) and to
+// 2.5e-4 rad, where the tilt changes a lobe's cosine factor at θi = 75° by 0.1 % (radial_correction.cpp).
+// Zero where the lobes reflect nothing there.
+glm::dvec2 recentring_tilt(const RadialGrid& grid, const AzimuthalHarmonics& truth_harmonics, std::span<const Lobe> lobes);
 // R at the unit half vector h (geometric tangent frame).
 float correction_at(const RadialCorrection& c, const RadialGrid& grid, const glm::vec3& h);
 
