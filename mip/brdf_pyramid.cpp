@@ -244,13 +244,11 @@ namespace {
 // nearest normal the MIP file stores.
 void recentre(BrdfLevel& level, std::size_t t, const glm::dvec2& d) {
   if (d == glm::dvec2(0.0)) return;
-  const int n = level.counts[t];
-  Lobe* lobes = n == 1 ? &level.single[t] : level.lobes.data() + level.first[t];
-  for (int k = 0; k < n; ++k) {
-    const glm::dvec3 nbar(lobes[k].normal);
+  for (Lobe& l : level.texel_lobes(t)) {
+    const glm::dvec3 nbar(l.normal);
     const double len = glm::length(nbar);
     if (!(len > 0)) continue;
-    lobes[k].normal = round_normal(glm::vec3(glm::normalize(nbar / len + glm::dvec3(d, 0.0)) * len));
+    l.normal = round_normal(glm::vec3(glm::normalize(nbar / len + glm::dvec3(d, 0.0)) * len));
   }
 }
 

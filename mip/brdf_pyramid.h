@@ -39,11 +39,12 @@ struct BrdfLevel {
   std::vector<std::uint32_t> first;   // per texel: where its lobes start in `lobes` (texels with ≥ 2)
   std::vector<RadialCorrection> correction;  // per texel from kFirstCorrectedLevel on (radial_correction.h), else empty
 
-  // Texel t's lobes: a view into the level.
-  std::span<const Lobe> texel_lobes(std::size_t t) const {
+  // Texel t's lobes: a view into the level (writable for the build's re-centring).
+  std::span<Lobe> texel_lobes(std::size_t t) {
     const int n = counts[t];
-    return n == 1 ? std::span<const Lobe>(&single[t], 1) : std::span<const Lobe>(lobes.data() + first[t], static_cast<std::size_t>(n));
+    return n == 1 ? std::span<Lobe>(&single[t], 1) : std::span<Lobe>(lobes.data() + first[t], static_cast<std::size_t>(n));
   }
+  std::span<const Lobe> texel_lobes(std::size_t t) const { return const_cast<BrdfLevel*>(this)->texel_lobes(t); }
   // Every texel's lobes in texel order (a copy: for comparisons, not for lookups).
   std::vector<Lobe> all_lobes() const {
     std::vector<Lobe> out;

@@ -44,8 +44,8 @@ struct LobeChannel {
 
 // A lobe's channels in the given version. Version 6: 26 bytes a lobe (kBytesPerLobe), the normal as an
 // octahedral code (version 8: warped toward the pole) and a length deficit; version 5 had the normal
-// as three floats (32 bytes), version 4 too but no atoms; version 3 α² as a float and no skirt; version 2 the shape as α²'s upper end and μ;
-// version 1 no shape (plain GGX).
+// as three floats (32 bytes), version 4 too but no atoms; version 3 α² as a float and no skirt;
+// version 2 the shape as α²'s upper end and μ; version 1 no shape (plain GGX).
 std::vector<LobeChannel> lobe_channels(int version) {
   using B = OIIO::TypeDesc::BASETYPE;
   const B h = OIIO::TypeDesc::HALF, f = OIIO::TypeDesc::FLOAT;
