@@ -49,9 +49,9 @@ struct IntegratorSettings {
   bool footprints = true;
   // Compute the first hit's albedo and normal (the AOVs); render() sets it from RenderOptions::aovs.
   bool aovs = true;
-  // The ray differentials are scaled by this before they become footprints. As pbrt-v4 does, a
-  // pixel integrated by n jittered samples needs each sample to filter only about 1/√n of it:
-  // render() sets max(1/8, 1/√spp) when this is 0; trace_path reads 0 as 1.
+  // The ray differentials are scaled by this before they become footprints: a pixel integrated by n
+  // jittered samples needs each sample to filter only about 1/√n of it. render() sets 1/√spp when
+  // this is 0 (resolve_footprint_scale); trace_path reads 0 as 1.
   float footprint_scale = 0.0f;
 };
 

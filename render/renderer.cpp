@@ -55,7 +55,7 @@ Rng pixel_rng(std::uint64_t seed, int x, int y, int width, std::uint32_t index) 
 
 float resolve_footprint_scale(float scale, int spp) {
   if (scale > 0.0f) return scale;
-  return std::max(0.125f, 1.0f / std::sqrt(static_cast<float>(std::max(spp, 1))));
+  return 1.0f / std::sqrt(static_cast<float>(std::max(spp, 1)));
 }
 
 Film render(const RenderWorld& world, const RenderOptions& opt, RenderStats* stats) {

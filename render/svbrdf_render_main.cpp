@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
   int spp = 64, threads = 0, max_depth = 16;
   std::uint64_t seed = 0;
   double time_limit = 0.0;
-  float exposure = 0.0f;
+  float exposure = 0.0f, footprint_scale = 0.0f;
   bool use_float = false, quiet = false, aovs = false;
   app.add_option("scene", scene_file, "glTF file (.gltf or .glb); none renders the project's showcase scene");
   app.add_option("-o,--out", out, "output OpenEXR file (linear radiance); default out/<scene>.exr");
@@ -69,6 +69,10 @@ int main(int argc, char** argv) {
   for (const std::string& f : filters) filter_help += (f == filters.front() ? " " : " | ") + f;
   filter_help += " (default brdf: the BRDF-averaged MIP; level0: the nearest texel, no MIP, the ground truth at many spp)";
   app.add_option("--filter", filter, filter_help)->check(CLI::IsMember(filters));
+  app.add_option("--footprint-scale", footprint_scale,
+                 "each camera sample's texture footprint as a fraction of its pixel's (default 1/sqrt(spp), its "
+                 "share of the pixel; pbrt-v4 uses max(1/8, 1/sqrt(spp)); 1: the whole pixel)")
+      ->check(CLI::PositiveNumber);
   app.add_option("--light-sampling", light_sampling, "environment sampling: mis | nee | bsdf")
       ->check(CLI::IsMember({"mis", "nee", "bsdf"}));
   app.add_option("--exposure", exposure, "exposure in stops for the PNG (the EXR is never scaled)");
@@ -122,6 +126,7 @@ int main(int argc, char** argv) {
     options.integrator.max_depth = max_depth;
     options.integrator.filter = texture_filter;
     options.integrator.footprints = aovs;  // the MIP-level AOV; the MIP filters compute their own
+    options.integrator.footprint_scale = footprint_scale;  // 0: resolved to 1/√spp by render()
     options.aovs = aovs;
     options.integrator.light_sampling = light_sampling == "nee"    ? svbrdf::LightSampling::nee
                                         : light_sampling == "bsdf" ? svbrdf::LightSampling::bsdf

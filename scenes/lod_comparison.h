@@ -19,6 +19,7 @@
 // filter is available when svbrdf-render knows its name (parse_filter) *and* a probe render of the
 // first case's farthest camera under it differs from the level0 render with the same seed (a
 // renderer that accepted the name but ignored it would render bit-identical images).
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -37,13 +38,14 @@ struct LodOptions {
   // What to compare against the ground truth, in this order (the report's columns).
   std::vector<std::string> filters{"param", "toksvig", "vmf", "brdf"};
   double min_distance = 0.0;        // skip cameras nearer than this multiple of d₁
+  double max_distance = INFINITY;   // and farther than this one
   std::vector<std::string> cases;   // empty: all
   std::vector<std::string> lights;  // empty: all
   std::vector<std::string> views;   // empty: all
   int threads = 0;                  // 0: all cores
   // The filters' footprint scale (IntegratorSettings::footprint_scale): 0 is the renderer's default,
-  // max(1/8, 1/√spp) — each of the pixel's jittered samples filters its share of the pixel, as
-  // pbrt-v4 does; 1 makes every sample filter the whole pixel footprint.
+  // 1/√spp — each of the pixel's jittered samples filters its share of the pixel; 1 makes every
+  // sample filter the whole pixel footprint.
   float footprint_scale = 0.0f;
   bool keep_images = true;          // keep the images (the report needs them; the tests do not)
   std::function<void(const std::string&)> progress;  // one line per shot

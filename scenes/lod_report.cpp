@@ -260,7 +260,7 @@ fs::path write_lod_report(const LodResults& r, const LodManifest& m, const fs::p
       levels += (i ? ", level " : "level ") + json::number_text(std::clamp(std::log2(m.distances[i] * scale), 0.0, coarsest)) +
                 " at " + json::number_text(m.distances[i]) + "×";
     add("<p>Under the MIP filters each camera sample filters its own share of the pixel: its footprint is scaled by " +
-        json::number_text(scale) + " (the renderer's default, max(1/8, 1/√spp), unless set), so at k × d₁ the lookups "
+        json::number_text(scale) + " (the renderer's default, 1/√spp, unless set), so at k × d₁ the lookups "
         "read MIP level log₂(k × " + json::number_text(scale) + "), clamped to the pyramid's levels" +
         (std::isfinite(coarsest) ? " (0 to " + json::number_text(coarsest) + " for the " + std::to_string(size) + "² textures)" : "") +
         ": " + levels + ".</p>\n");

@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
   std::string manifest, out = "out/lod-report", ocio;
   bool full = false, quiet = false;
   int spp = 0, threads = 0;
-  double min_distance = 0.0;
+  double min_distance = 0.0, max_distance = INFINITY;
   float footprint_scale = 0.0f;
   std::vector<std::string> cases, lights, views, filters;
   app.add_option("--manifest", manifest, "LOD manifest (default: the one the build baked beside this program)");
@@ -46,9 +46,10 @@ int main(int argc, char** argv) {
   app.add_option("--spp", spp, "samples per pixel of every render (overrides the size)")->check(CLI::PositiveNumber);
   app.add_option("--threads", threads, "worker threads (0: all cores)")->check(CLI::NonNegativeNumber);
   app.add_option("--min-distance", min_distance, "skip cameras nearer than this multiple of d1");
+  app.add_option("--max-distance", max_distance, "skip cameras farther than this multiple of d1");
   app.add_option("--footprint-scale", footprint_scale,
                  "the filters' footprint scale: at k x d1 they read MIP level log2(k x scale) (default 0: the "
-                 "renderer's max(1/8, 1/sqrt(spp)); 1: each sample filters the whole pixel)")
+                 "renderer's 1/sqrt(spp); 1: each sample filters the whole pixel)")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--case", cases, "only these cases (repeatable)");
   app.add_option("--light", lights, "only these lights (repeatable)");
@@ -73,6 +74,7 @@ int main(int argc, char** argv) {
     o.spp = spp > 0 ? spp : full ? 4096 : 256;
     o.threads = threads;
     o.min_distance = min_distance;
+    o.max_distance = max_distance;
     o.footprint_scale = footprint_scale;
     o.cases = cases, o.lights = lights, o.views = views;
     if (!filters.empty()) o.filters = filters;

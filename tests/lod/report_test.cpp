@@ -96,6 +96,7 @@ TEST(LodReport, RendersInHeadlessChromiumWithoutConsoleErrors) {
   o.cases = {"metal-tray-steel"};
   o.lights = {"sun-45"};
   o.min_distance = 256;
+  o.max_distance = 1024;
   const LodResults r = run_lod_comparison(m, o);
   ASSERT_EQ(r.shots.size(), 4u);  // head-on and mirror, 256× and 1024×
   const TempDir dir;
@@ -142,7 +143,7 @@ TEST(LodReport, ProgramBadInputAndASmallRun) {
   EXPECT_EQ(ok.err, "");
   EXPECT_TRUE(fs::exists(dir / "r" / "index.html"));
   // The page says which MIP level the distance reads: at 4 samples per pixel each sample's footprint is
-  // max(1/8, 1/√4) = 1/2 of the pixel's, so 1024× reads log₂(512) = 9, clamped to the 256² textures' 8.
+  // 1/√4 = 1/2 of the pixel's, so 1024× reads log₂(512) = 9, clamped to the 256² textures' 8.
   const std::string html = slurp(dir / "r" / "index.html");
   EXPECT_NE(html.find("scaled by 0.5 "), std::string::npos);
   const std::size_t said = html.find("Under the MIP");

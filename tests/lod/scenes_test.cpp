@@ -271,5 +271,38 @@ TEST(Scenes, DefaultRenderIsTheShowcaseUnderItsSky) {
   EXPECT_GT(img.at(0, 0, 2), img.at(0, 0, 0));  // blue over red
 }
 
+// At k × d₁ a pixel of the manifest's image size covers k texels across (lod_scenes.h), and each of a render's spp camera samples
+// filters its share of the pixel, 1/√spp of it unless --footprint-scale says otherwise
+// (render/renderer.h): the MIP-level AOV at 16 × d₁ reads log₂(16 · scale) — 4 at a scale of 1,
+// 3 at 4 spp by default (1/2), 2 at 16 spp (1/4), 0 at 256 spp (1/16; pbrt-v4's floor of 1/8 would
+// read 1).
+TEST(Scenes, LodCameraReadsTheLevelOfItsDistanceAndFootprintScale) {
+  testing::TempDir dir;
+  const auto out = dir / "d16.exr";
+  const fs::path scene = kScenes / "lod" / "printed-paper-text" / "printed-paper-text.gltf";
+  const int size = read_lod_manifest(kScenes / "lod" / "manifest.json").image_size;
+  const std::string res = std::to_string(size) + "x" + std::to_string(size);
+  struct Case {
+    std::string args;
+    float level;
+  };
+  for (const Case& c : {Case{"--spp 4 --footprint-scale 1", 4.0f}, Case{"--spp 4", 3.0f}, Case{"--spp 16", 2.0f},
+                        Case{"--spp 256", 0.0f}, Case{"--spp 1 --footprint-scale 0.125", 1.0f}}) {
+    const auto r = run_command(std::string(SVBRDF_RENDER) + " '" + scene.string() + "' --camera d16 --res " + res + " --float --aov " +
+                                   c.args + " --quiet --out '" + out.string() + "'",
+                               dir.path());
+    ASSERT_EQ(r.status, 0) << c.args << ": " << r.err;
+    const Image level = read_image(dir / "d16.level.exr");
+    for (const auto& [x, y] : {std::pair{0, 0}, std::pair{size / 2, size / 2}, std::pair{size - 1, 2}})
+      EXPECT_NEAR(level.at(x, y, 0), c.level, 0.05f) << c.args << " at pixel " << x << "," << y;
+  }
+  for (const char* bad : {"0", "-1", "x"}) {
+    const auto r = run_command(std::string(SVBRDF_RENDER) + " '" + scene.string() + "' --footprint-scale " + bad +
+                                   " --quiet --out '" + out.string() + "'",
+                               dir.path());
+    EXPECT_EQ(r.status, 2) << "--footprint-scale " << bad << ": " << r.err;
+  }
+}
+
 }  // namespace
 }  // namespace svbrdf

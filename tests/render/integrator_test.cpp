@@ -548,13 +548,15 @@ TEST(Camera, DifferentialsAtKnownDistance) {
   EXPECT_NEAR(glm::length(ay - dpdy), 0.0f, 1e-3f * pixel);
 }
 
-// The footprint scale of a render: pbrt-v4's max(1/8, 1/√spp) unless given.
-TEST(Renderer, FootprintScaleIsPbrtsDefaultUnlessGiven) {
+// The footprint scale of a render: each sample's share of the pixel, 1/√spp, unless given — with no
+// floor, unlike pbrt-v4's max(1/8, 1/√spp) (renderer.h says why).
+TEST(Renderer, FootprintScaleIsTheSamplesShareOfThePixelUnlessGiven) {
   EXPECT_FLOAT_EQ(resolve_footprint_scale(0.0f, 1), 1.0f);
   EXPECT_FLOAT_EQ(resolve_footprint_scale(0.0f, 4), 0.5f);
   EXPECT_FLOAT_EQ(resolve_footprint_scale(0.0f, 16), 0.25f);
   EXPECT_FLOAT_EQ(resolve_footprint_scale(0.0f, 64), 0.125f);
-  EXPECT_FLOAT_EQ(resolve_footprint_scale(0.0f, 4096), 0.125f);
+  EXPECT_FLOAT_EQ(resolve_footprint_scale(0.0f, 256), 0.0625f);
+  EXPECT_FLOAT_EQ(resolve_footprint_scale(0.0f, 4096), 0.015625f);
   EXPECT_FLOAT_EQ(resolve_footprint_scale(0.3f, 4096), 0.3f);
 }
 

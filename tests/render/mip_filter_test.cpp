@@ -279,8 +279,8 @@ TEST(MipFilters, BrdfDeterministicAcrossThreadCounts) {
 }
 
 // The MIP-level AOV is the level the filters read: log2 of the footprint's (minor) width in texels.
-// Head-on, 8 texels per pixel: 3; with pbrt-v4's footprint scale max(1/8, 1/√spp) at 4 spp (1/2)
-// one level less, at 64 spp (1/8) three less; under a KHR_texture_transform scale of 2, one more.
+// Head-on, 8 texels per pixel: 3; with the default footprint scale 1/√spp at 4 spp (1/2) one level
+// less, at 64 spp (1/8) three less; under a KHR_texture_transform scale of 2, one more.
 TEST(MipFilters, MipLevelAovReflectsTheFootprint) {
   struct Case {
     int spp;
