@@ -10,6 +10,7 @@
 #include <string>
 #include <unistd.h>
 
+#include "base/cli_checks.h"
 #include "base/error.h"
 #include "base/message_line.h"
 #include "render/gltf_loader.h"
@@ -53,14 +54,14 @@ int main(int argc, char** argv) {
   app.add_option("scene", scene_file, "glTF file (.gltf or .glb); none renders the project's showcase scene");
   app.add_option("-o,--out", out, "output OpenEXR file (linear radiance); default out/<scene>.exr");
   app.add_option("--png", png, "display PNG (default: beside the EXR, same stem)");
-  app.add_option("--spp", spp, "samples per pixel")->check(CLI::PositiveNumber);
+  app.add_option("--spp", spp, "samples per pixel")->check(svbrdf::cli::positive);
   app.add_option("--res", res, "resolution WxH (default: the camera's aspect at 360 rows, else 640x360)");
   app.add_option("--camera", camera, "camera index or name (default: the scene's first, else a framing camera)");
   app.add_option("--seed", seed, "random seed");
-  app.add_option("--threads", threads, "worker threads (0: all cores)")->check(CLI::NonNegativeNumber);
-  app.add_option("--max-depth", max_depth, "maximum number of scattering events")->check(CLI::NonNegativeNumber);
+  app.add_option("--threads", threads, "worker threads (0: all cores)")->check(svbrdf::cli::non_negative);
+  app.add_option("--max-depth", max_depth, "maximum number of scattering events")->check(svbrdf::cli::non_negative);
   app.add_option("--time-limit", time_limit, "stop after this many seconds and write what accumulated")
-      ->check(CLI::NonNegativeNumber);
+      ->check(svbrdf::cli::non_negative);
   app.add_option("--env", env, "environment: r,g,b radiance or an equirectangular HDR/EXR file "
                                "(default: white 1 when the scene has no lights, none when it has)");
   app.add_option("--sun", sun, "add a directional light: elevation,azimuth[,irradiance] (degrees, W/m^2)");
@@ -72,7 +73,7 @@ int main(int argc, char** argv) {
   app.add_option("--footprint-scale", footprint_scale,
                  "each camera sample's texture footprint as a fraction of its pixel's (default 1/sqrt(spp), its "
                  "share of the pixel; pbrt-v4 uses max(1/8, 1/sqrt(spp)); 1: the whole pixel)")
-      ->check(CLI::PositiveNumber);
+      ->check(svbrdf::cli::positive);
   app.add_option("--light-sampling", light_sampling, "environment sampling: mis | nee | bsdf")
       ->check(CLI::IsMember({"mis", "nee", "bsdf"}));
   app.add_option("--exposure", exposure, "exposure in stops for the PNG (the EXR is never scaled)");

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "base/cli_checks.h"
 #include "base/error.h"
 #include "base/message_line.h"
 #include "scenes/lod_comparison.h"
@@ -43,14 +44,14 @@ int main(int argc, char** argv) {
   app.add_option("--manifest", manifest, "LOD manifest (default: the one the build baked beside this program)");
   app.add_option("-o,--out", out, "report directory (index.html and img/)");
   app.add_flag("--full", full, "the report's size: 4096 samples per pixel (default: 256, the tests' size)");
-  app.add_option("--spp", spp, "samples per pixel of every render (overrides the size)")->check(CLI::PositiveNumber);
-  app.add_option("--threads", threads, "worker threads (0: all cores)")->check(CLI::NonNegativeNumber);
+  app.add_option("--spp", spp, "samples per pixel of every render (overrides the size)")->check(svbrdf::cli::positive);
+  app.add_option("--threads", threads, "worker threads (0: all cores)")->check(svbrdf::cli::non_negative);
   app.add_option("--min-distance", min_distance, "skip cameras nearer than this multiple of d1");
   app.add_option("--max-distance", max_distance, "skip cameras farther than this multiple of d1");
   app.add_option("--footprint-scale", footprint_scale,
                  "the filters' footprint scale: at k x d1 they read MIP level log2(k x scale) (default 0: the "
                  "renderer's 1/sqrt(spp); 1: each sample filters the whole pixel)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(svbrdf::cli::non_negative);
   app.add_option("--case", cases, "only these cases (repeatable)");
   app.add_option("--light", lights, "only these lights (repeatable)");
   app.add_option("--view", views, "only these views: head-on, mirror (repeatable)");

@@ -74,6 +74,15 @@ TEST(Program, BadArgumentsExit2) {
   EXPECT_EQ(p.code, 2);
   EXPECT_NE(p.err.find("--filter"), std::string::npos) << p.err;
   EXPECT_EQ(run_program("'" + (dir.path() / "none.gltf").string() + "' -q", dir).code, 2);
+  // A number out of range is named with what it must be, in one short line (CLI11's own check
+  // printed the largest double in full: base/cli_checks.h).
+  for (const char* arg : {"--spp 0", "--spp x", "--threads -1", "--footprint-scale 0", "--footprint-scale inf"}) {
+    const RunResult n = run_program(base + arg, dir);
+    EXPECT_EQ(n.code, 2) << arg;
+    const std::string option = std::string(arg).substr(0, std::string(arg).find(' '));
+    EXPECT_NE(n.err.find(option + ": must be a "), std::string::npos) << arg << ": " << n.err;
+    EXPECT_LT(n.err.size(), 200u) << arg << ": " << n.err;
+  }
 }
 
 // End to end through the file format: a Lambertian quad (glTF's specular layer off through
