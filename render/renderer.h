@@ -65,7 +65,7 @@ Film render(const RenderWorld& world, const RenderOptions& options, RenderStats*
 // than the whole pixel's footprint. pbrt-v4 stops at 1/8 (max(1/8, 1/√spp)); we do not, because with
 // that floor every MIP filter converges, as samples grow, to the pixel's image blurred by an eighth of
 // a pixel, not to the pixel's image: the LOD comparison measured it (a far mirror view of the metal tray
-// 1.59× its noise floor at 4096 spp and 3.25× at 6000, 1.18× with 1/√spp; docs/design-notes.md).
+// 1.59× its noise floor at 4096 spp and 3.25× at 6000, 1.13× with 1/√spp; docs/design-notes.md).
 // With 1/√spp the filter's blur shrinks with the noise, so its bias shrinks at least as fast.
 float resolve_footprint_scale(float scale, int spp);
 

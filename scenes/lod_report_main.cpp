@@ -46,8 +46,10 @@ int main(int argc, char** argv) {
   app.add_flag("--full", full, "the report's size: 4096 samples per pixel (default: 256, the tests' size)");
   app.add_option("--spp", spp, "samples per pixel of every render (overrides the size)")->check(svbrdf::cli::positive);
   app.add_option("--threads", threads, "worker threads (0: all cores)")->check(svbrdf::cli::non_negative);
-  app.add_option("--min-distance", min_distance, "skip cameras nearer than this multiple of d1");
-  app.add_option("--max-distance", max_distance, "skip cameras farther than this multiple of d1");
+  app.add_option("--min-distance", min_distance, "skip cameras nearer than this multiple of d1")
+      ->check(svbrdf::cli::non_negative);
+  app.add_option("--max-distance", max_distance, "skip cameras farther than this multiple of d1")
+      ->check(svbrdf::cli::positive);
   app.add_option("--footprint-scale", footprint_scale,
                  "the filters' footprint scale: at k x d1 they read MIP level log2(k x scale) (default 0: the "
                  "renderer's 1/sqrt(spp); 1: each sample filters the whole pixel)")
