@@ -271,11 +271,11 @@ TEST(Scenes, DefaultRenderIsTheShowcaseUnderItsSky) {
   EXPECT_GT(img.at(0, 0, 2), img.at(0, 0, 0));  // blue over red
 }
 
-// At k × d₁ a pixel of the manifest's image size covers k texels across (lod_scenes.h), and each of a render's spp camera samples
-// filters its share of the pixel, 1/√spp of it unless --footprint-scale says otherwise
-// (render/renderer.h): the MIP-level AOV at 16 × d₁ reads log₂(16 · scale) — 4 at a scale of 1,
-// 3 at 4 spp by default (1/2), 2 at 16 spp (1/4), 0 at 256 spp (1/16; pbrt-v4's floor of 1/8 would
-// read 1).
+// At k × d₁ a pixel of the manifest's image size covers k texels across (lod_scenes.h), and each of
+// a render's spp camera samples filters its share of the pixel, 1/√spp of it unless --footprint-scale
+// says otherwise (render/renderer.h): the MIP-level AOV at 16 × d₁ reads log₂(16 · scale) — 4 at a
+// scale of 1, 3 at 4 spp by default (1/2), 2 at 16 spp (1/4), 0 at 256 spp (1/16; pbrt-v4's floor of
+// 1/8 would read 1).
 TEST(Scenes, LodCameraReadsTheLevelOfItsDistanceAndFootprintScale) {
   testing::TempDir dir;
   const auto out = dir / "d16.exr";
