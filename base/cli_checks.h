@@ -22,9 +22,9 @@ inline CLI::Validator number_check(bool strict) {
         char* end = nullptr;
         errno = 0;
         const double v = std::strtod(begin, &end);
-        if (end == begin || *end != '\0' || errno == ERANGE || !std::isfinite(v)) return "must be " + want + ", got '" + text + "'";
-        if (strict ? !(v > 0) : !(v >= 0)) return "must be " + want + ", got '" + text + "'";
-        return {};
+        const bool number = end != begin && *end == '\0' && errno != ERANGE && std::isfinite(v);
+        if (number && (strict ? v > 0 : v >= 0)) return {};
+        return "must be " + want + ", got '" + text + "'";
       },
       name, name);
 }

@@ -132,6 +132,7 @@ LodResults run_lod_comparison(const LodManifest& m, const LodOptions& o, const C
   const auto say = [&](const std::string& s) {
     if (o.progress) o.progress(s);
   };
+  const auto wanted = [&](double k) { return k >= o.min_distance && k <= o.max_distance; };
 
   // Which filters the renderer offers (see the header): probed on the first selected case.
   std::vector<std::pair<std::string, TextureFilter>> filters;
@@ -172,7 +173,7 @@ LodResults run_lod_comparison(const LodManifest& m, const LodOptions& o, const C
       if (!selected(o.views, v.name)) continue;
       for (const std::string& light_name : v.lights) {
         if (!selected(o.lights, light_name)) continue;
-        const bool any = std::any_of(m.distances.begin(), m.distances.end(), [&](double k) { return k >= o.min_distance && k <= o.max_distance; });
+        const bool any = std::any_of(m.distances.begin(), m.distances.end(), wanted);
         if (!any) continue;
         if (!subject_owner) {
           subject_owner = std::make_unique<ShotRenderer>(c.gltf, m.image_size, o.footprint_scale, color);
@@ -185,7 +186,7 @@ LodResults run_lod_comparison(const LodManifest& m, const LodOptions& o, const C
         const RenderWorld reference_world = reference_owner ? reference.world(light) : subject_world;
         for (std::size_t i = 0; i < v.cameras.size(); ++i) {
           const double k = m.distances[i];
-          if (k < o.min_distance || k > o.max_distance) continue;
+          if (!wanted(k)) continue;
           LodShot shot;
           shot.case_name = c.name;
           shot.kind = c.kind;
