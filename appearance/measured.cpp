@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <span>
 #include <iterator>
 
 #include "appearance/sampling.h"
@@ -118,12 +119,7 @@ void MerlTable::write(const std::filesystem::path& path) const {
     const double v = static_cast<double>(f_[3 * cell + channel]) / kScale[channel];
     std::memcpy(p + i * sizeof(double), &v, sizeof(double));
   }
-  write_atomically(path, [&](const std::filesystem::path& tmp) {
-    std::ofstream out(tmp, std::ios::binary);
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    out.close();
-    if (!out) throw input_error(path.string(), "cannot write the measured BRDF file");
-  });
+  write_bytes_atomically(path, std::as_bytes(std::span(bytes)));
 }
 
 MerlTable MerlTable::tabulate(const Bsdf& bsdf) {

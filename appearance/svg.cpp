@@ -2,7 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <span>
 
 #include "base/atomic_file.h"
 #include "base/error.h"
@@ -76,12 +76,7 @@ std::string Svg::str() const {
 
 void Svg::write(const std::filesystem::path& path) const {
   const std::string doc = str();
-  write_atomically(path, [&](const std::filesystem::path& tmp) {
-    std::ofstream out(tmp, std::ios::binary);
-    out << doc;
-    out.close();
-    if (!out) throw input_error(path.string(), "cannot write the SVG file");
-  });
+  write_bytes_atomically(path, std::as_bytes(std::span(doc)));
 }
 
 }  // namespace svbrdf

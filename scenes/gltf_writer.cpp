@@ -3,7 +3,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
-#include <fstream>
+#include <span>
 
 #include "base/atomic_file.h"
 #include "base/error.h"
@@ -23,14 +23,7 @@ std::span<const std::byte> bytes_of(std::span<const T> v) {
   return std::as_bytes(v);
 }
 
-void write_bytes(const std::filesystem::path& path, std::span<const std::byte> data) {
-  write_atomically(path, [&](const std::filesystem::path& tmp) {
-    std::ofstream f(tmp, std::ios::binary);
-    f.write(reinterpret_cast<const char*>(data.data()), std::streamsize(data.size()));
-    f.close();
-    if (!f) throw input_error(path.string(), "cannot write the file");
-  });
-}
+void write_bytes(const std::filesystem::path& path, std::span<const std::byte> data) { write_bytes_atomically(path, data); }
 
 Value translation_rotation(const Placement& p) {
   Value node = Value::object();

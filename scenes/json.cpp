@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <span>
 #include <sstream>
 
 #include "base/atomic_file.h"
@@ -412,12 +413,7 @@ std::string dump(const Value& v) {
 
 void write_file(const std::filesystem::path& path, const Value& v) {
   const std::string text = dump(v);
-  write_atomically(path, [&](const std::filesystem::path& tmp) {
-    std::ofstream f(tmp, std::ios::binary);
-    f.write(text.data(), std::streamsize(text.size()));
-    f.close();
-    if (!f) throw input_error(path.string(), "cannot write the file");
-  });
+  write_bytes_atomically(path, std::as_bytes(std::span(text)));
 }
 
 // ---------------------------------------------------------------------------------------------

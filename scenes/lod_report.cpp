@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
+#include <span>
 #include <map>
 
 #include <tbb/parallel_for.h>
@@ -429,12 +429,7 @@ fs::path write_lod_report(const LodResults& r, const LodManifest& m, const fs::p
   }
 
   const fs::path index = dir / "index.html";
-  write_atomically(index, [&](const fs::path& tmp) {
-    std::ofstream f(tmp, std::ios::binary);
-    f.write(h.data(), std::streamsize(h.size()));
-    f.close();
-    if (!f) throw input_error(index.string(), "cannot write the file");
-  });
+  write_bytes_atomically(index, std::as_bytes(std::span(h)));
   return index;
 }
 

@@ -225,16 +225,31 @@ Image read_image_from_memory(std::span<const std::byte> bytes, std::string_view 
   return decode_memory(bytes, mime_type, name, nullptr);
 }
 
-void write_image(const std::filesystem::path& path, const Image& image, PixelFormat format) {
+std::vector<std::byte> encode_image(const std::filesystem::path& path, const Image& image, PixelFormat format) {
   check_image_size(path.string(), image.width, image.height);
-  write_atomically(path, [&](const std::filesystem::path& tmp) {
-    auto out = OIIO::ImageOutput::create(path.string());
-    if (!out) throw input_error(path.string(), "no image writer for this extension: " + reason(OIIO::geterror(), "unknown"));
-    OIIO::ImageSpec spec(image.width, image.height, image.channels, to_oiio(format));
-    spec.attribute("oiio:UnassociatedAlpha", 1);  // our alpha is straight: store it as it is
-    if (!out->open(tmp.string(), spec) || !out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data()) || !out->close())
-      throw input_error(path.string(), "cannot write image: " + reason(out->geterror(), "write failed"));
-  });
+  auto out = OIIO::ImageOutput::create(path.string());
+  if (!out) throw input_error(path.string(), "no image writer for this extension: " + reason(OIIO::geterror(), "unknown"));
+  // Encoded into memory through an IOVecOutput proxy (OpenImageIO 2.4 takes it from the spec's
+  // "oiio:ioproxy"): the PNG writer does not report a failed write to a file, so the bytes are
+  // written by write_bytes_atomically, which checks every one.
+  std::vector<unsigned char> encoded;
+  OIIO::Filesystem::IOVecOutput proxy(encoded);
+  OIIO::Filesystem::IOProxy* proxy_ptr = &proxy;
+  OIIO::ImageSpec spec(image.width, image.height, image.channels, to_oiio(format));
+  spec.attribute("oiio:UnassociatedAlpha", 1);  // our alpha is straight: store it as it is
+  spec.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy_ptr);
+  if (!out->supports("ioproxy"))
+    throw Error(path.string() + ": the image writer for this extension cannot encode to memory", Error::Kind::internal);
+  if (!out->open(path.string(), spec) || !out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data()) || !out->close())
+    throw Error(path.string() + ": cannot encode the image: " + reason(out->geterror(), "encoder failed"), Error::Kind::internal);
+  std::vector<std::byte> bytes(encoded.size());
+  std::memcpy(bytes.data(), encoded.data(), encoded.size());
+  return bytes;
+}
+
+void write_image(const std::filesystem::path& path, const Image& image, PixelFormat format) {
+  const std::vector<std::byte> bytes = encode_image(path, image, format);
+  write_bytes_atomically(path, bytes);
 }
 
 bool is_data_uri(std::string_view uri) { return uri.size() >= 5 && uri.substr(0, 5) == "data:"; }

@@ -36,8 +36,13 @@ Image read_image(const std::filesystem::path& path, PixelFormat* stored_format);
 
 // Writes through OpenImageIO, choosing the format by extension, atomically (temporary + rename).
 // No color-space metadata is written (glTF viewers must ignore it and the Khronos validator warns
-// about it); an integer format stores round(clamp(v, 0, 1) · max).
+// about it); an integer format stores round(clamp(v, 0, 1) · max). A failed write (a full disk) is
+// Error::Kind::environment and leaves no file (base/atomic_file.h).
 void write_image(const std::filesystem::path& path, const Image& image, PixelFormat format);
+
+// The file write_image writes, as bytes in memory: the format chosen by `path`'s extension. For
+// outputs written together (base/atomic_file.h, StagedFiles).
+std::vector<std::byte> encode_image(const std::filesystem::path& path, const Image& image, PixelFormat format);
 
 // Largest image the project reads or makes: a side of 32768 texels, 2^28 texels in all (1 GiB per
 // float channel). Anything larger, or an empty image, is refused as bad input.

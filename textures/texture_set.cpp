@@ -4,7 +4,7 @@
 #include <bit>
 #include <charconv>
 #include <cstdint>
-#include <fstream>
+#include <span>
 #include <vector>
 
 #include <tbb/parallel_invoke.h>
@@ -52,12 +52,7 @@ void put_u16(std::vector<std::byte>& b, std::uint16_t v) {
 }
 
 void write_text(const std::filesystem::path& path, const std::string& text) {
-  write_atomically(path, [&](const std::filesystem::path& tmp) {
-    std::ofstream f(tmp, std::ios::binary);
-    f.write(text.data(), std::streamsize(text.size()));
-    f.close();
-    if (!f) throw input_error(path.string(), "cannot write file");
-  });
+  write_bytes_atomically(path, std::as_bytes(std::span(text)));
 }
 
 }  // namespace
