@@ -2,10 +2,29 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
+#include "base/atomic_file.h"
 #include "base/error.h"
+#include "base/output_location.h"
 
 namespace svbrdf {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path png_path(const OutputOptions& o) { return o.png.empty() ? fs::path(o.exr).replace_extension(".png") : o.png; }
+
+fs::path aov_path(const OutputOptions& o, const char* name) {
+  fs::path p = o.exr;
+  p.replace_extension(std::string(".") + name + ".exr");
+  return p;
+}
+
+constexpr const char* kAovs[] = {"albedo", "normal", "depth", "level"};
+
+}  // namespace
 
 Image to_display(const Image& linear, float exposure, const ColorConfig& color) {
   Image out = linear;
@@ -15,33 +34,46 @@ Image to_display(const Image& linear, float exposure, const ColorConfig& color) 
   return out;
 }
 
-void write_outputs(const Film& film, const OutputOptions& o, const ColorConfig& color) {
-  namespace fs = std::filesystem;
-  auto ensure_dir = [](const fs::path& p) {
-    if (!p.has_parent_path()) return;
-    std::error_code ec;
-    fs::create_directories(p.parent_path(), ec);
-    if (ec) throw input_error(p.string(), "cannot create the output folder: " + ec.message());
-  };
-  ensure_dir(o.exr);
-  const Image radiance = film.radiance();
-  write_image(o.exr, radiance, o.float32 ? PixelFormat::float32 : PixelFormat::half);
-  fs::path png = o.png;
-  if (png.empty()) png = fs::path(o.exr).replace_extension(".png");
-  ensure_dir(png);
-  write_image(png, to_display(radiance, o.exposure, color), PixelFormat::uint8);
-  if (o.aovs) {
-    auto aov = [&](const char* name) {
-      fs::path p = o.exr;
-      p.replace_extension(std::string(".") + name + ".exr");
-      return p;
-    };
-    const PixelFormat f = o.float32 ? PixelFormat::float32 : PixelFormat::half;
-    write_image(aov("albedo"), film.albedo(), f);
-    write_image(aov("normal"), film.normal(), f);
-    write_image(aov("depth"), film.depth(), PixelFormat::float32);
-    write_image(aov("level"), film.mip_level(), f);
+std::vector<fs::path> output_paths(const OutputOptions& o) {
+  std::vector<fs::path> paths = {o.exr, png_path(o)};
+  if (o.aovs)
+    for (const char* name : kAovs) paths.push_back(aov_path(o, name));
+  return paths;
+}
+
+void prepare_outputs(const OutputOptions& o) {
+  const std::vector<fs::path> paths = output_paths(o);
+  for (std::size_t i = 0; i < paths.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (paths[i].lexically_normal() == paths[j].lexically_normal())
+        throw input_error(paths[i].string(), "is named for two outputs (the EXR and --png must differ)");
+  for (const fs::path& p : paths) {
+    remove_stale_temp_files(p);
+    check_output_location(p);
   }
+}
+
+void write_outputs(const Film& film, const OutputOptions& o, const ColorConfig& color) {
+  // Again after the render: a folder removed meanwhile is made anew, and a path turned into a folder
+  // is refused before anything is encoded.
+  for (const fs::path& p : output_paths(o)) check_output_location(p);
+  const Image radiance = film.radiance();
+  const PixelFormat f = o.float32 ? PixelFormat::float32 : PixelFormat::half;
+  // Each file is encoded and written before the next is encoded: one encoded image in memory at a
+  // time, and nothing renamed until the last is on disk.
+  StagedFiles files;
+  files.stage(o.exr, encode_image(o.exr, radiance, f));
+  const fs::path png = png_path(o);
+  files.stage(png, encode_image(png, to_display(radiance, o.exposure, color), PixelFormat::uint8));
+  if (o.aovs) {
+    const fs::path albedo = aov_path(o, "albedo"), normal = aov_path(o, "normal"), depth = aov_path(o, "depth"),
+                   level = aov_path(o, "level");
+    files.stage(albedo, encode_image(albedo, film.albedo(), f));
+    files.stage(normal, encode_image(normal, film.normal(), f));
+    files.stage(depth, encode_image(depth, film.depth(), PixelFormat::float32));
+    files.stage(level, encode_image(level, film.mip_level(), f));
+  }
+  files.commit();
 }
 
 }  // namespace svbrdf

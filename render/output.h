@@ -1,7 +1,11 @@
 #pragma once
 // Writing a render: the radiance as linear OpenEXR (half by default, float on request; no exposure
-// applied), a display-referred PNG beside it, and optional AOVs, each written atomically.
+// applied), a display-referred PNG beside it, and optional AOVs. They are written as one set: every
+// file is encoded and written to its temporary first, and only when all are complete are they renamed
+// into place (base/atomic_file.h), so a failure leaves no new file and never an EXR that does not
+// match its PNG.
 #include <filesystem>
+#include <vector>
 
 #include "render/renderer.h"
 #include "textures/color.h"
@@ -15,6 +19,15 @@ struct OutputOptions {
   float exposure = 0.0f;      // stops, PNG only
   bool aovs = false;          // <stem>.albedo.exr, .normal.exr, .depth.exr, .level.exr
 };
+
+// Every file write_outputs writes: the EXR, the PNG, then the AOVs.
+std::vector<std::filesystem::path> output_paths(const OutputOptions& options);
+
+// Before rendering: each output's folder exists (created if missing) and takes a new file, no output
+// path names a folder, and the temporaries a killed run left beside them are removed
+// (base/output_location.h). Throws bad input for a wrong path, Error::Kind::environment for a folder
+// the machine will not let us write.
+void prepare_outputs(const OutputOptions& options);
 
 void write_outputs(const Film& film, const OutputOptions& options, const ColorConfig& color = ColorConfig::builtin());
 

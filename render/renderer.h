@@ -1,8 +1,8 @@
 #pragma once
 // Rendering an image: samples per pixel in four passes over 16×16 tiles spread over oneTBB, every
 // sample seeded by (seed, pixel, sample index) so the image is bit-identical for any thread count and
-// any pass split. An interruption (Ctrl-C, --time-limit) stops at the next tile; every pixel then
-// holds the mean of the samples it got (its tile's passes so far).
+// any pass split. An interruption (Ctrl-C, --time-limit) stops within a fraction of a second, before
+// each thread's next sample; every pixel then holds the mean of the samples it got.
 #include <atomic>
 #include <cstdint>
 #include <functional>
@@ -44,7 +44,7 @@ struct RenderOptions {
   IntegratorSettings integrator;
   bool aovs = true;                         // accumulate albedo, normal, depth and MIP level
   double time_limit = 0.0;                  // seconds; 0 = none
-  const std::atomic<bool>* cancel = nullptr;  // set by a signal handler (Ctrl-C)
+  const std::atomic<bool>* cancel = nullptr;  // set by a signal handler (Ctrl-C, SIGTERM)
   std::function<void(const ProgressInfo&)> progress;  // called about every 0.2 s from one thread
 };
 

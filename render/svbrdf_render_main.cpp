@@ -1,33 +1,75 @@
-// svbrdf-render: an Embree path tracer for textured glTF 2.0 scenes (issue 6). A thin main: parse
-// the command line, call the library, map errors to exit codes (2 bad input, 1 internal failure,
-// 130 interrupted after writing what had accumulated).
+// svbrdf-render: an Embree path tracer for textured glTF 2.0 scenes. A thin main: parse the command
+// line, call the library, map errors to exit codes (2 bad input, 1 internal or environment failure,
+// 130 for SIGINT and 143 for SIGTERM, after writing what had accumulated when the render had begun).
 #include <CLI/CLI.hpp>
 
-#include <atomic>
+#include <cerrno>
+#include <climits>
 #include <csignal>
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
-#include <unistd.h>
+#include <tuple>
+#include <utility>
 
+#include "base/checked_number.h"
 #include "base/cli_checks.h"
 #include "base/error.h"
+#include "base/interrupt.h"
 #include "base/message_line.h"
+#include "base/resource_limits.h"
 #include "render/gltf_loader.h"
 #include "render/output.h"
 #include "render/progress.h"
 #include "render/render_setup.h"
 #include "render/renderer.h"
 #include "textures/color.h"
+#include "textures/image.h"
 
 namespace {
 
-std::atomic<bool> g_interrupted{false};  // set by SIGINT; the only state a signal handler may touch
-extern "C" void on_sigint(int) { g_interrupted.store(true); }
-
 namespace fs = std::filesystem;
 
-// The showcase scene (issue 7) as the build places it; the first that exists wins.
+// The most footprint scale --footprint-scale takes: a sample's texture footprint 64 times its pixel's
+// reads MIP levels six steps coarser than the pixel's own. Scales above 1 are for experiments (the
+// blur an engine's wider filter gives, a pyramid's coarse levels seen up close); past 64 the image is
+// the texture's mean over most of the frame, no filter of the pixel any more, and a scale like 1e30
+// only says that the value was mistyped.
+constexpr double kMaxFootprintScale = 64.0;
+// The most scattering events a path may have: the LOD recipes' own bound (scenes/lod_scenes.cpp). A
+// path that long already carries nothing visible; a bound keeps a mistyped 10^9 from rendering
+// mirrors facing each other for hours.
+constexpr int kMaxDepth = 1024;
+// ±64 stops scale the PNG by 2^±64: every pixel is black or white long before, and 2^128 would
+// overflow a float.
+constexpr double kMaxExposure = 64.0;
+
+// "WxH" with both whole numbers ≥ 1 and no more than the image writer's side (kMaxImageSide), then
+// within --max-texels and the memory budget at the film's bytes per pixel.
+std::pair<int, int> parse_resolution(const std::string& text) {
+  const svbrdf::Error bad = svbrdf::input_error("--res " + text, "expected WxH with whole numbers, e.g. 640x360");
+  const std::size_t x = text.find_first_of("xX");
+  if (x == std::string::npos) throw bad;
+  long long side[2];
+  const std::string parts[2] = {text.substr(0, x), text.substr(x + 1)};
+  for (int i = 0; i < 2; ++i) {
+    const char* begin = parts[i].c_str();
+    char* end = nullptr;
+    errno = 0;
+    side[i] = std::strtoll(begin, &end, 10);
+    if (end == begin || *end != '\0' || errno == ERANGE || parts[i].find_first_of("+- ") != std::string::npos) throw bad;
+    if (side[i] < 1) throw svbrdf::input_error("--res " + text, "width and height must be at least 1");
+    if (side[i] > svbrdf::kMaxImageSide)
+      throw svbrdf::input_error("--res " + text, "a side of more than " + std::to_string(svbrdf::kMaxImageSide) +
+                                                    " pixels is more than the image writer takes");
+  }
+  svbrdf::check_image_size(std::uint64_t(side[0]), std::uint64_t(side[1]), svbrdf::Film::kBytesPerPixel, "--res " + text);
+  return {static_cast<int>(side[0]), static_cast<int>(side[1])};
+}
+
+// The showcase scene as the build places it; the first that exists wins.
 fs::path find_showcase(const char* argv0) {
   std::error_code ec;
   fs::path exe = fs::canonical("/proc/self/exe", ec);
@@ -44,24 +86,38 @@ fs::path find_showcase(const char* argv0) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // First of all: a Ctrl-C or SIGTERM while the command line is read, the scene loaded or the MIP
+  // chains and the BVH built ends the run at once with one line and exit 130 / 143. That work runs
+  // inside libraries that cannot poll a flag, so the handler exits itself (base/interrupt.h); there
+  // is nothing to keep yet. Once the render begins, the first signal stops it and what accumulated is
+  // written.
+  svbrdf::install_interrupt_handlers("svbrdf-render");
+  svbrdf::set_interrupt_mode(svbrdf::InterruptMode::exit_now, " before the render began; nothing written");
+
   CLI::App app{"svbrdf-render: path-trace a textured glTF 2.0 scene"};
   std::string scene_file, out = "", png, res, camera, env, sun, filter = "brdf", light_sampling = "mis", ocio;
   int spp = 64, threads = 0, max_depth = 16;
-  std::uint64_t seed = 0;
+  std::uint64_t seed = 0, max_texels = svbrdf::resource_limits().max_texels;
   double time_limit = 0.0;
   float exposure = 0.0f, footprint_scale = 0.0f;
   bool use_float = false, quiet = false, aovs = false;
   app.add_option("scene", scene_file, "glTF file (.gltf or .glb); none renders the project's showcase scene");
   app.add_option("-o,--out", out, "output OpenEXR file (linear radiance); default out/<scene>.exr");
   app.add_option("--png", png, "display PNG (default: beside the EXR, same stem)");
-  app.add_option("--spp", spp, "samples per pixel")->check(svbrdf::cli::positive);
+  app.add_option("--spp", spp, "samples per pixel")->check(svbrdf::cli::whole_in(1, INT_MAX));
   app.add_option("--res", res, "resolution WxH (default: the camera's aspect at 360 rows, else 640x360)");
   app.add_option("--camera", camera, "camera index or name (default: the scene's first, else a framing camera)");
-  app.add_option("--seed", seed, "random seed");
-  app.add_option("--threads", threads, "worker threads (0: all cores)")->check(svbrdf::cli::non_negative);
-  app.add_option("--max-depth", max_depth, "maximum number of scattering events")->check(svbrdf::cli::non_negative);
+  app.add_option("--seed", seed, "random seed")->check(svbrdf::cli::unsigned_whole);
+  app.add_option("--threads", threads, "worker threads (0: all cores; more than the machine runs at once are capped)")
+      ->check(svbrdf::cli::whole_in(0, INT_MAX));
+  app.add_option("--max-depth", max_depth, "maximum number of scattering events (0.." + std::to_string(kMaxDepth) + ")")
+      ->check(svbrdf::cli::whole_in(0, kMaxDepth));
   app.add_option("--time-limit", time_limit, "stop after this many seconds and write what accumulated")
       ->check(svbrdf::cli::non_negative);
+  app.add_option("--max-texels", max_texels,
+                 "the most texels one image may have: a texture, a MIP level, the frame (default 2^26 = 8192x8192; "
+                 "at most 2^40)")
+      ->check(svbrdf::cli::whole_in(1, svbrdf::cli::kMaxTexelsOption));
   app.add_option("--env", env, "environment: r,g,b radiance or an equirectangular HDR/EXR file "
                                "(default: white 1 when the scene has no lights, none when it has)");
   app.add_option("--sun", sun, "add a directional light: elevation,azimuth[,irradiance] (degrees, W/m^2)");
@@ -71,12 +127,13 @@ int main(int argc, char** argv) {
   filter_help += " (default brdf: the BRDF-averaged MIP; level0: the nearest texel, no MIP, the ground truth at many spp)";
   app.add_option("--filter", filter, filter_help)->check(CLI::IsMember(filters));
   app.add_option("--footprint-scale", footprint_scale,
-                 "each camera sample's texture footprint as a fraction of its pixel's (default 1/sqrt(spp), its "
-                 "share of the pixel; pbrt-v4 uses max(1/8, 1/sqrt(spp)); 1: the whole pixel)")
-      ->check(svbrdf::cli::positive);
+                 "each camera sample's texture footprint as a fraction of its pixel's, in (0, 64] (default 1/sqrt(spp), "
+                 "its share of the pixel; pbrt-v4 uses max(1/8, 1/sqrt(spp)); 1: the whole pixel)")
+      ->check(svbrdf::cli::number_in(0.0, kMaxFootprintScale, true, false));
   app.add_option("--light-sampling", light_sampling, "environment sampling: mis | nee | bsdf")
       ->check(CLI::IsMember({"mis", "nee", "bsdf"}));
-  app.add_option("--exposure", exposure, "exposure in stops for the PNG (the EXR is never scaled)");
+  app.add_option("--exposure", exposure, "exposure in stops for the PNG, in [-64, 64] (the EXR is never scaled)")
+      ->check(svbrdf::cli::number_in(-kMaxExposure, kMaxExposure));
   app.add_option("--ocio-config", ocio, "OpenColorIO config for texture decoding and the PNG (default: $OCIO, else the built-in one)");
   app.add_flag("--float", use_float, "write 32-bit float EXR (default half)");
   app.add_flag("--aov", aovs, "also write albedo, normal, depth and MIP-level EXRs beside the output");
@@ -84,24 +141,20 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
+    return svbrdf::cli::parse_failure(app, e, "svbrdf-render");
   }
 
   try {
+    // Before any input is read: every image, MIP level and the frame are held to it.
+    svbrdf::resource_limits().max_texels = max_texels;
+    threads = svbrdf::cli::capped_threads(threads, "svbrdf-render");
     const svbrdf::TextureFilter texture_filter = *svbrdf::parse_filter(filter);
     svbrdf::SceneSetup setup;
     setup.camera = camera;
     setup.env = env;
     setup.sun = sun;
     setup.filter = texture_filter;
-    if (!res.empty()) {
-      int w = 0, h = 0;
-      char x = 0, extra = 0;
-      if (std::sscanf(res.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w < 1 || h < 1 ||
-          w > 32768 || h > 32768)
-        throw svbrdf::input_error("--res " + res, "expected WxH, e.g. 640x360");
-      setup.width = w, setup.height = h;
-    }
+    if (!res.empty()) std::tie(setup.width, setup.height) = parse_resolution(res);
     const fs::path scene_path = scene_file.empty() ? find_showcase(argv[0]) : fs::path(scene_file);
     // The showcase is lit by a sun and its sky; glTF has no ratified way to carry an environment, so
     // the recipe bakes the sky beside the scene and the default render uses it unless --env says else.
@@ -109,6 +162,16 @@ int main(int argc, char** argv) {
       setup.env = (scene_path.parent_path() / "sky.hdr").string();
     if (out.empty()) out = (fs::path("out") / scene_path.stem()).string() + ".exr";
     if (fs::path(out).extension() != ".exr") throw svbrdf::input_error("--out " + out, "the output must be an .exr file");
+
+    svbrdf::OutputOptions oo;
+    oo.exr = out;
+    oo.png = png;
+    oo.float32 = use_float;
+    oo.exposure = exposure;
+    oo.aovs = aovs;
+    // Before the scene is read: a render must not end in "cannot write" for a path that was wrong
+    // from the start. Also removes the temporaries a killed run left there.
+    svbrdf::prepare_outputs(oo);
 
     const svbrdf::ColorConfig color =
         svbrdf::ColorConfig::resolve(ocio.empty() ? std::nullopt : std::optional<fs::path>(ocio));
@@ -118,6 +181,11 @@ int main(int argc, char** argv) {
     const svbrdf::PreparedScene prepared(std::move(scene), setup, color);
     for (const std::string& w : prepared.mip_warnings(texture_filter))
       std::fprintf(stderr, "svbrdf-render: warning: %s\n", svbrdf::message_line(w).c_str());
+    const std::uint64_t pixels = std::uint64_t(prepared.camera().width()) * std::uint64_t(prepared.camera().height());
+    // The sample counters are 64-bit: spp × pixels must fit (it does unless --max-texels is huge).
+    if (const auto total = svbrdf::checked_mul(pixels, std::uint64_t(spp)); !total || *total >= (std::uint64_t(1) << 63))
+      throw svbrdf::input_error("--spp " + std::to_string(spp), "with " + std::to_string(pixels) +
+                                                                     " pixels, more samples than a 63-bit counter holds");
 
     svbrdf::RenderOptions options;
     options.spp = spp;
@@ -132,27 +200,26 @@ int main(int argc, char** argv) {
     options.integrator.light_sampling = light_sampling == "nee"    ? svbrdf::LightSampling::nee
                                         : light_sampling == "bsdf" ? svbrdf::LightSampling::bsdf
                                                                    : svbrdf::LightSampling::mis;
-    options.cancel = &g_interrupted;
+    options.cancel = &svbrdf::interrupt_requested();
     svbrdf::ProgressPrinter printer(quiet);
     options.progress = [&](const svbrdf::ProgressInfo& p) { printer.update(p); };
-    std::signal(SIGINT, on_sigint);
+    // The first signal stops the render, which then writes what accumulated; a second one exits at
+    // once for a user who does not want to wait.
+    svbrdf::set_interrupt_mode(svbrdf::InterruptMode::stop_once, " a second time; the render was abandoned, nothing written");
     svbrdf::RenderStats stats;
     const svbrdf::Film film = svbrdf::render(prepared.world(), options, &stats);
-    std::signal(SIGINT, SIG_DFL);
-    printer.finish({stats.samples, std::uint64_t(film.width) * film.height * std::uint64_t(spp), stats.rays, stats.seconds});
+    // Writing the EXR and the PNG is short and must not be cut between the two: signals now only
+    // change the exit status.
+    svbrdf::set_interrupt_mode(svbrdf::InterruptMode::record);
+    printer.finish({stats.samples, pixels * std::uint64_t(spp), stats.rays, stats.seconds});
 
-    svbrdf::OutputOptions oo;
-    oo.exr = out;
-    oo.png = png;
-    oo.float32 = use_float;
-    oo.exposure = exposure;
-    oo.aovs = aovs;
     svbrdf::write_outputs(film, oo, color);
     if (!quiet) std::fprintf(stderr, "svbrdf-render: wrote %s\n", out.c_str());
-    if (stats.interrupted) {
-      std::fprintf(stderr, "svbrdf-render: interrupted; wrote the %llu samples that had accumulated\n",
+    if (const int sig = svbrdf::interrupt_signal()) {
+      std::fprintf(stderr, "svbrdf-render: %s; wrote the %llu samples that had accumulated\n",
+                   sig == SIGTERM ? "terminated (SIGTERM)" : "interrupted (SIGINT)",
                    static_cast<unsigned long long>(stats.samples));
-      return 130;
+      return 128 + sig;
     }
     return 0;
   } catch (const svbrdf::Error& e) {
