@@ -11,7 +11,9 @@
 #include "appearance/polar_plot.h"
 #include "appearance/registry.h"
 #include "appearance/rng.h"
+#include "base/cli_checks.h"
 #include "base/error.h"
+#include "base/interrupt.h"
 #include "base/message_line.h"
 
 namespace {
@@ -75,6 +77,8 @@ void check_svg(const std::string& out) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // A Ctrl-C or SIGTERM: one line and exit 130 / 143, no temporary left (base/interrupt.h).
+  svbrdf::install_interrupt_handlers("svbrdf-brdf");
   CLI::App app{"svbrdf-brdf: evaluate, sample and plot one BRDF model of CGPP chapter 27"};
   app.footer("Models and parameters:\n" + models_help());
   app.require_subcommand(1);
@@ -91,21 +95,21 @@ int main(int argc, char** argv) {
   long long count = 1;
   std::uint64_t seed = 0;
   sample->add_option("--wo", wo_text, "the outgoing direction x,y,z (unit)")->required();
-  sample->add_option("--count", count, "number of samples")->check(CLI::Range(0LL, 1000000000LL));
-  sample->add_option("--seed", seed, "random seed");
+  sample->add_option("--count", count, "number of samples, 0 to 10^9")->check(cli::whole_in(0, 1000000000LL));
+  sample->add_option("--seed", seed, "random seed")->check(cli::unsigned_whole);
 
   CLI::App* albedo = app.add_subcommand("albedo", "directional albedo of the finite part and the impulse total");
   add_model_options(albedo, m);
   double theta_o = 0;
   int strata = 512;
-  albedo->add_option("--theta-o", theta_o, "angle of wo from the normal, degrees [0, 90]")->required();
-  albedo->add_option("--strata", strata, "estimate with strata^2 stratified samples")->check(CLI::Range(1, 4096));
+  albedo->add_option("--theta-o", theta_o, "angle of wo from the normal, degrees [0, 90]")->required()->check(cli::number_in(0, 90));
+  albedo->add_option("--strata", strata, "estimate with strata^2 stratified samples, 1 to 4096")->check(cli::whole_in(1, 4096));
 
   CLI::App* plot = app.add_subcommand("plot", "polar plot (SVG): f black, sampling density blue, impulses arrows");
   add_model_options(plot, m);
   double theta_i = 30;
   std::string out;
-  plot->add_option("--theta-i", theta_i, "angle of the light from the normal, degrees [0, 180]")->required();
+  plot->add_option("--theta-i", theta_i, "angle of the light from the normal, degrees [0, 180]")->required()->check(cli::number_in(0, 180));
   plot->add_option("--out", out, "output file (.svg)")->required();
 
   CLI::App* fresnel = app.add_subcommand("fresnel", "exact Fresnel against Schlick over the angle of incidence (SVG)");
@@ -118,7 +122,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
+    return cli::parse_failure(app, e, "svbrdf-brdf");
   }
 
   try {

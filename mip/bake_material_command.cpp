@@ -9,8 +9,10 @@
 #include <optional>
 #include <string>
 
+#include "base/cli_checks.h"
 #include "mip/bake_commands.h"
 #include "textures/color.h"
+#include "textures/material_family.h"
 #include "textures/texture_set.h"
 
 namespace svbrdf {
@@ -65,9 +67,12 @@ void add_material_command(CLI::App& app) {
   cmd->footer(preset_listing());
   cmd->add_option("PRESET", options->preset, "sandstone | painted-wall | printed-paper | metal-tray | granite")->required();
   cmd->add_option("--variant", options->variant, "variant of the preset (default: its first)");
-  cmd->add_option("--size", options->size, "texels per side, a power of two (default 1024)");
-  cmd->add_option("--seed", options->seed, "random seed; the same seed gives byte-identical files (default 1)");
-  cmd->add_option("--mm-per-texel", options->mm_per_texel, "physical scale (default: the preset's)");
+  cmd->add_option("--size", options->size, "texels per side, a power of two up to " + std::to_string(kMaxMaterialSize) + " (default 1024)")
+      ->check(cli::whole_in(1, kMaxMaterialSize));
+  cmd->add_option("--seed", options->seed, "random seed; the same seed gives byte-identical files (default 1)")
+      ->check(cli::unsigned_whole);
+  cmd->add_option("--mm-per-texel", options->mm_per_texel, "physical scale, in (0, 1000] (default: the preset's)")
+      ->check(cli::number_in(0.0, 1000.0, true, false));
   cmd->add_option("--ocio-config", options->ocio_config, "OpenColorIO config to use instead of $OCIO or the built-in one");
   cmd->add_option("--out", options->out, "output directory (created if missing)")->required();
   cmd->callback([options] { run(*options); });

@@ -7,6 +7,8 @@
 #include <CLI/CLI.hpp>
 
 #include <chrono>
+#include <climits>
+#include <cstdint>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -15,7 +17,9 @@
 #include <vector>
 
 #include "appearance/direction_text.h"
+#include "base/cli_checks.h"
 #include "base/error.h"
+#include "base/resource_limits.h"
 #include "mip/bake_commands.h"
 #include "mip/compare_report.h"
 #include "mip/gltf_material.h"
@@ -35,9 +39,23 @@ struct MipOptions {
   float tolerance = ReductionOptions{}.tolerance;
   bool normal_scale_set = false;
   int stats = 0;
+  std::uint64_t max_texels = resource_limits().max_texels;
 };
 
+// The largest |--normal-scale|: at 1000 a normal map's 8-bit step of 1/255 already tilts the normal
+// by 76°, so any larger scale gives the same binary field of grazing normals; anything past it is a
+// typo.
+constexpr double kMaxNormalScale = 1000.0;
+
+// --max-texels for the commands that read images or MIP files (base/resource_limits.h).
+void add_max_texels_option(CLI::App* cmd, std::uint64_t& max_texels) {
+  cmd->add_option("--max-texels", max_texels,
+                  "the most texels one image or MIP level may have (default 2^26 = 8192x8192; at most 2^40)")
+      ->check(cli::whole_in(1, cli::kMaxTexelsOption));
+}
+
 void run_mip(const MipOptions& o) {
+  resource_limits().max_texels = o.max_texels;  // before any image is read
   if (o.lobes < 1 || o.lobes > kMaxLobes)
     throw input_error("--lobes", std::to_string(o.lobes) + " is out of range (1.." + std::to_string(kMaxLobes) + ")");
   if (!(o.tolerance >= 0 && o.tolerance < 1)) throw input_error("--tolerance", "must be in [0, 1)");
@@ -90,11 +108,13 @@ struct EvalOptions {
   std::string file, mode;
   int level = -1;
   std::vector<int> texel;
+  std::uint64_t max_texels = resource_limits().max_texels;
 };
 
 void run_eval(const EvalOptions& o) {
   const std::optional<MipMode> mode = parse_mode(o.mode);
   if (!mode) throw input_error("--mode", "unknown mode '" + o.mode + "' (exact, param, toksvig, vmf, brdf)");
+  resource_limits().max_texels = o.max_texels;  // before the MIP file is read
   const MipData mip = read_mip_file(o.file);
   check_texel(mip, o.level, o.texel[0], o.texel[1]);
   std::string line;
@@ -112,6 +132,7 @@ struct CompareOptions_ {
   std::string file, levels;
   bool json = false;
   int subset = 256;
+  std::uint64_t max_texels = resource_limits().max_texels;
 };
 
 // "a..b" or "a".
@@ -136,6 +157,7 @@ void parse_levels(const std::string& text, int& first, int& last) {
 
 void run_compare(const CompareOptions_& o) {
   if (o.subset < 1) throw input_error("--subset", "must be at least 1");
+  resource_limits().max_texels = o.max_texels;  // before the MIP file is read
   const MipData mip = read_mip_file(o.file);
   CompareOptions c;
   c.subset = o.subset;
@@ -155,19 +177,26 @@ void add_mip_commands(CLI::App& app) {
   mip->add_option("SCENE", m->scene, "a glTF 2.0 file (.gltf or .glb) to take the material from (with --material)");
   mip->add_option("--material", m->material, "the glTF material's name or index");
   mip->add_option("--base-color", m->base_color, "base color image (sRGB-encoded; float images are taken as linear)");
-  mip->add_option("--base-color-factor", m->base_color_factor, "linear base color factor r,g,b (multiplies the image)")
+  mip->add_option("--base-color-factor", m->base_color_factor, "linear base color factor r,g,b in [0, 1] (multiplies the image)")
       ->delimiter(',')
-      ->expected(3);
+      ->expected(3)
+      ->check(cli::number_in(0.0, 1.0));
   mip->add_option("--normal", m->normal, "tangent-space normal map (+Y up, as glTF)");
   mip->add_option_function<float>("--normal-scale", [m](float s) { m->normal_scale = s, m->normal_scale_set = true; },
-                                  "normal scale s: n = normalize((2·rgb − 1)·(s, s, 1)) (default 1)");
+                                  "normal scale s: n = normalize((2·rgb − 1)·(s, s, 1)) (default 1)")
+      ->check(cli::number_in(-kMaxNormalScale, kMaxNormalScale));
   mip->add_option("--metallic-roughness", m->metallic_roughness, "metallic-roughness image (G roughness, B metallic)");
-  mip->add_option("--metallic-factor", m->metallic_factor, "metallic factor (default 1)");
-  mip->add_option("--roughness-factor", m->roughness_factor, "roughness factor (default 1)");
+  mip->add_option("--metallic-factor", m->metallic_factor, "metallic factor in [0, 1] (default 1)")->check(cli::number_in(0.0, 1.0));
+  mip->add_option("--roughness-factor", m->roughness_factor, "roughness factor in [0, 1] (default 1)")->check(cli::number_in(0.0, 1.0));
   mip->add_option("--lobes", m->lobes, "most lobes per BRDF texel, 1.." + std::to_string(kMaxLobes) + " (default " +
-                                           std::to_string(kDefaultLobes) + ")");
-  mip->add_option("--tolerance", m->tolerance, "estimated relative error below which lobes merge even under --lobes (default 0.01)");
-  mip->add_option("--stats", m->stats, "print per level the lobes used and the measured reduction error on N random texels");
+                                           std::to_string(kDefaultLobes) + ")")
+      ->check(cli::whole_in(1, kMaxLobes));
+  mip->add_option("--tolerance", m->tolerance, "estimated relative error below which lobes merge even under --lobes, in [0, 1) "
+                                               "(default 0.01)")
+      ->check(cli::number_in(0.0, 1.0, false, true));
+  mip->add_option("--stats", m->stats, "print per level the lobes used and the measured reduction error on N random texels")
+      ->check(cli::whole_in(0, INT_MAX));
+  add_max_texels_option(mip, m->max_texels);
   mip->add_option("--ocio-config", m->ocio_config, "OpenColorIO config to use instead of $OCIO or the built-in one");
   mip->add_option("--out", m->out, "the MIP file to write (.exr)")->required();
   mip->callback([m] { run_mip(*m); });
@@ -175,8 +204,9 @@ void add_mip_commands(CLI::App& app) {
   auto e = std::make_shared<EvalOptions>();
   CLI::App* eval = app.add_subcommand("eval", "Evaluate one texel's BRDF from a MIP file for direction pairs read from stdin");
   eval->add_option("FILE", e->file, "the MIP file")->required();
-  eval->add_option("--level", e->level, "the MIP level")->required();
-  eval->add_option("--texel", e->texel, "column I and row J (from the top)")->expected(2)->required();
+  eval->add_option("--level", e->level, "the MIP level")->required()->check(cli::whole_in(0, INT_MAX));
+  eval->add_option("--texel", e->texel, "column I and row J (from the top)")->expected(2)->required()->check(cli::whole_in(0, INT_MAX));
+  add_max_texels_option(eval, e->max_texels);
   eval->add_option("--mode", e->mode, "exact | param | toksvig | vmf | brdf")->required();
   eval->footer("Input: lines 'wi.x wi.y wi.z wo.x wo.y wo.z' (geometric tangent frame); output: 'r g b' per line.");
   eval->callback([e] { run_eval(*e); });
@@ -186,7 +216,9 @@ void add_mip_commands(CLI::App& app) {
   cmp->add_option("FILE", c->file, "the MIP file")->required();
   cmp->add_option("--levels", c->levels, "levels a..b (default: 1 to the last)");
   cmp->add_flag("--json", c->json, "print JSON instead of a table");
-  cmp->add_option("--subset", c->subset, "texels measured per level where a level has more (default 256, the spec's minimum)");
+  cmp->add_option("--subset", c->subset, "texels measured per level where a level has more (default 256, the spec's minimum)")
+      ->check(cli::whole_in(1, INT_MAX));
+  add_max_texels_option(cmp, c->max_texels);
   cmp->callback([c] { run_compare(*c); });
 }
 

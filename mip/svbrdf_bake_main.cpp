@@ -4,11 +4,16 @@
 #include <cstdio>
 #include <exception>
 
+#include "base/cli_checks.h"
 #include "base/error.h"
+#include "base/interrupt.h"
 #include "base/message_line.h"
 #include "mip/bake_commands.h"
 
 int main(int argc, char** argv) {
+  // A Ctrl-C or SIGTERM ends a bake at once with one line (exit 130 / 143), removing the temporary of
+  // the file being written; the files already complete stay (base/interrupt.h).
+  svbrdf::install_interrupt_handlers("svbrdf-bake");
   CLI::App app{"svbrdf-bake: bake material texture sets and BRDF-averaged MIP chains"};
   app.require_subcommand(1);
   svbrdf::add_material_command(app);
@@ -17,10 +22,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    // --help and --version print through CLI11; a usage error is one line, as every bad input is.
-    if (e.get_exit_code() == 0) return app.exit(e);
-    std::fprintf(stderr, "svbrdf-bake: %s\n", svbrdf::message_line(e.what()).c_str());
-    return 2;
+    return svbrdf::cli::parse_failure(app, e, "svbrdf-bake");
   } catch (const svbrdf::Error& e) {
     std::fprintf(stderr, "svbrdf-bake: %s\n", svbrdf::message_line(e.what()).c_str());
     return e.exit_code();

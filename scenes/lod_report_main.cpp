@@ -1,9 +1,10 @@
-// svbrdf-lod-report: the distance-LOD comparison of issue 7 and its HTML report. Renders every LOD
+// svbrdf-lod-report: the distance-LOD comparison and its HTML report. Renders every LOD
 // scene of the manifest (the build's <build>/scenes/lod/manifest.json by default) under each
 // texture filter and the ground truth, and writes DIR/index.html (default out/lod-report).
 // --full is the report's size (4096 samples per pixel); the default size is what the tests run.
 #include <CLI/CLI.hpp>
 
+#include <climits>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -12,6 +13,7 @@
 
 #include "base/cli_checks.h"
 #include "base/error.h"
+#include "base/interrupt.h"
 #include "base/message_line.h"
 #include "scenes/lod_comparison.h"
 #include "scenes/lod_report.h"
@@ -33,6 +35,9 @@ fs::path default_manifest(const char* argv0) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // A Ctrl-C or SIGTERM: one line and exit 130 / 143, no temporary left (base/interrupt.h). The
+  // report is written at the end, so there is nothing to keep from an interrupted comparison.
+  svbrdf::install_interrupt_handlers("svbrdf-lod-report");
   CLI::App app{"svbrdf-lod-report: render the distance-LOD scenes under each texture filter and the ground truth, "
                "and write an HTML report"};
   std::string manifest, out = "out/lod-report", ocio;
@@ -44,16 +49,17 @@ int main(int argc, char** argv) {
   app.add_option("--manifest", manifest, "LOD manifest (default: the one the build baked beside this program)");
   app.add_option("-o,--out", out, "report directory (index.html and img/)");
   app.add_flag("--full", full, "the report's size: 4096 samples per pixel (default: 256, the tests' size)");
-  app.add_option("--spp", spp, "samples per pixel of every render (overrides the size)")->check(svbrdf::cli::positive);
-  app.add_option("--threads", threads, "worker threads (0: all cores)")->check(svbrdf::cli::non_negative);
+  app.add_option("--spp", spp, "samples per pixel of every render (overrides the size)")->check(svbrdf::cli::whole_in(1, INT_MAX));
+  app.add_option("--threads", threads, "worker threads (0: all cores; more than the machine runs at once are capped)")
+      ->check(svbrdf::cli::whole_in(0, INT_MAX));
   app.add_option("--min-distance", min_distance, "skip cameras nearer than this multiple of d1")
       ->check(svbrdf::cli::non_negative);
   app.add_option("--max-distance", max_distance, "skip cameras farther than this multiple of d1")
       ->check(svbrdf::cli::positive);
   app.add_option("--footprint-scale", footprint_scale,
-                 "the filters' footprint scale: at k x d1 they read MIP level log2(k x scale) (default 0: the "
-                 "renderer's 1/sqrt(spp); 1: each sample filters the whole pixel)")
-      ->check(svbrdf::cli::non_negative);
+                 "the filters' footprint scale, in [0, 64]: at k x d1 they read MIP level log2(k x scale) (default 0: "
+                 "the renderer's 1/sqrt(spp); 1: each sample filters the whole pixel)")
+      ->check(svbrdf::cli::number_in(0.0, 64.0));
   app.add_option("--case", cases, "only these cases (repeatable)");
   app.add_option("--light", lights, "only these lights (repeatable)");
   app.add_option("--view", views, "only these views: head-on, mirror (repeatable)");
@@ -63,10 +69,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    // --help prints through CLI11; a usage error is one line, as every bad input is.
-    if (e.get_exit_code() == 0) return app.exit(e);
-    std::fprintf(stderr, "svbrdf-lod-report: %s\n", svbrdf::message_line(e.what()).c_str());
-    return 2;
+    return svbrdf::cli::parse_failure(app, e, "svbrdf-lod-report");
   }
   try {
     const svbrdf::ColorConfig color =
@@ -75,7 +78,7 @@ int main(int argc, char** argv) {
     const svbrdf::LodManifest m = svbrdf::read_lod_manifest(manifest_path);
     svbrdf::LodOptions o;
     o.spp = spp > 0 ? spp : full ? 4096 : 256;
-    o.threads = threads;
+    o.threads = svbrdf::cli::capped_threads(threads, "svbrdf-lod-report");
     o.min_distance = min_distance;
     o.max_distance = max_distance;
     o.footprint_scale = footprint_scale;

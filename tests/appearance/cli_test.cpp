@@ -151,5 +151,21 @@ TEST(Cli, BadInputExitsTwoWithOneLine) {
   EXPECT_EQ(run("eval measured --param file=" + gltf_merl_path(), "0 0 1 0 0 1\n").status, 0);
 }
 
+// A parse error is one line with the program's name, as every bad input is (CLI11 printed two lines
+// without it); --help still prints the help and exits 0. Numbers are checked against their ranges.
+TEST(Cli, ParseErrorsAndBoundsAreOneLineWithTheProgramsName) {
+  for (const char* args : {"eval", "eval lambert --bogus", "sample lambert --wo 0,0,1 --count 1e10",
+                           "sample lambert --wo 0,0,1 --seed -1", "albedo lambert --theta-o 91", "albedo lambert --theta-o 10 --strata 0",
+                           "plot lambert --theta-i nan --out x.svg"}) {
+    const CliRun r = run(args);
+    EXPECT_EQ(r.status, 2) << args << ": " << r.err;
+    EXPECT_EQ(lines(r.err), 1) << args << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("svbrdf-brdf: ", 0), 0u) << args << ": " << r.err;
+  }
+  const CliRun help = run("--help");
+  EXPECT_EQ(help.status, 0);
+  EXPECT_EQ(help.err, "");
+}
+
 }  // namespace
 }  // namespace svbrdf::testing

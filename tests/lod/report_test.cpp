@@ -133,7 +133,8 @@ TEST(LodReport, ProgramBadInputAndASmallRun) {
   for (const std::string& args : {std::string("--bogus"), std::string("--case nope"), std::string("--light dusk"),
                                   std::string("--manifest /nonexistent/manifest.json"), std::string("--spp 0"),
                                   std::string("--footprint-scale -1"), std::string("--max-distance 0"),
-                                  std::string("--min-distance -4")}) {
+                                  std::string("--min-distance -4"), std::string("--footprint-scale 1e30"),
+                                  std::string("--spp 1e10")}) {
     const auto r = run_command(exe + " " + args + out, dir.path());
     EXPECT_EQ(r.status, 2) << args << ": " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
