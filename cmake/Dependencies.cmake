@@ -7,6 +7,7 @@ find_package(OpenImageIO CONFIG REQUIRED)
 find_package(embree 3 CONFIG REQUIRED)
 find_package(TinyGLTF CONFIG REQUIRED)
 find_package(CLI11 CONFIG REQUIRED)
+find_package(nlohmann_json 3 CONFIG REQUIRED)
 
 # Pitfall 1: OpenImageIO's exported target names /usr/include/opencv4 even where OpenCV is absent;
 # drop include directories that do not exist so the generate step cannot fail on them.
@@ -34,7 +35,7 @@ endif()
 
 # Third-party headers are SYSTEM so their warnings never mix with ours.
 foreach(_t glm::glm TBB::tbb OpenImageIO::OpenImageIO OpenImageIO::OpenImageIO_Util embree
-           TinyGLTF::TinyGLTF CLI11::CLI11 OpenColorIO::OpenColorIO)
+           TinyGLTF::TinyGLTF CLI11::CLI11 OpenColorIO::OpenColorIO nlohmann_json::nlohmann_json)
   if(TARGET ${_t})
     get_target_property(_inc ${_t} INTERFACE_INCLUDE_DIRECTORIES)
     if(_inc)

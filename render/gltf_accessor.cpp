@@ -4,7 +4,9 @@
 #include <cstring>
 #include <limits>
 
+#include "base/checked_number.h"
 #include "base/error.h"
+#include "base/resource_limits.h"
 
 namespace svbrdf::gltf {
 
@@ -114,19 +116,36 @@ const unsigned char* view_bytes(const tinygltf::Model& m, int bv, std::uint64_t 
     throw input_error(where, bv_name(bv) + " names buffers[" + std::to_string(view.buffer) +
                                  "], but the file has " + std::to_string(m.buffers.size()) + " buffers");
   const tinygltf::Buffer& buffer = m.buffers[static_cast<std::size_t>(view.buffer)];
-  const std::uint64_t view_end = std::uint64_t(view.byteOffset) + view.byteLength;
-  if (view_end > buffer.data.size())
-    throw input_error(where, bv_name(bv) + " spans bytes [" + std::to_string(view.byteOffset) + ", " +
-                                 std::to_string(view_end) + ") of buffers[" + std::to_string(view.buffer) +
+  // Every sum below is checked: a byteOffset near 2^64 must not wrap the bound (glTF stores these as
+  // JSON integers, which tinygltf reads into 64 bits).
+  if (!range_inside(view.byteOffset, view.byteLength, buffer.data.size()))
+    throw input_error(where, bv_name(bv) + " spans bytes [" + std::to_string(view.byteOffset) + ", +" +
+                                 std::to_string(view.byteLength) + ") of buffers[" + std::to_string(view.buffer) +
                                  "], which has only " + std::to_string(buffer.data.size()) +
                                  " bytes (missing or short buffer)");
   if (count == 0) return buffer.data.data() + view.byteOffset;
-  // Element count is bounded by the 2^32 index range and stride by 252, so this cannot overflow.
-  const std::uint64_t need = offset + (count - 1) * stride + elem;
-  if (need > view.byteLength)
-    throw input_error(where, what + " needs " + std::to_string(need) + " bytes of " + bv_name(bv) +
-                                 ", which has " + std::to_string(view.byteLength));
+  const auto span = checked_mul(count - 1, stride);
+  const auto tail = span ? checked_add(*span, elem) : std::nullopt;
+  if (!tail || !range_inside(offset, *tail, view.byteLength))
+    throw input_error(where, what + " needs " + std::to_string(count) + " elements of " + std::to_string(elem) +
+                                 " bytes, " + std::to_string(stride) + " apart, from byte " + std::to_string(offset) +
+                                 " of " + bv_name(bv) + ", which has " + std::to_string(view.byteLength));
   return buffer.data.data() + view.byteOffset + offset;
+}
+
+// An accessor without a buffer view is zeros (§3.6.2.2), which cost the file nothing to state; it
+// may be no larger than the file's buffers (or 1 MiB), the most its elements could have been given
+// by data, so that a count of 10^9 in a file of a few hundred bytes is refused, not allocated.
+void check_zeros(const tinygltf::Model& m, std::uint64_t count, std::uint64_t element_bytes, int index,
+                 const std::string& where) {
+  std::uint64_t have = 0;
+  for (const auto& b : m.buffers) have += b.data.size();
+  const std::uint64_t limit = std::max<std::uint64_t>(have, std::uint64_t(1) << 20);
+  const auto bytes = checked_mul(count, element_bytes);
+  if (!bytes || *bytes > limit)
+    throw input_error(where, acc_name(index) + " has no bufferView, so its " + std::to_string(count) +
+                                 " elements are zeros the file does not hold; more than its buffers' " +
+                                 std::to_string(have) + " bytes (or 1 MiB) could have described");
 }
 
 void check_count(const tinygltf::Accessor& a, int index, const std::string& where) {
@@ -189,10 +208,14 @@ std::vector<float> read_floats(const tinygltf::Model& m, int index, const Access
   check_count(a, index, where);
   const int comps = type_components(a.type);
   if (components_out) *components_out = comps;
-  std::vector<float> out(a.count * comps, 0.0f);
+  // The bytes are checked present before the output is allocated, so a count of 10^9 in a small
+  // file is refused rather than allocated; an accessor with no buffer view (zeros, §3.6.2.2) may be
+  // that large only within the memory budget.
+  const unsigned char* p = nullptr;
+  std::uint64_t stride = 0;
   if (a.bufferView >= 0) {
     const std::uint64_t elem = std::uint64_t(csz) * comps;
-    std::uint64_t stride = elem;
+    stride = elem;
     const auto& views = m.bufferViews;
     if (static_cast<std::size_t>(a.bufferView) < views.size() && views[a.bufferView].byteStride != 0) {
       stride = views[a.bufferView].byteStride;
@@ -201,13 +224,16 @@ std::vector<float> read_floats(const tinygltf::Model& m, int index, const Access
                                      " is smaller than one element of " + acc_name(index) + " (" +
                                      std::to_string(elem) + " bytes)");
     }
-    const unsigned char* p = view_bytes(m, a.bufferView, a.byteOffset, a.count, stride, elem, where, acc_name(index));
+    p = view_bytes(m, a.bufferView, a.byteOffset, a.count, stride, elem, where, acc_name(index));
+  }
+  if (!p) check_zeros(m, a.count, sizeof(float) * comps, index, where);
+  check_allocation(a.count, sizeof(float) * comps, where, acc_name(index) + " elements");
+  std::vector<float> out(a.count * comps, 0.0f);
+  if (p) {
     for (std::size_t i = 0; i < a.count; ++i)
       for (int c = 0; c < comps; ++c)
         out[i * comps + c] = component_value(p + i * stride + std::uint64_t(c) * csz, a.componentType, a.normalized);
-  } else if (!a.sparse.isSparse) {
-    throw input_error(where, acc_name(index) + " has neither a bufferView nor sparse data");
-  }
+  }  // no buffer view: zeros, then the sparse values if any (glTF 2.0 §3.6.2.2)
   if (a.sparse.isSparse) apply_sparse(m, a, index, comps, out, where);
   return out;
 }
@@ -223,16 +249,19 @@ std::vector<std::uint32_t> read_indices(const tinygltf::Model& m, int index, con
                                  "; indices must be UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT");
   check_count(a, index, where);
   const int isz = component_size(ct);
-  std::vector<std::uint32_t> out(a.count, 0u);
+  const unsigned char* p = nullptr;
+  std::uint64_t stride = isz;
   if (a.bufferView >= 0) {
-    std::uint64_t stride = isz;
     if (static_cast<std::size_t>(a.bufferView) < m.bufferViews.size() && m.bufferViews[a.bufferView].byteStride != 0)
       stride = m.bufferViews[a.bufferView].byteStride;
-    const unsigned char* p = view_bytes(m, a.bufferView, a.byteOffset, a.count, stride, isz, where, acc_name(index));
-    for (std::size_t i = 0; i < a.count; ++i) out[i] = index_value(p + i * stride, ct);
-  } else if (!a.sparse.isSparse) {
-    throw input_error(where, acc_name(index) + " has neither a bufferView nor sparse data");
+    p = view_bytes(m, a.bufferView, a.byteOffset, a.count, stride, isz, where, acc_name(index));
   }
+  if (!p) check_zeros(m, a.count, sizeof(std::uint32_t), index, where);
+  check_allocation(a.count, sizeof(std::uint32_t), where, acc_name(index) + " indices");
+  std::vector<std::uint32_t> out(a.count, 0u);
+  if (p) {
+    for (std::size_t i = 0; i < a.count; ++i) out[i] = index_value(p + i * stride, ct);
+  }  // no buffer view: zeros, then the sparse values if any (glTF 2.0 §3.6.2.2)
   if (a.sparse.isSparse) {
     const auto& sp = a.sparse;
     const int ict = sp.indices.componentType;

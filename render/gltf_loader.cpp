@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <map>
 #include <span>
 #include <sstream>
@@ -13,6 +12,7 @@
 #include <tiny_gltf.h>
 
 #include "base/error.h"
+#include "gltf/document.h"
 #include "render/gltf_accessor.h"
 #include "render/tangents.h"
 
@@ -21,53 +21,7 @@ namespace svbrdf {
 namespace {
 
 using gltf::AccessorShape;
-
-std::string idx(const char* array, int i) { return std::string(array) + "[" + std::to_string(i) + "]"; }
-
-// tinygltf's message, made one line and short (it can quote a whole data: URI).
-std::string first_line(const std::string& s) {
-  std::string line = s.substr(0, s.find('\n'));
-  while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
-  constexpr std::size_t kMax = 200;
-  if (line.size() > kMax) line = line.substr(0, kMax) + "...";
-  return line;
-}
-
-// Raw bytes of each image, as tinygltf hands them to the image loader callback (external files it
-// read itself, data URIs it decoded, buffer views of a .glb). Decoding happens afterwards, through
-// OpenImageIO.
-struct ImageBytes {
-  std::vector<unsigned char> bytes;
-  std::string error;
-  bool loaded = false;
-};
-struct CallbackState {
-  tinygltf::Model* model = nullptr;
-  std::vector<ImageBytes> images;
-};
-
-bool keep_image_bytes(tinygltf::Image* image, const int index, std::string*, std::string*, int, int,
-                      const unsigned char* bytes, int size, void* user) {
-  auto* st = static_cast<CallbackState*>(user);
-  if (index < 0) return false;
-  if (static_cast<std::size_t>(index) >= st->images.size()) st->images.resize(std::size_t(index) + 1);
-  ImageBytes& ib = st->images[static_cast<std::size_t>(index)];
-  if (image->bufferView >= 0) {
-    // tinygltf 2.7 passes &buffer.data[view.byteOffset] and view.byteLength without checking that the
-    // view lies inside the buffer; check before reading a byte.
-    const auto& m = *st->model;
-    const auto& view = m.bufferViews[static_cast<std::size_t>(image->bufferView)];
-    const auto& buffer = m.buffers[static_cast<std::size_t>(view.buffer)];
-    if (std::uint64_t(view.byteOffset) + view.byteLength > buffer.data.size()) {
-      ib.error = idx("bufferViews", image->bufferView) + " spans bytes past the end of " +
-                 idx("buffers", view.buffer) + " (" + std::to_string(buffer.data.size()) + " bytes)";
-      return true;
-    }
-  }
-  if (size > 0 && bytes) ib.bytes.assign(bytes, bytes + size);
-  ib.loaded = true;
-  return true;
-}
+using gltf::json_index;
 
 bool finite_all(const std::vector<double>& v) {
   return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
@@ -98,23 +52,9 @@ class Loader {
   }
 
   void read_model() {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path_, ec)) fail("", "no such glTF file");
-    // A .glb starts with the magic "glTF"; trust the bytes over the extension.
-    char magic[4] = {};
-    {
-      std::ifstream f(path_, std::ios::binary);
-      f.read(magic, 4);
-    }
-    const bool binary = std::string(magic, 4) == "glTF";
-    tinygltf::TinyGLTF reader;
-    callback_.model = &model_;
-    reader.SetImageLoader(keep_image_bytes, &callback_);
-    reader.SetPreserveImageChannels(true);
-    std::string err, warn;
-    const bool ok = binary ? reader.LoadBinaryFromFile(&model_, &err, &warn, path_.string())
-                           : reader.LoadASCIIFromFile(&model_, &err, &warn, path_.string());
-    if (!ok) fail("", "not a readable glTF file: " + first_line(err.empty() ? warn : err));
+    gltf::Document doc = gltf::read_document(path_);
+    model_ = std::move(doc.model);
+    image_bytes_ = std::move(doc.images);
   }
 
   void check_extensions() {
@@ -129,7 +69,7 @@ class Loader {
 
   void read_images() {
     const std::size_t n = model_.images.size();
-    callback_.images.resize(std::max(callback_.images.size(), n));
+    image_bytes_.resize(std::max(image_bytes_.size(), n));
     scene_.images.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
       const tinygltf::Image& im = model_.images[i];
@@ -137,8 +77,8 @@ class Loader {
       d.name = im.name;
       d.uri = im.uri;
       d.mime_type = im.mimeType;
-      d.where = idx("images", int(i));
-      const ImageBytes& ib = callback_.images[i];
+      d.where = json_index("images", int(i));
+      const gltf::ImageBytes& ib = image_bytes_[i];
       if (!ib.error.empty()) fail(d.where, ib.error);
       if (!ib.loaded || ib.bytes.empty())
         fail(d.where, im.uri.empty() ? "has no image data" : "cannot read the image file '" + im.uri + "'");
@@ -147,7 +87,7 @@ class Loader {
     // profiles are opened concurrently, e.g. TextureEncodingTest's *_icc.png.
     for (std::size_t i = 0; i < n; ++i) {
       ImageDesc& d = scene_.images[i];
-      const auto& b = callback_.images[i].bytes;
+      const auto& b = image_bytes_[i].bytes;
       try {
         d.pixels = read_image_from_memory(std::as_bytes(std::span(b.data(), b.size())), d.mime_type,
                                           d.uri.empty() ? d.where : d.where + " ('" + d.uri + "')");
@@ -155,26 +95,26 @@ class Loader {
         throw input_error(path_.string(), e.what());
       }
     }
-    callback_.images.clear();
+    image_bytes_.clear();
   }
 
   void read_textures() {
     for (std::size_t i = 0; i < model_.textures.size(); ++i) {
       const tinygltf::Texture& t = model_.textures[i];
       TextureDesc d;
-      d.where = idx("textures", int(i));
+      d.where = json_index("textures", int(i));
       if (t.source >= 0) {
         if (static_cast<std::size_t>(t.source) >= model_.images.size())
-          fail(d.where + ".source", "names " + idx("images", t.source) + ", but the file has " +
+          fail(d.where + ".source", "names " + json_index("images", t.source) + ", but the file has " +
                                         std::to_string(model_.images.size()) + " images");
         d.image = t.source;
       }
       if (t.sampler >= 0) {
         if (static_cast<std::size_t>(t.sampler) >= model_.samplers.size())
-          fail(d.where + ".sampler", "names " + idx("samplers", t.sampler) + ", but the file has " +
+          fail(d.where + ".sampler", "names " + json_index("samplers", t.sampler) + ", but the file has " +
                                          std::to_string(model_.samplers.size()) + " samplers");
         const auto& s = model_.samplers[static_cast<std::size_t>(t.sampler)];
-        const std::string sw = idx("samplers", t.sampler);
+        const std::string sw = json_index("samplers", t.sampler);
         const std::string file = path_.string() + ": ";
         d.sampler.wrap_s = wrap_mode_from_gltf(s.wrapS, file + sw + ".wrapS");
         d.sampler.wrap_t = wrap_mode_from_gltf(s.wrapT, file + sw + ".wrapT");
@@ -229,10 +169,10 @@ class Loader {
     TextureRef r;
     if (index < 0) return r;
     if (static_cast<std::size_t>(index) >= scene_.textures.size())
-      fail(where + ".index", "names " + idx("textures", index) + ", but the file has " +
+      fail(where + ".index", "names " + json_index("textures", index) + ", but the file has " +
                                  std::to_string(scene_.textures.size()) + " textures");
     if (scene_.textures[static_cast<std::size_t>(index)].image < 0)
-      fail(where + ".index", idx("textures", index) + " has no image this renderer can read");
+      fail(where + ".index", json_index("textures", index) + " has no image this renderer can read");
     if (tex_coord != 0 && tex_coord != 1)
       fail(where + ".texCoord", "is " + std::to_string(tex_coord) + "; TEXCOORD_0 and _1 are read");
     r.texture = index;
@@ -248,11 +188,12 @@ class Loader {
     const tinygltf::Value& ti = ext_obj.Get(key);
     const std::string w = where + "." + key;
     if (!ti.IsObject() || !ti.Has("index") || !ti.Get("index").IsNumber()) fail(w, "is not a textureInfo");
-    const int index = ti.Get("index").GetNumberAsInt();
-    if (index < 0) fail(w + ".index", "is negative");
-    const int tc = ti.Has("texCoord") ? ti.Get("texCoord").GetNumberAsInt() : 0;
+    const std::optional<int> index = gltf::whole_index(ti.Get("index"));
+    if (!index) fail(w + ".index", "is not a texture index (a whole number from 0)");
+    const std::optional<int> tc = ti.Has("texCoord") ? gltf::whole_index(ti.Get("texCoord")) : std::optional<int>(0);
+    if (!tc) fail(w + ".texCoord", "is not a TEXCOORD set number (a whole number from 0)");
     tinygltf::ExtensionMap none;
-    TextureRef r = texture_ref(index, tc, none, w);
+    TextureRef r = texture_ref(*index, *tc, none, w);
     if (ti.Has("extensions")) apply_texture_transform(r, ti.Get("extensions"), w);
     return r;
   }
@@ -262,7 +203,7 @@ class Loader {
       const tinygltf::Material& m = model_.materials[i];
       MaterialDesc d;
       d.name = m.name;
-      d.where = idx("materials", int(i));
+      d.where = json_index("materials", int(i));
       const std::string w = d.where;
       const auto& pbr = m.pbrMetallicRoughness;
       const std::string wp = w + ".pbrMetallicRoughness";
@@ -354,7 +295,7 @@ class Loader {
     const std::vector<float> f = gltf::read_floats(model_, it->second, AccessorShape{types, {}}, path_.string() + ": " + w, &comps);
     const std::size_t n = f.size() / std::size_t(comps);
     if (vertex_count != 0 && n != vertex_count)
-      fail(w, idx("accessors", it->second) + " has " + std::to_string(n) + " elements, POSITION has " +
+      fail(w, json_index("accessors", it->second) + " has " + std::to_string(n) + " elements, POSITION has " +
                   std::to_string(vertex_count));
     std::vector<V> out(n, V(1.0f));
     constexpr int kDim = V::length();
@@ -371,7 +312,7 @@ class Loader {
       Mesh& out = scene_.meshes[mi];
       out.name = mesh.name;
       for (std::size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
-        const std::string where = idx("meshes", int(mi)) + ".primitives[" + std::to_string(pi) + "]";
+        const std::string where = json_index("meshes", int(mi)) + ".primitives[" + std::to_string(pi) + "]";
         MeshPrimitive prim;
         if (read_primitive(mesh.primitives[pi], where, prim)) out.primitives.push_back(std::move(prim));
       }
@@ -391,7 +332,7 @@ class Loader {
     prim.where = where;
     if (p.material >= 0) {
       if (static_cast<std::size_t>(p.material) >= scene_.materials.size())
-        fail(where + ".material", "names " + idx("materials", p.material) + ", but the file has " +
+        fail(where + ".material", "names " + json_index("materials", p.material) + ", but the file has " +
                                       std::to_string(scene_.materials.size()) + " materials");
       prim.material = p.material;
     }
@@ -517,10 +458,10 @@ class Loader {
 
   void visit_node(int node, const glm::dmat4& world) {
     const tinygltf::Node& n = model_.nodes[static_cast<std::size_t>(node)];
-    const std::string w = idx("nodes", node);
+    const std::string w = json_index("nodes", node);
     if (n.mesh >= 0) {
       if (static_cast<std::size_t>(n.mesh) >= model_.meshes.size())
-        fail(w + ".mesh", "names " + idx("meshes", n.mesh) + ", but the file has " +
+        fail(w + ".mesh", "names " + json_index("meshes", n.mesh) + ", but the file has " +
                               std::to_string(model_.meshes.size()) + " meshes");
       scene_.instances.push_back(Instance{n.mesh, node, world});
       if (n.skin >= 0 && !warned_skin_) {
@@ -530,7 +471,7 @@ class Loader {
     }
     if (n.camera >= 0) {
       if (static_cast<std::size_t>(n.camera) >= model_.cameras.size())
-        fail(w + ".camera", "names " + idx("cameras", n.camera) + ", but the file has " +
+        fail(w + ".camera", "names " + json_index("cameras", n.camera) + ", but the file has " +
                                 std::to_string(model_.cameras.size()) + " cameras");
       scene_.cameras.push_back(camera(n.camera, node, world));
     }
@@ -553,7 +494,19 @@ class Loader {
 
   CameraDesc camera(int ci, int node, const glm::dmat4& world) const {
     const tinygltf::Camera& c = model_.cameras[static_cast<std::size_t>(ci)];
-    const std::string w = idx("cameras", ci);
+    const std::string w = json_index("cameras", ci);
+    // A camera's node must place it: finite, and invertible in its upper 3×3 (glTF 2.0 §3.10.1 asks
+    // for no scale on a camera node; a zero scale would give rays no direction).
+    const std::string wn = json_index("nodes", node);
+    for (int col = 0; col < 4; ++col)
+      for (int row = 0; row < 4; ++row)
+        if (!std::isfinite(world[col][row]) || std::abs(world[col][row]) > 1e18)
+          fail(wn, "places " + w + " with a transform that is not finite (or beyond 1e18)");
+    const double det = glm::determinant(glm::dmat3(world));
+    const double size = glm::length(glm::dvec3(world[0])) * glm::length(glm::dvec3(world[1])) *
+                        glm::length(glm::dvec3(world[2]));
+    if (!(std::abs(det) > 1e-12 * size) || !(size > 0))
+      fail(wn, "places " + w + " with a singular transform (a zero scale); a camera needs three independent axes");
     CameraDesc d;
     d.name = !c.name.empty() ? c.name : !model_.nodes[std::size_t(node)].name.empty() ? model_.nodes[std::size_t(node)].name : w;
     d.node = node;
@@ -566,10 +519,14 @@ class Loader {
       d.zfar = checked(c.perspective.zfar, 0, 1e30, w + ".perspective.zfar");
     } else if (c.type == "orthographic") {
       d.type = CameraDesc::Type::orthographic;
-      if (!std::isfinite(c.orthographic.xmag) || c.orthographic.xmag == 0)
-        fail(w + ".orthographic.xmag", "must be a finite nonzero number");
-      if (!std::isfinite(c.orthographic.ymag) || c.orthographic.ymag == 0)
-        fail(w + ".orthographic.ymag", "must be a finite nonzero number");
+      // Nonzero (glTF 2.0 §5.14) and, so that the film's extent stays finite in float arithmetic
+      // after the aspect ratio (up to 1e6) multiplies it, within [1e-18, 1e18].
+      auto mag = [&](double v, const char* key) {
+        if (!std::isfinite(v) || std::abs(v) < 1e-18 || std::abs(v) > 1e18)
+          fail(w + ".orthographic." + key, "must be a nonzero number of magnitude within [1e-18, 1e18]");
+      };
+      mag(c.orthographic.xmag, "xmag");
+      mag(c.orthographic.ymag, "ymag");
       d.xmag = float(std::abs(c.orthographic.xmag));
       d.ymag = float(std::abs(c.orthographic.ymag));
       d.znear = checked(c.orthographic.znear, 0, 1e30, w + ".orthographic.znear");
@@ -584,11 +541,11 @@ class Loader {
     const std::size_t nn = model_.nodes.size();
     auto check_node = [&](int n, const std::string& where) {
       if (n < 0 || static_cast<std::size_t>(n) >= nn)
-        fail(where, "names " + idx("nodes", n) + ", but the file has " + std::to_string(nn) + " nodes");
+        fail(where, "names " + json_index("nodes", n) + ", but the file has " + std::to_string(nn) + " nodes");
     };
     for (std::size_t i = 0; i < nn; ++i)
       for (std::size_t c = 0; c < model_.nodes[i].children.size(); ++c)
-        check_node(model_.nodes[i].children[c], idx("nodes", int(i)) + ".children[" + std::to_string(c) + "]");
+        check_node(model_.nodes[i].children[c], json_index("nodes", int(i)) + ".children[" + std::to_string(c) + "]");
 
     std::vector<int> roots;
     std::string roots_where;
@@ -604,10 +561,10 @@ class Loader {
       int s = model_.defaultScene;
       if (s < 0) s = 0;
       if (static_cast<std::size_t>(s) >= model_.scenes.size())
-        fail("scene", "names " + idx("scenes", s) + ", but the file has " + std::to_string(model_.scenes.size()) +
+        fail("scene", "names " + json_index("scenes", s) + ", but the file has " + std::to_string(model_.scenes.size()) +
                           " scenes");
       roots = model_.scenes[static_cast<std::size_t>(s)].nodes;
-      roots_where = idx("scenes", s) + ".nodes";
+      roots_where = json_index("scenes", s) + ".nodes";
       for (std::size_t r = 0; r < roots.size(); ++r) check_node(roots[r], roots_where + "[" + std::to_string(r) + "]");
     }
 
@@ -623,8 +580,8 @@ class Loader {
     std::vector<Frame> stack;
     for (int root : roots) {
       if (state[static_cast<std::size_t>(root)] != 0)
-        fail(roots_where, idx("nodes", root) + " is reached twice: glTF nodes form a tree");
-      const glm::dmat4 w = local_transform(model_.nodes[std::size_t(root)], idx("nodes", root));
+        fail(roots_where, json_index("nodes", root) + " is reached twice: glTF nodes form a tree");
+      const glm::dmat4 w = local_transform(model_.nodes[std::size_t(root)], json_index("nodes", root));
       state[static_cast<std::size_t>(root)] = 1;
       visit_node(root, w);
       stack.push_back({root, w, 0});
@@ -637,12 +594,12 @@ class Loader {
           continue;
         }
         const int c = children[f.next_child++];
-        const std::string wc = idx("nodes", f.node) + ".children";
+        const std::string wc = json_index("nodes", f.node) + ".children";
         if (state[static_cast<std::size_t>(c)] == 1)
-          fail(wc, "names " + idx("nodes", c) + ", its own ancestor: the node graph has a cycle");
+          fail(wc, "names " + json_index("nodes", c) + ", its own ancestor: the node graph has a cycle");
         if (state[static_cast<std::size_t>(c)] == 2)
-          fail(wc, "names " + idx("nodes", c) + ", which already has another parent: glTF nodes form a tree");
-        const glm::dmat4 w = f.world * local_transform(model_.nodes[static_cast<std::size_t>(c)], idx("nodes", c));
+          fail(wc, "names " + json_index("nodes", c) + ", which already has another parent: glTF nodes form a tree");
+        const glm::dmat4 w = f.world * local_transform(model_.nodes[static_cast<std::size_t>(c)], json_index("nodes", c));
         state[static_cast<std::size_t>(c)] = 1;
         visit_node(c, w);
         stack.push_back({c, w, 0});
@@ -652,7 +609,7 @@ class Loader {
 
   std::filesystem::path path_;
   tinygltf::Model model_;
-  CallbackState callback_;
+  std::vector<gltf::ImageBytes> image_bytes_;
   Scene scene_;
   std::vector<LightDesc> light_templates_;
   std::size_t degenerate_triangles_ = 0;

@@ -22,6 +22,10 @@ struct Film {
   std::vector<glm::vec3> albedo_sum, normal_sum;
   std::vector<float> depth_sum, level_sum;
 
+  // What one pixel costs while rendering: the sums above, plus the images written at the end.
+  static constexpr std::uint64_t kBytesPerPixel = sizeof(glm::dvec3) + sizeof(std::uint32_t) + 2 * sizeof(glm::vec3) +
+                                                  2 * sizeof(float) + 2 * 3 * sizeof(float);
+
   Film(int w, int h);
   // Means per pixel (zero where no sample landed): RGB radiance, RGB albedo, XYZ normal, depth, MIP level.
   Image radiance() const;

@@ -3,13 +3,20 @@
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <array>
 #include <cctype>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <mutex>
+#include <optional>
 
 #include "base/atomic_file.h"
 #include "base/error.h"
+#include "base/resource_limits.h"
 
 namespace svbrdf {
 
@@ -61,7 +68,7 @@ const OIIO::ImageSpec& straight_alpha_config() {
 Image read_opened(OIIO::ImageInput& in, const std::string& where, PixelFormat* stored_format = nullptr) {
   const OIIO::ImageSpec& spec = in.spec();
   if (stored_format) *stored_format = from_oiio(spec.format);
-  check_image_size(where, spec.width, spec.height);
+  check_image_size(where, spec.width, spec.height, spec.nchannels);
   if (spec.nchannels < 1 || spec.nchannels > 64) throw input_error(where, "unsupported channel count " + std::to_string(spec.nchannels));
   Image img(spec.width, spec.height, spec.nchannels);
   if (!in.read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, img.pixels.data()))
@@ -149,20 +156,57 @@ void check_png_structure(std::span<const std::byte> b, const std::string& where)
 }
 
 std::vector<std::byte> read_file_bytes(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw input_error(path.string(), "is not a regular file");
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) throw input_error(path.string(), "cannot read file: " + ec.message());
+  if (size > image_file_limit())
+    throw input_error(path.string(), "is " + byte_size_text(size) + ", more than an image of at most " +
+                                         std::to_string(resource_limits().max_texels) + " texels can be (--max-texels)");
   std::ifstream f(path, std::ios::binary);
   std::vector<std::byte> bytes;
   if (!f) throw input_error(path.string(), "cannot open file");
-  f.seekg(0, std::ios::end);
-  const std::streamoff size = f.tellg();
-  f.seekg(0);
-  bytes.resize(std::size_t(std::max<std::streamoff>(size, 0)));
+  bytes.resize(std::size_t(size));
   f.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(bytes.size()));
   if (!f) throw input_error(path.string(), "cannot read file");
   return bytes;
 }
 
+// libpng's default error handler prints "libpng error: ..." to stderr before OpenImageIO reports the
+// same text as its error, which the caller puts in its one line: the programs' contract is that one
+// line. While a PNG is decoded, file descriptor 2 points at /dev/null (decodes are serialized, so no
+// other decode's message is lost; OpenImageIO's error string keeps libpng's words).
+class QuietStderr {
+ public:
+  QuietStderr() : lock_(mutex()) {
+    std::fflush(stderr);
+    saved_ = ::dup(2);
+    const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
+    if (saved_ >= 0 && null >= 0) ::dup2(null, 2);
+    if (null >= 0) ::close(null);
+  }
+  ~QuietStderr() {
+    if (saved_ >= 0) {
+      ::dup2(saved_, 2);
+      ::close(saved_);
+    }
+  }
+  QuietStderr(const QuietStderr&) = delete;
+  QuietStderr& operator=(const QuietStderr&) = delete;
+
+ private:
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+  std::lock_guard<std::mutex> lock_;
+  int saved_ = -1;
+};
+
 Image decode_memory(std::span<const std::byte> bytes, std::string_view mime_type, const std::string& name,
                     PixelFormat* stored_format) {
+  std::optional<QuietStderr> quiet;
+  if (is_png(bytes)) quiet.emplace();
   if (bytes.empty()) throw input_error(name, "image data is empty");
   if (is_png(bytes)) check_png_structure(bytes, name);
   const std::string ext = extension_for(bytes, mime_type);
@@ -197,13 +241,15 @@ int hex_value(char c) {
 
 }  // namespace
 
-void check_image_size(const std::string& where, long long width, long long height) {
+void check_image_size(const std::string& where, long long width, long long height, int channels) {
   if (width < 1 || height < 1)
     throw input_error(where, "image has no pixels (" + std::to_string(width) + "x" + std::to_string(height) + ")");
-  if (width > kMaxImageSide || height > kMaxImageSide || width * height > kMaxImageTexels)
+  if (width > kMaxImageSide || height > kMaxImageSide)
     throw input_error(where, "image size " + std::to_string(width) + "x" + std::to_string(height) +
-                                 " is beyond the supported " + std::to_string(kMaxImageSide) + " per side, " +
-                                 std::to_string(kMaxImageTexels) + " texels in all");
+                                 " is beyond the supported " + std::to_string(kMaxImageSide) + " per side");
+  // Decoded as `channels` floats a texel: within --max-texels and the memory budget.
+  svbrdf::check_image_size(std::uint64_t(width), std::uint64_t(height), std::uint64_t(std::max(channels, 1)) * sizeof(float),
+                           where + ": image size");
 }
 
 Image read_image(const std::filesystem::path& path) { return read_image(path, nullptr); }

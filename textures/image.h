@@ -47,9 +47,10 @@ std::vector<std::byte> encode_image(const std::filesystem::path& path, const Ima
 // Largest image the project reads or makes: a side of 32768 texels, 2^28 texels in all (1 GiB per
 // float channel). Anything larger, or an empty image, is refused as bad input.
 inline constexpr int kMaxImageSide = 32768;
-inline constexpr long long kMaxImageTexels = 1LL << 28;
-// Throws svbrdf::Error naming `where` unless 1 ≤ width, height ≤ kMaxImageSide, texels ≤ kMaxImageTexels.
-void check_image_size(const std::string& where, long long width, long long height);
+// Throws svbrdf::Error naming `where` unless 1 ≤ width, height ≤ kMaxImageSide and the image, decoded
+// as `channels` floats a texel, fits --max-texels and the memory budget (base/resource_limits.h). Read
+// from the file's header, before any pixel is decoded.
+void check_image_size(const std::string& where, long long width, long long height, int channels = 4);
 
 // Decodes an encoded image (PNG, JPEG, OpenEXR, HDR, TIFF...) held in memory through OpenImageIO
 // (an IOMemReader proxy): images inside a .glb buffer or a data: URI. The bytes' signature decides

@@ -3,10 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 
 #include "base/error.h"
+#include "base/resource_limits.h"
 #include "tests/common/temp_dir.h"
 
 namespace svbrdf {
@@ -174,6 +176,54 @@ TEST(Image, AbsurdAndEmptySizesAreRefused) {
   expect_bad_input([] { check_image_size("x", kMaxImageSide + 1, 1); }, "beyond");
   expect_bad_input([] { check_image_size("x", 20000, 20000); }, "beyond");  // 4·10^8 > 2^28 texels
   EXPECT_NO_THROW(check_image_size("x", kMaxImageSide, 1));
+}
+
+// A PNG whose compressed data is damaged under valid CRCs fails inside libpng, whose default handler
+// prints its own "libpng error: ..." line; the error must come back only as the thrown message (the
+// programs print one line).
+TEST(Image, DamagedPngDataPrintsNothingOfItsOwn) {
+  const TempDir dir;
+  write_image(dir / "ok.png", gradient(16, 16, 3), PixelFormat::uint8);
+  std::vector<std::byte> png = file_bytes(dir / "ok.png");
+  bool damaged = false;
+  for (std::size_t at = 8; at + 12 <= png.size();) {
+    const std::uint32_t n = std::to_integer<std::uint32_t>(png[at]) << 24 | std::to_integer<std::uint32_t>(png[at + 1]) << 16 |
+                            std::to_integer<std::uint32_t>(png[at + 2]) << 8 | std::to_integer<std::uint32_t>(png[at + 3]);
+    if (std::memcmp(png.data() + at + 4, "IDAT", 4) == 0) {
+      for (std::size_t k = 2; k < n; k += 3) png[at + 8 + k] ^= std::byte{0x5a};
+      const std::uint32_t crc = crc32(png.data() + at + 4, n + 4);
+      for (int b = 0; b < 4; ++b) png[at + 8 + n + b] = std::byte((crc >> (24 - 8 * b)) & 0xffu);
+      damaged = true;
+    }
+    at += 12 + n;
+  }
+  ASSERT_TRUE(damaged);
+  ::testing::internal::CaptureStderr();
+  expect_bad_input([&] { read_image_from_memory(png, "image/png", "images[1]"); }, "images[1]");
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
+}
+
+// A 16384² PNG header (a file of a few dozen bytes) is within the per-side limit but over the default
+// --max-texels (2^26): refused from the header, before 4 GiB of floats are allocated. The limit is the
+// process's (base/resource_limits.h): lowered, it refuses a 16×16 image; restored, it reads it.
+TEST(Image, TexelLimitIsCheckedFromTheHeader) {
+  const TempDir dir;
+  write_image(dir / "small.png", gradient(16, 16, 3), PixelFormat::uint8);
+  std::vector<std::byte> png = file_bytes(dir / "small.png");
+  for (int k = 0; k < 2; ++k)
+    for (int b = 0; b < 4; ++b) png[16 + 4 * k + b] = std::byte((16384u >> (24 - 8 * b)) & 0xffu);
+  const std::uint32_t crc = crc32(png.data() + 12, 17);
+  for (int b = 0; b < 4; ++b) png[29 + b] = std::byte((crc >> (24 - 8 * b)) & 0xffu);
+  write_bytes(dir / "big.png", png);
+  expect_bad_input([&] { read_image(dir / "big.png"); }, "--max-texels");
+  expect_bad_input([&] { read_image_from_memory(png, "image/png", "images[2]"); }, "--max-texels");
+
+  const std::uint64_t saved = resource_limits().max_texels;
+  resource_limits().max_texels = 255;
+  expect_bad_input([&] { read_image(dir / "small.png"); }, "--max-texels");
+  resource_limits().max_texels = 256;
+  EXPECT_NO_THROW(read_image(dir / "small.png"));
+  resource_limits().max_texels = saved;
 }
 
 // Decoding from memory (a .glb buffer view, a data: URI) gives exactly what decoding the file

@@ -1,0 +1,354 @@
+#include "gltf/document.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "base/checked_number.h"
+#include "base/error.h"
+#include "base/resource_limits.h"
+#include "gltf/json_scan.h"
+
+namespace svbrdf::gltf {
+
+namespace fs = std::filesystem;
+
+std::string json_index(const char* array, int i) { return std::string(array) + "[" + std::to_string(i) + "]"; }
+
+std::optional<int> whole_index(const tinygltf::Value& v) {
+  if (!v.IsNumber()) return std::nullopt;
+  if (v.IsInt()) return v.Get<int>() >= 0 ? std::optional<int>(v.Get<int>()) : std::nullopt;
+  return whole_int(v.Get<double>(), 0);
+}
+
+namespace {
+
+// What the document says of the files beside it, read before tinygltf opens any of them.
+struct FileRules {
+  std::map<fs::path, std::uint64_t> buffer_bytes;  // a buffer's file → its byteLength
+  std::string error;                               // the first file refused, for the message
+  std::map<fs::path, std::string> refused;         // every file refused → why
+};
+
+// Percent-decoding of a URI reference (RFC 3986 §2.1), as glTF §3.2 asks of relative paths.
+std::string uri_decode(const std::string& s) {
+  std::string out;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    auto hex = [](char c) { return std::isxdigit(static_cast<unsigned char>(c)) != 0; };
+    if (s[i] == '%' && i + 2 < s.size() && hex(s[i + 1]) && hex(s[i + 2])) {
+      out += static_cast<char>(std::stoi(s.substr(i + 1, 2), nullptr, 16));
+      i += 2;
+    } else {
+      out += s[i];
+    }
+  }
+  return out;
+}
+
+fs::path normal(const fs::path& p) {
+  std::error_code ec;
+  const fs::path abs = fs::absolute(p, ec);
+  return (ec ? p : abs).lexically_normal();
+}
+
+// tinygltf's file reader, replaced: only regular files (a FIFO or a device would hang or never end),
+// and no more bytes than the document allows the file — a buffer exactly its byteLength, an image
+// at most image_file_limit() — checked from the file's size before reading.
+bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+  auto* rules = static_cast<FileRules*>(user);
+  auto refuse = [&](const std::string& why) {
+    const std::string line = "'" + path + "' " + why;
+    if (rules->error.empty()) rules->error = line;
+    rules->refused[normal(path)] = line;
+    if (err) *err += line + "\n";
+    return false;
+  };
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+  if (fd < 0) return refuse(std::string("cannot be opened: ") + std::strerror(errno));
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd);
+    return refuse("is not a regular file");
+  }
+  const auto size = static_cast<std::uint64_t>(st.st_size);
+  const auto it = rules->buffer_bytes.find(normal(path));
+  if (it != rules->buffer_bytes.end() && size != it->second) {
+    ::close(fd);
+    return refuse("is " + std::to_string(size) + " bytes; its buffer's byteLength says " + std::to_string(it->second));
+  }
+  const std::uint64_t limit = it != rules->buffer_bytes.end() ? it->second : image_file_limit();
+  if (size > limit || size > resource_limits().memory_bytes) {
+    ::close(fd);
+    return refuse("is " + byte_size_text(size) + ", more than an image of at most " +
+                  std::to_string(resource_limits().max_texels) + " texels can be (--max-texels)");
+  }
+  out->resize(size);
+  std::uint64_t got = 0;
+  while (got < size) {
+    const ssize_t n = ::read(fd, out->data() + got, size - got);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      ::close(fd);
+      return refuse(n < 0 ? std::string("cannot be read: ") + std::strerror(errno) : "ended while being read");
+    }
+    got += std::uint64_t(n);
+  }
+  ::close(fd);
+  return true;
+}
+
+bool file_exists(const std::string& path, void*) {
+  struct stat st {};
+  return ::stat(path.c_str(), &st) == 0;
+}
+
+std::string no_expansion(const std::string& path, void*) { return path; }
+
+// A non-negative integer member, or nothing when absent or of another type (tinygltf reports those).
+std::optional<std::uint64_t> unsigned_member(const nlohmann::json& o, const char* key) {
+  if (!o.is_object()) return std::nullopt;
+  const auto it = o.find(key);
+  if (it == o.end() || !it->is_number_unsigned()) return std::nullopt;
+  return it->get<std::uint64_t>();
+}
+
+class Reader {
+ public:
+  explicit Reader(const fs::path& path) : path_(path) { doc_.path = path; }
+
+  Document run() {
+    const std::string bytes = read_file();
+    const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
+    std::string_view json = binary ? glb_json_chunk(bytes) : std::string_view(bytes);
+    if (!binary && json.size() >= 3 && json.compare(0, 3, "\xEF\xBB\xBF") == 0) json.remove_prefix(3);
+    if (auto why = scan_json(json)) fail("", *why);
+    check_declared_ranges(json);
+    parse(bytes, binary, binary ? glb_length_ : bytes.size());
+    doc_.images.resize(doc_.model.images.size());
+    // An image file refused by read_whole_file: say why rather than only that it is missing.
+    const fs::path base = path_.has_parent_path() ? path_.parent_path() : fs::path(".");
+    for (std::size_t i = 0; i < doc_.images.size(); ++i) {
+      const std::string& uri = doc_.model.images[i].uri;
+      if (doc_.images[i].loaded || uri.empty() || uri.rfind("data:", 0) == 0) continue;
+      const auto it = rules_.refused.find(normal(base / uri_decode(uri)));
+      if (it != rules_.refused.end()) doc_.images[i].error = it->second;
+    }
+    return std::move(doc_);
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& where, const std::string& what) const {
+    throw input_error(path_.string() + (where.empty() ? "" : ": " + where), what);
+  }
+
+  // The whole file, refused before reading when it is not a regular file or larger than the memory
+  // budget allows.
+  std::string read_file() const {
+    const int fd = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+    if (fd < 0) fail("", errno == ENOENT ? "no such glTF file" : std::string("cannot open: ") + std::strerror(errno));
+    struct stat st {};
+    if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+      ::close(fd);
+      fail("", "not a regular file");
+    }
+    const auto size = static_cast<std::uint64_t>(st.st_size);
+    if (size > resource_limits().memory_bytes) {
+      ::close(fd);
+      fail("", "is " + byte_size_text(size) + ", over the memory budget of " +
+                   byte_size_text(resource_limits().memory_bytes));
+    }
+    std::string bytes(size, '\0');
+    std::uint64_t got = 0;
+    // A text file is scanned as it is read, so a file that is not JSON (zeros, a binary) is refused
+    // at its first bad byte rather than after reading all of it.
+    JsonScan scan;
+    bool text = true, decided = false;
+    while (got < size) {
+      const ssize_t n = ::read(fd, bytes.data() + got, std::min<std::uint64_t>(size - got, 1 << 20));
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) {
+        ::close(fd);
+        fail("", n < 0 ? std::string("cannot read: ") + std::strerror(errno) : "ended while being read");
+      }
+      const std::uint64_t from = got;
+      got += std::uint64_t(n);
+      if (!decided && got >= 4) {
+        decided = true;
+        text = bytes.compare(0, 4, "glTF") != 0;
+      }
+      if (decided && text) {
+        std::string_view part(bytes.data() + from, got - from);
+        if (from == 0 && part.compare(0, 3, "\xEF\xBB\xBF") == 0) part.remove_prefix(3);
+        if (!scan.feed(part)) {
+          ::close(fd);
+          fail("", "not a glTF file: " + scan.error());
+        }
+      }
+    }
+    ::close(fd);
+    return bytes;
+  }
+
+  // The JSON chunk of a binary glTF (glTF 2.0 §4.4), every length checked against the bytes present.
+  std::string_view glb_json_chunk(const std::string& b) {
+    auto u32 = [&](std::size_t at) {
+      std::uint32_t v;
+      std::memcpy(&v, b.data() + at, 4);
+      return v;  // little-endian, as the format and every machine this builds for
+    };
+    if (b.size() < 20) fail("", "a binary glTF shorter than its 12-byte header and first chunk header");
+    if (u32(4) != 2) fail("", "binary glTF version " + std::to_string(u32(4)) + "; only version 2 is read");
+    const std::uint64_t length = u32(8);
+    glb_length_ = length;
+    if (length > b.size())
+      fail("", "binary glTF header says " + std::to_string(length) + " bytes, the file has " + std::to_string(b.size()));
+    const std::uint64_t json_length = u32(12);
+    if (u32(16) != 0x4E4F534Au) fail("", "the first chunk of a binary glTF is not JSON");
+    if (!range_inside(20, json_length, length))
+      fail("", "the JSON chunk's length " + std::to_string(json_length) + " runs past the file's " +
+                   std::to_string(length) + " bytes");
+    return std::string_view(b.data() + 20, json_length);
+  }
+
+  // Buffer views against the byteLength of their buffers, and each buffer's file against the size it
+  // must have, from the JSON itself: tinygltf 2.7 forms &buffer.data[view.byteOffset] for an image
+  // before any check, and reads a buffer's file whole before comparing its size.
+  void check_declared_ranges(std::string_view text) {
+    nlohmann::json j;
+    try {
+      j = nlohmann::json::parse(text.begin(), text.end());
+    } catch (const nlohmann::json::exception& e) {
+      fail("", std::string("not a readable glTF file: ") + e.what());
+    }
+    if (!j.is_object()) fail("", "not a glTF file: the JSON is not an object");
+    check_integers(j, "");
+    std::vector<std::optional<std::uint64_t>> buffer_length;
+    const fs::path base = path_.has_parent_path() ? path_.parent_path() : fs::path(".");
+    if (const auto it = j.find("buffers"); it != j.end() && it->is_array()) {
+      for (std::size_t i = 0; i < it->size(); ++i) {
+        const auto& b = (*it)[i];
+        const auto length = unsigned_member(b, "byteLength");
+        buffer_length.push_back(length);
+        if (length && *length > resource_limits().memory_bytes)
+          fail(json_index("buffers", int(i)) + ".byteLength",
+               "is " + byte_size_text(*length) + ", over the memory budget of " +
+                   byte_size_text(resource_limits().memory_bytes));
+        const auto uri = b.is_object() ? b.find("uri") : b.end();
+        if (length && uri != b.end() && uri->is_string() && uri->get<std::string>().rfind("data:", 0) != 0)
+          rules_.buffer_bytes[normal(base / uri_decode(uri->get<std::string>()))] = *length;
+      }
+    }
+    if (const auto it = j.find("bufferViews"); it != j.end() && it->is_array()) {
+      for (std::size_t i = 0; i < it->size(); ++i) {
+        const auto& v = (*it)[i];
+        const auto buffer = unsigned_member(v, "buffer");
+        const auto length = unsigned_member(v, "byteLength");
+        const std::uint64_t offset = unsigned_member(v, "byteOffset").value_or(0);
+        if (!buffer || !length) continue;  // tinygltf reports a missing required member
+        const std::string w = json_index("bufferViews", int(i));
+        if (*buffer >= buffer_length.size())
+          fail(w + ".buffer", "names buffers[" + std::to_string(*buffer) + "], but the file has " +
+                                  std::to_string(buffer_length.size()) + " buffers");
+        const auto have = buffer_length[*buffer];
+        if (have && !range_inside(offset, *length, *have))
+          fail(w, "spans bytes [" + std::to_string(offset) + ", +" + std::to_string(*length) + ") of buffers[" +
+                      std::to_string(*buffer) + "], which has " + std::to_string(*have) + " bytes");
+      }
+    }
+  }
+
+  // tinygltf 2.7 stores indices (bufferView, material, texture, node, ...) and every integer inside
+  // an extension as a 32-bit int, truncating larger ones: an index of 2^33 would silently become 0.
+  // Every integer of the document outside `extras` (application data tinygltf never interprets) must
+  // fit an int, but the four byte and element counts tinygltf keeps in 64 bits.
+  void check_integers(const nlohmann::json& v, const std::string& where) const {
+    if (v.is_object()) {
+      for (const auto& [key, child] : v.items()) {
+        if (key == "extras") continue;
+        const std::string w = where.empty() ? key : where + "." + key;
+        const bool wide = key == "byteOffset" || key == "byteLength" || key == "count" || key == "byteStride";
+        if (!(wide && child.is_number_unsigned())) check_integers(child, w);
+      }
+    } else if (v.is_array()) {
+      for (std::size_t i = 0; i < v.size(); ++i) check_integers(v[i], where + "[" + std::to_string(i) + "]");
+    } else if (v.is_number_integer()) {
+      const bool fits = v.is_number_unsigned() ? v.get<std::uint64_t>() <= std::uint64_t(std::numeric_limits<int>::max())
+                                               : v.get<std::int64_t>() >= std::numeric_limits<int>::min();
+      if (!fits) fail(where, "is " + v.dump() + ", beyond the range of a 32-bit integer");
+    }
+  }
+
+  void parse(const std::string& bytes, bool binary, std::uint64_t length) {
+    // tinygltf 2.7 takes the length as unsigned int; a .glb's is one by format.
+    if (length > std::numeric_limits<unsigned int>::max()) fail("", "a glTF JSON text of 4 GiB or more");
+    tinygltf::TinyGLTF reader;
+    tinygltf::FsCallbacks fs{&file_exists, &no_expansion, &read_whole_file, nullptr, &rules_};
+    reader.SetFsCallbacks(fs);
+    reader.SetImageLoader(&Reader::keep_image_bytes, this);
+    reader.SetPreserveImageChannels(true);
+    std::string err, warn;
+    const std::string base = path_.has_parent_path() ? path_.parent_path().string() : ".";
+    const bool ok =
+        binary ? reader.LoadBinaryFromMemory(&doc_.model, &err, &warn,
+                                             reinterpret_cast<const unsigned char*>(bytes.data()),
+                                             static_cast<unsigned int>(length), base)
+               : reader.LoadASCIIFromString(&doc_.model, &err, &warn, bytes.data(),
+                                            static_cast<unsigned int>(length), base);
+    if (!ok) {
+      if (!rules_.error.empty()) fail("", rules_.error);
+      fail("", "not a readable glTF file: " + first_line(err.empty() ? warn : err));
+    }
+  }
+
+  // tinygltf's message, made one line and short (it can quote a whole data: URI).
+  static std::string first_line(const std::string& s) {
+    std::string line = s.substr(0, s.find('\n'));
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+    constexpr std::size_t kMax = 200;
+    if (line.size() > kMax) line = line.substr(0, kMax) + "...";
+    return line;
+  }
+
+  static bool keep_image_bytes(tinygltf::Image* image, const int index, std::string*, std::string*, int, int,
+                               const unsigned char* bytes, int size, void* user) {
+    auto* self = static_cast<Reader*>(user);
+    if (index < 0) return false;
+    auto& images = self->doc_.images;
+    if (static_cast<std::size_t>(index) >= images.size()) images.resize(std::size_t(index) + 1);
+    ImageBytes& ib = images[static_cast<std::size_t>(index)];
+    if (image->bufferView >= 0) {
+      // The view was checked against its buffer's byteLength (check_declared_ranges), and tinygltf
+      // makes every buffer's data exactly that long; checked again here against the data itself.
+      const auto& m = self->doc_.model;
+      const auto& view = m.bufferViews[static_cast<std::size_t>(image->bufferView)];
+      const auto& buffer = m.buffers[static_cast<std::size_t>(view.buffer)];
+      if (!range_inside(view.byteOffset, view.byteLength, buffer.data.size()) ||
+          view.byteLength > std::uint64_t(std::numeric_limits<int>::max())) {
+        ib.error = json_index("bufferViews", image->bufferView) + " spans bytes past the end of " +
+                   json_index("buffers", view.buffer) + " (" + std::to_string(buffer.data.size()) + " bytes)";
+        return true;
+      }
+    }
+    if (size > 0 && bytes) ib.bytes.assign(bytes, bytes + size);
+    ib.loaded = true;
+    return true;
+  }
+
+  fs::path path_;
+  std::uint64_t glb_length_ = 0;
+  Document doc_;
+  FileRules rules_;
+};
+
+}  // namespace
+
+Document read_document(const fs::path& path) { return Reader(path).run(); }
+
+}  // namespace svbrdf::gltf

@@ -1,0 +1,42 @@
+#pragma once
+// The one way a glTF 2.0 file (.gltf or .glb) is opened: its bytes read within the resource limits
+// (base/resource_limits.h), its JSON scanned before tinygltf parses it (gltf/json_scan.h), every
+// byte range the container and the buffer views state checked with overflow-safe arithmetic, and
+// every file tinygltf reads beside it (buffers, images) checked to be a regular file of a size the
+// document allows before one byte of it is read. Image bytes are kept encoded, for OpenImageIO to
+// decode (tinygltf 2.7 reports success for an image it could not read: DEPENDENCIES.md pitfall 3).
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <tiny_gltf.h>
+
+namespace svbrdf::gltf {
+
+// One image's encoded bytes (a file beside the glTF, a data: URI or a buffer view), or why not.
+struct ImageBytes {
+  std::vector<unsigned char> bytes;
+  std::string error;  // set when the bytes could not be had (the message names the JSON path)
+  bool loaded = false;
+};
+
+struct Document {
+  std::filesystem::path path;
+  tinygltf::Model model;
+  std::vector<ImageBytes> images;  // by image index, as many as model.images
+};
+
+// Reads `path`. Throws svbrdf::Error "PATH: [JSON path: ]what" (bad input) when the file cannot be
+// read or violates the container's and the buffers' bounds.
+Document read_document(const std::filesystem::path& path);
+
+// "images[3]"-style JSON path pieces.
+std::string json_index(const char* array, int i);
+
+// A number of an extension object (tinygltf keeps those as generic values) that names an index or a
+// count, when it is one: a number, finite, whole and within [0, 2^31). tinygltf's GetNumberAsInt
+// converts a double such as 1e20 to int, which is undefined behaviour.
+std::optional<int> whole_index(const tinygltf::Value& v);
+
+}  // namespace svbrdf::gltf
