@@ -48,7 +48,14 @@ struct FilterShape {
   glm::vec2 mx = f.duv_dx, my = f.duv_dy;
   if (!std::isfinite(ax.x) || !std::isfinite(ax.y)) ax = glm::vec2(0.0f), mx = glm::vec2(0.0f);
   if (!std::isfinite(ay.x) || !std::isfinite(ay.y)) ay = glm::vec2(0.0f), my = glm::vec2(0.0f);
-  const float lx = glm::length(ax), ly = glm::length(ay);
+  float lx = glm::length(ax), ly = glm::length(ay);
+  // A footprint so large that its length overflows (a footprint scale of 1e30) reads the coarsest
+  // level at its centre: no probe offsets, no NaN from ∞/∞ reaching an int conversion.
+  if (!std::isfinite(lx) || !std::isfinite(ly)) {
+    s.level = levels - 1;
+    s.lambda = static_cast<float>(levels - 1);
+    return s;
+  }
   // The longer axis is the major one (as selects: which one it is is a coin toss for round footprints).
   const float la = std::max(lx, ly), lb = std::min(lx, ly), y_major = static_cast<float>(ly > lx);
   s.major_uv = mx + y_major * (my - mx);
@@ -82,6 +89,7 @@ struct Bilinear {
   b.fy = y - fy0;
   // Integer texel coordinates; far from the texture (|x| ≥ 2^24) reduce modulo the size in float first.
   auto texel = [](float v, int n) {
+    if (!std::isfinite(v)) return 0;  // a uv of ±∞ or NaN has no texel; read the first
     return wrap(std::abs(v) < 16777216.0f ? static_cast<int>(v) : static_cast<int>(std::fmod(v, static_cast<float>(n))), n);
   };
   b.x0 = texel(fx0, e.width);

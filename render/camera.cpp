@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "base/error.h"
+
 namespace svbrdf {
 
 Camera::Camera(const CameraDesc& d, int width, int height) : type_(d.type), width_(width), height_(height) {
@@ -30,6 +32,12 @@ Camera::Camera(const CameraDesc& d, int width, int height) : type_(d.type), widt
   dx_ = right_ * (2.0f * half_w_ / float(width_));
   dy_ = -up_ * (2.0f * half_h_ / float(height_));
   corner_ = right_ * -half_w_ + up_ * half_h_ + (type_ == CameraDesc::Type::perspective ? forward_ : glm::vec3(0.0f));
+  // The reader checks each number; this checks what they make together, so that no ray the camera
+  // generates is NaN or infinite (Embree asserts on those).
+  const glm::vec3 far_corner = corner_ + dx_ * float(width_) + dy_ * float(height_);
+  if (!std::isfinite(glm::dot(position_, position_)) || !std::isfinite(glm::dot(far_corner, far_corner)) ||
+      !std::isfinite(glm::dot(corner_, corner_)) || !std::isfinite(half_w_ * half_h_))
+    throw input_error(d.name, "the camera's placement and extent give rays that are not finite numbers");
 }
 
 CameraDesc Camera::framing(const glm::vec3& lo, const glm::vec3& hi) {

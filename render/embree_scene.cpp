@@ -1,5 +1,6 @@
 #include "render/embree_scene.h"
 
+#include <cassert>
 #include <cmath>
 
 #include "appearance/rng.h"
@@ -195,8 +196,24 @@ EmbreeScene::~EmbreeScene() {
     if (s) rtcReleaseScene(s);
 }
 
+namespace {
+
+// Debian's Embree 3 asserts (SIGABRT) on a ray with a NaN or infinite component. Cameras and
+// geometry are validated when the scene is read, so none should arrive: a debug build stops on one,
+// a release build treats it as a ray that hits nothing, never handing it to Embree. tfar may be
+// +inf (an unbounded ray).
+bool finite_ray(float ox, float oy, float oz, float dx, float dy, float dz, float tnear, float tfar) {
+  const bool ok = std::isfinite(ox + oy + oz) && std::isfinite(dx + dy + dz) && std::isfinite(tnear) &&
+                  !std::isnan(tfar) && (dx != 0.0f || dy != 0.0f || dz != 0.0f);
+  assert(ok && "a non-finite ray reached the Embree scene");
+  return ok;
+}
+
+}  // namespace
+
 RayHit EmbreeScene::intersect_components(float ox, float oy, float oz, float dx, float dy, float dz, float tnear,
                                          float tfar, std::uint64_t seed) const {
+  if (!finite_ray(ox, oy, oz, dx, dy, dz, tnear, tfar)) return RayHit{};
   TraceContext ctx;
   rtcInitIntersectContext(&ctx.embree);
   ctx.seed = seed;
@@ -227,6 +244,7 @@ RayHit EmbreeScene::intersect_components(float ox, float oy, float oz, float dx,
 
 bool EmbreeScene::occluded_components(float ox, float oy, float oz, float dx, float dy, float dz, float tnear,
                                       float tfar, std::uint64_t seed) const {
+  if (!finite_ray(ox, oy, oz, dx, dy, dz, tnear, tfar)) return false;
   TraceContext ctx;
   rtcInitIntersectContext(&ctx.embree);
   ctx.seed = seed;

@@ -48,7 +48,11 @@ TEST(FilterTaps, LevelsProbesAndWeights) {
   EXPECT_NEAR(total_weight(t), 1.0f, 1e-5f);
   // Huge footprints clamp to the last level; wrap-around uvs and NaN stay in range.
   for (const Footprint& f : {Footprint{{-3.2f, 7.9f}, {100, 0}, {0, 100}}, Footprint{{1e6f, -1e6f}, {0.01f, 0}, {0, 0.01f}},
-                             Footprint{{NAN, 0.5f}, {INFINITY, 0}, {0, NAN}}}) {
+                             Footprint{{NAN, 0.5f}, {INFINITY, 0}, {0, NAN}},
+                             // finite axes whose length overflows a float (a footprint scale of 1e30):
+                             // ∞/∞ once reached an int conversion
+                             Footprint{{0.5f, 0.5f}, {3e38f, 3e38f}, {1e30f, 0}}, Footprint{{0.5f, 0.5f}, {1e30f, 0}, {3e38f, 3e38f}},
+                             Footprint{{3e38f, -3e38f}, {1e30f, 1e30f}, {1e30f, -1e30f}}}) {
     t = filter_taps(e, levels, f);
     EXPECT_NEAR(total_weight(t), 1.0f, 1e-5f);
     for (int k = 0; k < t.count; ++k) {
