@@ -3,6 +3,7 @@
 #include <Imath/half.h>
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -14,6 +15,7 @@
 
 #include "base/atomic_file.h"
 #include "base/error.h"
+#include "base/resource_limits.h"
 #include "mip/stored_normal.h"
 
 namespace svbrdf {
@@ -163,6 +165,27 @@ bool get_float(const std::byte* at, OIIO::TypeDesc f, float& v) {
   return true;
 }
 
+
+// The fewest bytes an OpenEXR file holding `spec`'s pixels can have, from the format (OpenEXR's
+// "Technical Introduction", file layout): an 8-byte offset-table entry and an 8-byte chunk header
+// for every chunk, and for the zlib-based and uncompressed codecs the pixel bytes divided by the
+// codec's largest ratio (deflate's is 1032:1, RFC 1951's longest match of 258 bytes in 2 bits; run
+// length's 128:2). A header that claims more pixels than its file could hold is refused before a
+// level is allocated or a chunk decoded.
+std::uint64_t least_exr_bytes(const OIIO::ImageSpec& spec) {
+  const std::uint64_t w = std::uint64_t(std::max(spec.width, 1)), h = std::uint64_t(std::max(spec.height, 1));
+  const std::string codec = spec.get_string_attribute("compression", "none");
+  std::uint64_t chunks;
+  if (spec.tile_width > 0 && spec.tile_height > 0) {
+    chunks = ((w + spec.tile_width - 1) / spec.tile_width) * ((h + spec.tile_height - 1) / spec.tile_height);
+  } else {
+    const std::uint64_t lines = codec == "zip" ? 16 : codec == "none" || codec == "rle" || codec == "zips" ? 1 : 256;
+    chunks = (h + lines - 1) / lines;
+  }
+  const std::uint64_t pixels = w * h * std::uint64_t(spec.pixel_bytes(true));
+  const std::uint64_t ratio = codec == "none" ? 1 : codec == "rle" ? 64 : codec == "zip" || codec == "zips" ? 1032 : 0;
+  return chunks * 16 + (ratio ? pixels / ratio : 0);
+}
 }  // namespace
 
 void write_mip_file(const fs::path& path, const MipData& mip) {
@@ -279,6 +302,29 @@ MipData read_mip_file(const fs::path& path) {
   if (radial_inner > 0.0f && !(radial_outer > radial_inner * 57.2957795f && radial_outer <= 45.0f))
     throw input_error(where(path), std::string(kRadialOuter) + " is " + std::to_string(radial_outer) +
                                        ", not an angle in degrees between " + kRadialInner + " and 45");
+  // Every level's header before any pixel: the texels and the bytes they need are checked against
+  // --max-texels, the memory budget and the file's own size first, so a corrupt header that claims
+  // 8192² texels costs nothing.
+  check_image_size(std::uint64_t(level0.width), std::uint64_t(level0.height), 1, where(path) + ": level 0");
+  {
+    std::uint64_t need = 0, least = 0;
+    for (int level = 0; level < levels; ++level) {
+      if (!in->seek_subimage(level, 0)) break;  // reported as a missing level below
+      const OIIO::ImageSpec& s = in->spec();
+      const Extent e = level_extent(level0, level);
+      if (s.width != e.width || s.height != e.height) break;  // reported below, with the sizes
+      // The encoded texels, then the parameters and lobes they unpack into: about twice as much again.
+      need += std::uint64_t(e.width) * std::uint64_t(e.height) * (3 * std::uint64_t(s.pixel_bytes(true)));
+      least += least_exr_bytes(s);
+    }
+    check_allocation(need, 1, where(path), "bytes of MIP levels");
+    std::error_code ec;
+    const std::uint64_t size = fs::file_size(path, ec);
+    if (!ec && size < least)
+      throw input_error(where(path), "is " + std::to_string(size) + " bytes, fewer than the " + std::to_string(least) +
+                                         " its headers' " + std::to_string(level0.width) + "x" +
+                                         std::to_string(level0.height) + " levels need: a truncated or corrupt file");
+  }
   const std::vector<LobeChannel> lobe_layout = lobe_channels(version);
   MipData mip;
   std::vector<std::vector<ParamTexel>> param_levels;

@@ -15,6 +15,7 @@
 #include <glm/geometric.hpp>
 
 #include "base/error.h"
+#include "base/resource_limits.h"
 #include "mip/mip_file.h"
 #include "mip/stored_normal.h"
 #include "textures/material_family.h"
@@ -518,6 +519,48 @@ TEST(MipFile, ReadsOlderVersions) {
     EXPECT_GT(shaped, 0) << "the tray's pyramid should hold shaped lobes, or this test shows nothing";
   }
   EXPECT_GT(atoms, 0) << "the tray's pyramid should hold mixtures with atoms, or the version-4 case shows little";
+}
+
+}  // namespace
+}  // namespace svbrdf
+
+namespace svbrdf {
+namespace {
+
+// A MIP file's headers are checked before any level is read: a header that claims 4096² texels in a
+// file cut to 4 KiB is refused from the file's size (OpenEXR needs 16 bytes of offset table and chunk
+// header per chunk, and zlib at most 1032:1), in no time and with no allocation; a level 0 beyond
+// --max-texels is refused from its header.
+TEST(MipFile, HeadersAreCheckedBeforeAnyLevelIsRead) {
+  const testing::TempDir dir;
+  const auto path = dir / "claims.exr";
+  {
+    OIIO::ImageSpec spec(4096, 4096, 1, OIIO::TypeDesc::HALF);
+    spec.attribute("compression", "zip");
+    spec.attribute("svbrdf:mip_version", kMipFileVersion);
+    spec.attribute("svbrdf:level", 0);
+    auto out = OIIO::ImageOutput::create(path.string());
+    ASSERT_TRUE(out && out->open(path.string(), spec));
+    std::vector<std::uint16_t> zeros(std::size_t(4096) * 4096, 0);
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::HALF, zeros.data()));
+    ASSERT_TRUE(out->close());
+  }
+  std::filesystem::resize_file(path, 4096);
+  try {
+    read_mip_file(path);
+    ADD_FAILURE() << "a 4 KiB file claiming 4096x4096 texels was read";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("truncated or corrupt"), std::string::npos) << e.what();
+  }
+  const std::uint64_t saved = resource_limits().max_texels;
+  resource_limits().max_texels = 4096 * 4095;
+  try {
+    read_mip_file(path);
+    ADD_FAILURE() << "a level 0 over --max-texels was read";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("--max-texels"), std::string::npos) << e.what();
+  }
+  resource_limits().max_texels = saved;
 }
 
 }  // namespace
