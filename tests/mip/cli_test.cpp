@@ -3,6 +3,8 @@
 // exit 2, no output file left behind).
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include <cstdio>
 #include <sstream>
 #include <string>
@@ -176,7 +178,7 @@ TEST(BakeCli, BadInputIsOneLineAndExitTwo) {
   const auto out = dir / "bad.exr";
   const auto file = dir / "ok.exr";
   write_mip_file(file, build_mip(synthetic::paper(8)));
-  const std::vector<std::pair<std::string, std::string>> cases = {
+  std::vector<std::pair<std::string, std::string>> cases = {
       {"mip --base-color " + q(dir / "nope.png") + " --out " + q(out), "nope.png"},
       {"mip --base-color " + q(s.base_color) + " --normal " + q(dir / "wide.png") + " --out " + q(out), "wide.png"},
       {"mip --base-color " + q(s.base_color) + " --normal " + q(dir / "gray.png") + " --out " + q(out), "gray.png"},
@@ -191,6 +193,10 @@ TEST(BakeCli, BadInputIsOneLineAndExitTwo) {
       {"compare " + q(file) + " --levels 2..9", "--levels"},
       {"compare " + q(s.base_color), "bc.png"},
   };
+  // The glTF reader is the renderer's: deep nesting is refused before tinygltf's recursive parse.
+  std::ofstream(dir / "deep.gltf") << R"({"asset": {"version": "2.0"}, "extras": )" << std::string(20000, '[')
+                                   << std::string(20000, ']') << "}";
+  cases.push_back({"mip " + q(dir / "deep.gltf") + " --material 0 --out " + q(out), "nests deeper"});
   for (const auto& [args, names] : cases) {
     const BakeRun r = bake(dir, args, "0 0 1 0 0 1\n");
     EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
