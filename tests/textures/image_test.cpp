@@ -155,17 +155,22 @@ std::uint32_t crc32(const std::byte* p, std::size_t n) {
   return ~c;
 }
 
+// `png` with its IHDR made to claim side × side pixels: 8-byte signature, 4 length, "IHDR", width,
+// height (big-endian), ..., CRC over type and data.
+void claim_size(std::vector<std::byte>& png, std::uint32_t side) {
+  for (int k = 0; k < 2; ++k)
+    for (int b = 0; b < 4; ++b) png[16 + 4 * k + b] = std::byte((side >> (24 - 8 * b)) & 0xffu);
+  const std::uint32_t crc = crc32(png.data() + 12, 17);
+  for (int b = 0; b < 4; ++b) png[29 + b] = std::byte((crc >> (24 - 8 * b)) & 0xffu);
+}
+
 // A PNG whose header claims 100000 × 100000 pixels is refused before any pixel is allocated;
 // an empty image cannot be written.
 TEST(Image, AbsurdAndEmptySizesAreRefused) {
   const TempDir dir;
   write_image(dir / "one.png", gradient(1, 1, 3), PixelFormat::uint8);
   std::vector<std::byte> png = file_bytes(dir / "one.png");
-  // IHDR: 8-byte signature, 4 length, "IHDR", width, height (big-endian), ..., CRC over type+data.
-  for (int k = 0; k < 2; ++k)
-    for (int b = 0; b < 4; ++b) png[16 + 4 * k + b] = std::byte((100000u >> (24 - 8 * b)) & 0xffu);
-  const std::uint32_t crc = crc32(png.data() + 12, 17);
-  for (int b = 0; b < 4; ++b) png[29 + b] = std::byte((crc >> (24 - 8 * b)) & 0xffu);
+  claim_size(png, 100000);
   write_bytes(dir / "huge.png", png);
   expect_bad_input([&] { read_image(dir / "huge.png"); }, "huge.png");
   expect_bad_input([&] { read_image_from_memory(png, "image/png", "images[7]"); }, "images[7]");
@@ -210,10 +215,7 @@ TEST(Image, TexelLimitIsCheckedFromTheHeader) {
   const TempDir dir;
   write_image(dir / "small.png", gradient(16, 16, 3), PixelFormat::uint8);
   std::vector<std::byte> png = file_bytes(dir / "small.png");
-  for (int k = 0; k < 2; ++k)
-    for (int b = 0; b < 4; ++b) png[16 + 4 * k + b] = std::byte((16384u >> (24 - 8 * b)) & 0xffu);
-  const std::uint32_t crc = crc32(png.data() + 12, 17);
-  for (int b = 0; b < 4; ++b) png[29 + b] = std::byte((crc >> (24 - 8 * b)) & 0xffu);
+  claim_size(png, 16384);
   write_bytes(dir / "big.png", png);
   expect_bad_input([&] { read_image(dir / "big.png"); }, "--max-texels");
   expect_bad_input([&] { read_image_from_memory(png, "image/png", "images[2]"); }, "--max-texels");
