@@ -58,7 +58,7 @@ asan: deps $(ASAN_BUILD)/build.ninja
 # The programs' contract with their input and output under the sanitizers, always affordable (about
 # two minutes of tests): hostile and corrupt files, resource limits, output writes, interrupts and
 # command lines. CI runs it on every run; `make asan` runs every unit suite.
-CONTRACT_TESTS := ^(HostileInput|CorruptInput|OutputContract|OutputLocation|AtomicFile|TempFileRegistry|Interrupt|CliBounds|BakeContract|BakeCli|Image|MipFile|FilterTaps)\.
+CONTRACT_TESTS := ^(HostileInput|JsonScan|CorruptInput|OutputContract|OutputLocation|AtomicFile|TempFileRegistry|Interrupt|CliBounds|BakeContract|BakeCli|Image|MipFile|FilterTaps)\.
 asan-contract: deps $(ASAN_BUILD)/build.ninja
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
 	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \

@@ -128,7 +128,9 @@ class Reader {
     const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
     std::string_view json = binary ? glb_json_chunk(bytes) : std::string_view(bytes);
     if (!binary && json.size() >= 3 && json.compare(0, 3, "\xEF\xBB\xBF") == 0) json.remove_prefix(3);
-    if (auto why = scan_json(json)) fail("", *why);
+    // A text file was scanned as it was read; a .glb's JSON chunk is scanned here.
+    if (binary)
+      if (auto why = scan_json(json)) fail("", "not a glTF file: " + *why);
     check_declared_ranges(json);
     parse(bytes, binary, binary ? glb_length_ : bytes.size());
     doc_.images.resize(doc_.model.images.size());
