@@ -195,9 +195,12 @@ void write_mip_file(const fs::path& path, const MipData& mip) {
   const int lobe_nch = static_cast<int>(lobe_layout.size());
   bool corrected = false;
   for (int level = 1; level < levels; ++level) corrected |= !mip.brdf.level(level).correction.empty();
+  // OpenImageIO 2.4's multi-part OpenEXR writer ignores an "oiio:ioproxy" (it writes a file of the
+  // given name in the working folder), so the file is written to a temporary by OpenEXR, which throws
+  // on a failed write, and renamed after an fsync; a failure there is the machine's (exit 1).
   write_atomically(path, [&](const fs::path& tmp) {
     std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(tmp.string());
-    if (!out) throw input_error(where(path), "cannot write OpenEXR: " + OIIO::geterror());
+    if (!out) throw environment_error(where(path), "cannot write OpenEXR: " + OIIO::geterror());
     std::vector<OIIO::ImageSpec> specs(static_cast<std::size_t>(levels));
     std::vector<NativeLayout> layouts(static_cast<std::size_t>(levels));
     for (int level = 0; level < levels; ++level) {
@@ -234,12 +237,12 @@ void write_mip_file(const fs::path& path, const MipData& mip) {
       }
     }
     if (!out->open(tmp.string(), levels, specs.data()))
-      throw input_error(where(path), "cannot write: " + out->geterror());
+      throw environment_error(where(path), "cannot write: " + out->geterror());
     for (int level = 0; level < levels; ++level) {
       const OIIO::ImageSpec& s = specs[static_cast<std::size_t>(level)];
       const NativeLayout& layout = layouts[static_cast<std::size_t>(level)];
       if (level > 0 && !out->open(tmp.string(), s, OIIO::ImageOutput::AppendSubimage))
-        throw input_error(where(path), "cannot write level " + std::to_string(level) + ": " + out->geterror());
+        throw environment_error(where(path), "cannot write level " + std::to_string(level) + ": " + out->geterror());
       const Extent e = mip.extent(level);
       const std::size_t texels = static_cast<std::size_t>(e.width) * e.height;
       std::vector<std::byte> buf(texels * layout.stride);
@@ -270,9 +273,9 @@ void write_mip_file(const fs::path& path, const MipData& mip) {
             put_float(px, layout, 8 + static_cast<std::size_t>(bl.slots * lobe_nch + r), bl.correction[t].ratio[static_cast<std::size_t>(r)]);
       }
       if (!out->write_image(OIIO::TypeUnknown, buf.data()))
-        throw input_error(where(path), "cannot write level " + std::to_string(level) + ": " + out->geterror());
+        throw environment_error(where(path), "cannot write level " + std::to_string(level) + ": " + out->geterror());
     }
-    if (!out->close()) throw input_error(where(path), "cannot finish writing: " + out->geterror());
+    if (!out->close()) throw environment_error(where(path), "cannot finish writing: " + out->geterror());
   });
 }
 
