@@ -209,8 +209,8 @@ std::vector<float> read_floats(const tinygltf::Model& m, int index, const Access
   const int comps = type_components(a.type);
   if (components_out) *components_out = comps;
   // The bytes are checked present before the output is allocated, so a count of 10^9 in a small
-  // file is refused rather than allocated; an accessor with no buffer view (zeros, §3.6.2.2) may be
-  // that large only within the memory budget.
+  // file is refused rather than allocated; an accessor with no buffer view (zeros, §3.6.2.2) is held
+  // to check_zeros.
   const unsigned char* p = nullptr;
   std::uint64_t stride = 0;
   if (a.bufferView >= 0) {

@@ -69,8 +69,8 @@ PreparedScene::PreparedScene(Scene scene, const SceneSetup& setup, const ColorCo
     float aspect = 16.0f / 9.0f;
     if (desc.type == CameraDesc::Type::perspective && desc.aspect_ratio > 0.0f) aspect = desc.aspect_ratio;
     if (desc.type == CameraDesc::Type::orthographic) aspect = desc.xmag / desc.ymag;
-    // 360 rows, and at most 360 times as many columns or the other way round: a file's aspect ratio
-    // of 1e6 must not ask for a frame of 360 × 3.6e8 pixels.
+    // 360 rows and between 1 and 129,600 columns: a file's aspect ratio of 1e6 must not ask for a
+    // frame of 360 × 3.6e8 pixels.
     aspect = std::clamp(aspect, 1.0f / 360.0f, 360.0f);
     height = 360;
     width = std::max(1, int(std::lround(height * aspect)));
