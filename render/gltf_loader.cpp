@@ -13,7 +13,7 @@
 
 #include "base/error.h"
 #include "gltf/document.h"
-#include "render/gltf_accessor.h"
+#include "gltf/accessor.h"
 #include "render/tangents.h"
 
 namespace svbrdf {

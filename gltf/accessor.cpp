@@ -1,4 +1,4 @@
-#include "render/gltf_accessor.h"
+#include "gltf/accessor.h"
 
 #include <algorithm>
 #include <cstring>

@@ -2,8 +2,9 @@
 // Reading glTF accessors with every bound checked (glTF 2.0 §3.6.2): the accessor, its buffer view
 // and buffer must exist, the view must lie inside the buffer and every element inside the view,
 // sparse indices must be in range. Errors name the JSON path that referenced the accessor (e.g.
-// "meshes[2].primitives[0].attributes.POSITION"). Internal to the glTF loader: this header is the
-// only one besides gltf_loader.cpp that sees tinygltf.
+// "meshes[2].primitives[0].attributes.POSITION"). Part of the one glTF reader, beside the document
+// (gltf/document.h); a count is checked against the bytes present and the resource limits before
+// anything is allocated.
 #include <cstdint>
 #include <string>
 #include <vector>
