@@ -7,10 +7,12 @@
 #include <algorithm>
 #include <cctype>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "base/atomic_file.h"
 #include "base/checked_number.h"
 #include "base/error.h"
 #include "base/resource_limits.h"
@@ -58,6 +60,38 @@ fs::path normal(const fs::path& p) {
   return (ec ? p : abs).lexically_normal();
 }
 
+// Reads the regular file `path` whole into `out`, or says why not. `size_refusal` sees the file's size
+// before a byte is read and returns why it is refused (empty: accepted); `feed` sees each piece as it
+// is read (1 MiB at a time) and may refuse it the same way. Opened non-blocking, so a FIFO or a device
+// is refused rather than waited on.
+template <typename Bytes>
+std::string read_regular_file(const std::string& path, Bytes& out,
+                              const std::function<std::string(std::uint64_t)>& size_refusal,
+                              const std::function<std::string(std::string_view, std::uint64_t)>& feed) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+  if (fd < 0) return errno == ENOENT ? "does not exist" : "cannot be opened: " + errno_text(errno);
+  struct stat st {};
+  std::string why;
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) why = "is not a regular file";
+  const auto size = static_cast<std::uint64_t>(st.st_size);
+  if (why.empty()) why = size_refusal(size);
+  if (why.empty()) {
+    out.resize(size);
+    for (std::uint64_t got = 0; got < size && why.empty();) {
+      const ssize_t n = ::read(fd, out.data() + got, std::min<std::uint64_t>(size - got, 1 << 20));
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) {
+        why = n < 0 ? "cannot be read: " + errno_text(errno) : "ended while being read";
+        break;
+      }
+      if (feed) why = feed(std::string_view(reinterpret_cast<const char*>(out.data()) + got, std::size_t(n)), got);
+      got += std::uint64_t(n);
+    }
+  }
+  ::close(fd);
+  return why;
+}
+
 // tinygltf's file reader, replaced: only regular files (a FIFO or a device would hang or never end),
 // and no more bytes than the document allows the file — a buffer exactly its byteLength, an image
 // at most image_file_limit() — checked from the file's size before reading.
@@ -70,38 +104,20 @@ bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const st
     if (err) *err += line + "\n";
     return false;
   };
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
-  if (fd < 0) return refuse(std::string("cannot be opened: ") + std::strerror(errno));
-  struct stat st {};
-  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-    ::close(fd);
-    return refuse("is not a regular file");
-  }
-  const auto size = static_cast<std::uint64_t>(st.st_size);
   const auto it = rules->buffer_bytes.find(normal(path));
-  if (it != rules->buffer_bytes.end() && size != it->second) {
-    ::close(fd);
-    return refuse("is " + std::to_string(size) + " bytes; its buffer's byteLength says " + std::to_string(it->second));
-  }
-  const std::uint64_t limit = it != rules->buffer_bytes.end() ? it->second : image_file_limit();
-  if (size > limit || size > resource_limits().memory_bytes) {
-    ::close(fd);
-    return refuse("is " + byte_size_text(size) + ", more than an image of at most " +
-                  std::to_string(resource_limits().max_texels) + " texels can be (--max-texels)");
-  }
-  out->resize(size);
-  std::uint64_t got = 0;
-  while (got < size) {
-    const ssize_t n = ::read(fd, out->data() + got, size - got);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      ::close(fd);
-      return refuse(n < 0 ? std::string("cannot be read: ") + std::strerror(errno) : "ended while being read");
-    }
-    got += std::uint64_t(n);
-  }
-  ::close(fd);
-  return true;
+  const bool buffer = it != rules->buffer_bytes.end();
+  const std::string why = read_regular_file(
+      path, *out,
+      [&](std::uint64_t size) -> std::string {
+        if (buffer && size != it->second)
+          return "is " + std::to_string(size) + " bytes; its buffer's byteLength says " + std::to_string(it->second);
+        if (!buffer && (size > image_file_limit() || size > resource_limits().memory_bytes))
+          return "is " + byte_size_text(size) + ", more than an image of at most " +
+                 std::to_string(resource_limits().max_texels) + " texels can be (--max-texels)";
+        return {};
+      },
+      nullptr);
+  return why.empty() ? true : refuse(why);
 }
 
 bool file_exists(const std::string& path, void*) {
@@ -151,50 +167,28 @@ class Reader {
   }
 
   // The whole file, refused before reading when it is not a regular file or larger than the memory
-  // budget allows.
+  // budget allows. A text file is scanned as it is read, so a file that is not JSON (zeros, a binary)
+  // is refused at its first bad byte rather than after reading all of it.
   std::string read_file() const {
-    const int fd = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
-    if (fd < 0) fail("", errno == ENOENT ? "no such glTF file" : std::string("cannot open: ") + std::strerror(errno));
-    struct stat st {};
-    if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-      ::close(fd);
-      fail("", "not a regular file");
-    }
-    const auto size = static_cast<std::uint64_t>(st.st_size);
-    if (size > resource_limits().memory_bytes) {
-      ::close(fd);
-      fail("", "is " + byte_size_text(size) + ", over the memory budget of " +
-                   byte_size_text(resource_limits().memory_bytes));
-    }
-    std::string bytes(size, '\0');
-    std::uint64_t got = 0;
-    // A text file is scanned as it is read, so a file that is not JSON (zeros, a binary) is refused
-    // at its first bad byte rather than after reading all of it.
+    std::string bytes;
     JsonScan scan;
-    bool text = true, decided = false;
-    while (got < size) {
-      const ssize_t n = ::read(fd, bytes.data() + got, std::min<std::uint64_t>(size - got, 1 << 20));
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) {
-        ::close(fd);
-        fail("", n < 0 ? std::string("cannot read: ") + std::strerror(errno) : "ended while being read");
-      }
-      const std::uint64_t from = got;
-      got += std::uint64_t(n);
-      if (!decided && got >= 4) {
-        decided = true;
-        text = bytes.compare(0, 4, "glTF") != 0;
-      }
-      if (decided && text) {
-        std::string_view part(bytes.data() + from, got - from);
-        if (from == 0 && part.compare(0, 3, "\xEF\xBB\xBF") == 0) part.remove_prefix(3);
-        if (!scan.feed(part)) {
-          ::close(fd);
-          fail("", "not a glTF file: " + scan.error());
-        }
-      }
-    }
-    ::close(fd);
+    bool text = false;
+    const std::string why = read_regular_file(
+        path_.string(), bytes,
+        [&](std::uint64_t size) -> std::string {
+          if (size <= resource_limits().memory_bytes) return {};
+          return "is " + byte_size_text(size) + ", over the memory budget of " +
+                 byte_size_text(resource_limits().memory_bytes);
+        },
+        [&](std::string_view piece, std::uint64_t from) -> std::string {
+          if (from == 0) {
+            text = piece.compare(0, 4, "glTF") != 0;  // a .glb starts with its magic; trust bytes over names
+            if (piece.compare(0, 3, "\xEF\xBB\xBF") == 0) piece.remove_prefix(3);
+          }
+          return !text || scan.feed(piece) ? std::string() : "not a glTF file: " + scan.error();
+        });
+    if (why == "does not exist") fail("", "no such glTF file");
+    if (!why.empty()) fail("", why);
     return bytes;
   }
 

@@ -66,12 +66,14 @@ void write_outputs(const Film& film, const OutputOptions& o, const ColorConfig& 
   const fs::path png = png_path(o);
   files.stage(png, encode_image(png, to_display(radiance, o.exposure, color), PixelFormat::uint8));
   if (o.aovs) {
-    const fs::path albedo = aov_path(o, "albedo"), normal = aov_path(o, "normal"), depth = aov_path(o, "depth"),
-                   level = aov_path(o, "level");
-    files.stage(albedo, encode_image(albedo, film.albedo(), f));
-    files.stage(normal, encode_image(normal, film.normal(), f));
-    files.stage(depth, encode_image(depth, film.depth(), PixelFormat::float32));
-    files.stage(level, encode_image(level, film.mip_level(), f));
+    const auto aov = [&](const char* name, const Image& image, PixelFormat format) {
+      const fs::path p = aov_path(o, name);
+      files.stage(p, encode_image(p, image, format));
+    };
+    aov("albedo", film.albedo(), f);
+    aov("normal", film.normal(), f);
+    aov("depth", film.depth(), PixelFormat::float32);
+    aov("level", film.mip_level(), f);
   }
   files.commit();
 }
