@@ -27,14 +27,10 @@ inline Rgb gltf_eval(const GltfParams& p, const glm::vec3& wi, const glm::vec3& 
   const glm::vec3 h = glm::normalize(wi + wo);
   const float a = gltf_alpha(p.roughness), a2 = a * a;
   // h.z > 0 always here (both directions above the horizon); wi·h = wo·h > 0, so χ⁺ = 1.
-  // D in the form without the 1 − cos² cancellation (microfacet_distribution.h): the plain form
-  // lost up to 3 % at the peak in floats for α near 1e-3.
+  // D in the form without the 1 − cos² cancellation (microfacet_core.h).
   const float d = ggx_d(a, h);
-  const float vis = 0.5f / (wo.z * std::sqrt(a2 + (1.0f - a2) * wi.z * wi.z) +
-                            wi.z * std::sqrt(a2 + (1.0f - a2) * wo.z * wo.z));
-  const float s = vis * d;
-  const float x = 1.0f - glm::abs(glm::dot(wo, h));
-  const float w = (x * x) * (x * x) * x;
+  const float s = smith_ggx_visibility(a2, wi.z, wo.z) * d;
+  const float w = schlick_weight(glm::abs(glm::dot(wo, h)));
   const float fd = 0.04f + 0.96f * w;
   const Rgb dielectric = (1.0f - fd) * p.base_color * kInvPi + fd * s;
   const Rgb metal = s * (p.base_color + (Rgb(1.0f) - p.base_color) * w);

@@ -19,8 +19,7 @@ namespace {
 
 static_assert(std::endian::native == std::endian::little, "the MERL layout is little-endian");
 
-constexpr double kHalfPi = 1.57079632679489661923;
-constexpr double kPiD = 3.14159265358979323846;
+constexpr double kHalfPi = 0.5 * kPiD;
 constexpr std::size_t kHeaderBytes = 3 * sizeof(std::int32_t);
 constexpr std::size_t kDataBytes = 3 * static_cast<std::size_t>(MerlTable::kCells) * sizeof(double);
 

@@ -9,6 +9,7 @@
 
 #include <cmath>
 
+#include "appearance/microfacet_core.h"
 #include "appearance/shading.h"
 
 namespace svbrdf {
@@ -18,14 +19,12 @@ enum class MicrofacetType { ggx, beckmann };
 // tan²θ of a direction (not necessarily unit) without the 1 − cos² cancellation near the pole.
 inline float tan2_theta(const glm::vec3& w) { return (w.x * w.x + w.y * w.y) / (w.z * w.z); }
 
-// GGX: D = α² / (π (cos²θh (α²−1) + 1)²), written as α² |h|⁴ / (π (α² h.z² + h.x² + h.y²)²) so
-// that h need not be unit and nothing cancels near the pole. D = 0 when h.z ≤ 0.
+// GGX D (microfacet_core.h) for h not necessarily unit: α² |h|⁴ / (π (α² h.z² + h.x² + h.y²)²).
+// D = 0 when h.z ≤ 0.
 inline float ggx_d(float alpha, const glm::vec3& h) {
   if (h.z <= 0) return 0.0f;
-  const float a2 = alpha * alpha;
   const float len2 = glm::dot(h, h);
-  const float q = a2 * h.z * h.z + h.x * h.x + h.y * h.y;
-  return a2 * len2 * len2 * kInvPi / (q * q);
+  return len2 * len2 * ggx_d_terms(alpha * alpha, h.x * h.x + h.y * h.y, h.z * h.z);
 }
 // Λ_GGX(w) = (−1 + sqrt(1 + α² tan²θ)) / 2.
 inline float ggx_lambda(float alpha, const glm::vec3& w) {

@@ -1,6 +1,6 @@
 #pragma once
 // Small geometric helpers of the local shading frame (z = normal) shared by the models:
-// constants, the mirror direction r(w) of brdf-models.md, reflection about a microfacet normal,
+// the mirror direction r(w) of brdf-models.md, reflection about a microfacet normal,
 // Snell refraction (CGPP §27.5 / eq. 26.5 in vector form).
 #include <glm/glm.hpp>
 
@@ -8,12 +8,9 @@
 #include <cmath>
 
 #include "appearance/bsdf.h"
+#include "base/math.h"
 
 namespace svbrdf {
-
-inline constexpr float kPi = 3.14159265358979323846f;
-inline constexpr float kInvPi = 0.318309886183790671538f;
-inline constexpr float kTwoPi = 6.28318530717958647692f;
 
 inline float max_channel(const Rgb& c) { return std::max(c.x, std::max(c.y, c.z)); }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 
+#include "appearance/shading.h"
 #include "mip/lobe_mixture_bsdf.h"
 #include "render/surface.h"
 #include "render/surface_bsdf.h"
@@ -13,8 +14,6 @@ namespace svbrdf {
 namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
-
-float max3(const Rgb& c) { return std::max(c.x, std::max(c.y, c.z)); }
 
 // Veach's power heuristic with β = 2 for one sample of each strategy.
 float power_heuristic(float pa, float pb) {
@@ -184,10 +183,10 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
     // Next-event estimation: every punctual light (they are delta lights: light sampling only).
     for (const LightDesc& light : w.lights) {
       const LightArrival a = arrive(light, sp.p);
-      if (max3(a.irradiance) <= 0.0f || glm::dot(a.wi, sp.ng) <= 0.0f) continue;
+      if (max_channel(a.irradiance) <= 0.0f || glm::dot(a.wi, sp.ng) <= 0.0f) continue;
       const glm::vec3 wi = frame.to_local(a.wi);
       const Rgb f = bsdf->eval(wi, wo);
-      if (max3(f) <= 0.0f) continue;
+      if (max_channel(f) <= 0.0f) continue;
       const glm::vec3 o = offset_origin(sp.p, sp.ng, a.wi, w.scene_extent);
       const float tmax = std::isinf(a.distance) ? kInfinity : glm::length(light.position - o) * (1.0f - 1e-5f);
       if (!occluded(o, a.wi, tmax)) out.radiance += beta * f * a.irradiance * wi.z;
@@ -196,7 +195,7 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
     if (env_visible) {
       const glm::vec3 wi = frame.to_local(env_dir);
       const Rgb f = bsdf->eval(wi, wo);
-      if (max3(f) > 0.0f) {
+      if (max_channel(f) > 0.0f) {
         const float weight = s.light_sampling == LightSampling::mis ? power_heuristic(env_pdf, bsdf->pdf(wi, wo)) : 1.0f;
         out.radiance += beta * f * env_radiance * (wi.z * weight / env_pdf);
       }
@@ -209,13 +208,13 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
     // f_eff vanishes below the geometric surface (brdf-mip.md): a finite sample there is absorbed.
     if (bs.kind == SampleKind::finite && glm::dot(wi_world, sp.ng) <= 0.0f) break;
     beta *= bs.weight;
-    if (!(max3(beta) > 0.0f) || !std::isfinite(max3(beta))) break;
+    if (!(max_channel(beta) > 0.0f) || !std::isfinite(max_channel(beta))) break;
     last_impulse = bs.kind == SampleKind::impulse;
     last_pdf = bs.pdf;
     ray = Ray{offset_origin(sp.p, sp.ng, wi_world, w.scene_extent), glm::normalize(wi_world), 0.0f, kInfinity};
 
     if (depth + 1 >= s.rr_depth) {
-      const float q = std::min(0.95f, max3(beta));
+      const float q = std::min(0.95f, max_channel(beta));
       if (u1() >= q) break;
       beta /= q;
     }

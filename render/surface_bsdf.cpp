@@ -9,19 +9,6 @@
 
 namespace svbrdf {
 
-namespace {
-
-float max3(const Rgb& c) { return std::max(c.x, std::max(c.y, c.z)); }
-float pow5(float x) {
-  const float x2 = x * x;
-  return x2 * x2 * x;
-}
-// Height-correlated Smith visibility V = G2 / (4·|wi.z|·|wo.z|) (brdf-models.md, `gltf`).
-float ggx_vis(float a2, float ci, float co) {
-  return 0.5f / (co * std::sqrt(a2 + (1.0f - a2) * ci * ci) + ci * std::sqrt(a2 + (1.0f - a2) * co * co));
-}
-}  // namespace
-
 float eon_fon_albedo(float mu, float r) {
   constexpr float c1 = 0.5f - 2.0f / (3.0f * kPi);
   const float mc = 1.0f - mu;
@@ -53,7 +40,7 @@ SurfaceBsdf::SurfaceBsdf(const ShadingParams& p) : p_(p) {
   p_.metallic = std::clamp(p.metallic, 0.0f, 1.0f);
   p_.transmission = std::clamp(p.transmission, 0.0f, 1.0f);
   p_.specular = std::clamp(p.specular, 0.0f, 1.0f);
-  transmission_weight_ = (1.0f - p_.metallic) * p_.transmission * max3(p_.base_color);
+  transmission_weight_ = (1.0f - p_.metallic) * p_.transmission * max_channel(p_.base_color);
 }
 
 Rgb SurfaceBsdf::diffuse_f(const glm::vec3& wi, const glm::vec3& wo) const {
@@ -65,18 +52,18 @@ Rgb SurfaceBsdf::eval(const glm::vec3& wi, const glm::vec3& wo) const {
   if (wi.z <= 0.0f || wo.z <= 0.0f) return Rgb(0.0f);
   const glm::vec3 h = glm::normalize(wi + wo);
   const float a2 = alpha_ * alpha_;
-  const float s = ggx_vis(a2, wi.z, wo.z) * ggx_d(alpha_, h);
-  const float w = pow5(1.0f - std::abs(glm::dot(wo, h)));
+  const float s = smith_ggx_visibility(a2, wi.z, wo.z) * ggx_d(alpha_, h);
+  const float w = schlick_weight(std::abs(glm::dot(wo, h)));
   const Rgb fr = f0_ + (Rgb(1.0f) - f0_) * w;
   const Rgb base = (1.0f - p_.transmission) * diffuse_f(wi, wo);
-  const Rgb dielectric = (1.0f - p_.specular * max3(fr)) * base + p_.specular * fr * s;
+  const Rgb dielectric = (1.0f - p_.specular * max_channel(fr)) * base + p_.specular * fr * s;
   const Rgb metal = s * (p_.base_color + (Rgb(1.0f) - p_.base_color) * w);
   return glm::mix(dielectric, metal, p_.metallic);
 }
 
 Rgb SurfaceBsdf::transmission_magnitude(float cos_o) const {
-  const Rgb fr = f0_ + (Rgb(1.0f) - f0_) * pow5(1.0f - std::abs(cos_o));
-  return (1.0f - p_.metallic) * p_.transmission * (1.0f - p_.specular * max3(fr)) * p_.base_color;
+  const Rgb fr = f0_ + (Rgb(1.0f) - f0_) * schlick_weight(std::abs(cos_o));
+  return (1.0f - p_.metallic) * p_.transmission * (1.0f - p_.specular * max_channel(fr)) * p_.base_color;
 }
 
 Impulses SurfaceBsdf::impulses_in(const glm::vec3& wo) const {
@@ -93,9 +80,9 @@ Impulses SurfaceBsdf::impulses_out(const glm::vec3& wi) const {
 
 SurfaceBsdf::LobeChoice SurfaceBsdf::choose(const glm::vec3& wo) const {
   // Probabilities proportional to each lobe's approximate weight at wo (Fresnel at n·wo).
-  const float fr = max3(f0_ + (Rgb(1.0f) - f0_) * pow5(1.0f - std::clamp(wo.z, 0.0f, 1.0f)));
+  const float fr = max_channel(f0_ + (Rgb(1.0f) - f0_) * schlick_weight(std::clamp(wo.z, 0.0f, 1.0f)));
   const float spec_d = p_.specular * fr;
-  const float rest = (1.0f - p_.metallic) * (1.0f - spec_d) * max3(p_.base_color);
+  const float rest = (1.0f - p_.metallic) * (1.0f - spec_d) * max_channel(p_.base_color);
   LobeChoice c;
   c.specular = p_.metallic + (1.0f - p_.metallic) * spec_d;
   c.diffuse = rest * (1.0f - p_.transmission);
