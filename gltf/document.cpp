@@ -6,10 +6,12 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstring>
 #include <functional>
 #include <limits>
 #include <map>
+#include <sstream>
 #include <nlohmann/json.hpp>
 
 #include "base/atomic_file.h"
@@ -28,6 +30,25 @@ std::optional<int> whole_index(const tinygltf::Value& v) {
   if (!v.IsNumber()) return std::nullopt;
   if (v.IsInt()) return v.Get<int>() >= 0 ? std::optional<int>(v.Get<int>()) : std::nullopt;
   return whole_int(v.Get<double>(), 0);
+}
+
+bool finite_all(const std::vector<double>& v) {
+  return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
+}
+
+double number_or(const tinygltf::Value& object, const char* key, double fallback) {
+  if (!object.IsObject() || !object.Has(key)) return fallback;
+  const tinygltf::Value& x = object.Get(key);
+  return x.IsNumber() ? x.GetNumberAsDouble() : std::nan("");
+}
+
+float in_range(double x, double lo, double hi, const std::filesystem::path& file, const std::string& where) {
+  if (!std::isfinite(x) || x < lo || x > hi) {
+    std::ostringstream s;
+    s << "is " << x << ", outside [" << lo << ", " << hi << "]";
+    throw input_error(file.string() + ": " + where, s.str());
+  }
+  return static_cast<float>(x);
 }
 
 namespace {

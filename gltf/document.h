@@ -39,4 +39,15 @@ std::string json_index(const char* array, int i);
 // converts a double such as 1e20 to int, which is undefined behaviour.
 std::optional<int> whole_index(const tinygltf::Value& v);
 
+// Every number finite (a factor, a matrix, a translation).
+bool finite_all(const std::vector<double>& v);
+
+// A member of an object tinygltf keeps as a generic value: `fallback` when absent, NaN when present
+// but not a number (so that in_range refuses it).
+double number_or(const tinygltf::Value& object, const char* key, double fallback);
+
+// x as a float when it is finite and within [lo, hi]; otherwise throws the input error
+// "FILE: WHERE: is x, outside [lo, hi]".
+float in_range(double x, double lo, double hi, const std::filesystem::path& file, const std::string& where);
+
 }  // namespace svbrdf::gltf

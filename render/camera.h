@@ -7,7 +7,7 @@
 
 #include <glm/glm.hpp>
 
-#include "render/scene.h"
+#include "gltf/scene.h"
 
 namespace svbrdf {
 

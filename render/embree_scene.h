@@ -13,7 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "render/embree_device.h"
-#include "render/scene.h"
+#include "gltf/scene.h"
 #include "render/texture_set.h"
 
 namespace svbrdf {

@@ -9,7 +9,7 @@
 #include <glm/glm.hpp>
 
 #include "render/alias_table.h"
-#include "render/scene.h"
+#include "gltf/scene.h"
 #include "textures/image.h"
 
 namespace svbrdf {

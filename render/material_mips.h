@@ -54,7 +54,7 @@
 #include "mip/brdf_pyramid.h"
 #include "mip/mip_lookup.h"
 #include "mip/param_pyramid.h"
-#include "render/scene.h"
+#include "gltf/scene.h"
 #include "render/texture_set.h"
 #include "textures/material_texels.h"
 

@@ -10,7 +10,7 @@
 #include "render/embree_scene.h"
 #include "render/integrator.h"
 #include "render/material_mips.h"
-#include "render/scene.h"
+#include "gltf/scene.h"
 #include "render/texture_set.h"
 #include "textures/color.h"
 

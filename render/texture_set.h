@@ -19,7 +19,7 @@
 
 #include <glm/glm.hpp>
 
-#include "render/scene.h"
+#include "gltf/scene.h"
 #include "textures/color.h"
 
 namespace svbrdf {

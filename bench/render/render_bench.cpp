@@ -22,7 +22,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "render/gltf_loader.h"
+#include "gltf/scene_reader.h"
 #include "render/ray_log.h"
 #include "render/render_setup.h"
 #include "render/renderer.h"

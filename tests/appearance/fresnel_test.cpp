@@ -7,7 +7,7 @@
 #include <complex>
 
 #include "appearance/fresnel.h"
-#include "appearance/fresnel_plot.h"
+#include "apps/fresnel_plot.h"
 
 namespace svbrdf {
 namespace {

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "scenes/lod_comparison.h"
+#include "lod/comparison.h"
 #include "scenes/lod_scenes.h"
 #include "render/renderer.h"
 

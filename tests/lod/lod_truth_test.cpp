@@ -15,8 +15,8 @@
 #include "appearance/frame.h"
 #include "base/error.h"
 #include "appearance/gltf.h"
-#include "scenes/lod_comparison.h"
-#include "scenes/lod_metrics.h"
+#include "lod/comparison.h"
+#include "lod/metrics.h"
 #include "scenes/lod_scenes.h"
 #include "textures/material_loader.h"
 

@@ -9,8 +9,8 @@
 #include <string>
 
 #include "base/markup_escape.h"
-#include "scenes/lod_comparison.h"
-#include "scenes/lod_report.h"
+#include "lod/comparison.h"
+#include "lod/report.h"
 #include "tests/common/run_command.h"
 
 namespace svbrdf {

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "render/camera.h"
-#include "render/gltf_loader.h"
+#include "gltf/scene_reader.h"
 #include "render/render_setup.h"
 #include "scenes/lod_scenes.h"
 #include "scenes/recipe.h"

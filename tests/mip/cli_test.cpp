@@ -9,7 +9,7 @@
 #include <sstream>
 #include <string>
 
-#include "mip/compare_report.h"
+#include "apps/compare_report.h"
 #include "mip/mip_file.h"
 #include "tests/mip/synthetic_materials.h"
 #include "tests/common/run_command.h"

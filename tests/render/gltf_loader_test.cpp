@@ -8,7 +8,7 @@
 #include <string>
 
 #include "base/error.h"
-#include "render/gltf_loader.h"
+#include "gltf/scene_reader.h"
 #include "textures/image.h"
 #include "gltf_samples.h"
 #include "gltf_test_files.h"

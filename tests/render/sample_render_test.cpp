@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "gltf_samples.h"
-#include "render/gltf_loader.h"
+#include "gltf/scene_reader.h"
 #include "render/render_setup.h"
 #include "render/renderer.h"
 

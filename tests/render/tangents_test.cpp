@@ -3,8 +3,8 @@
 #include <cmath>
 #include <filesystem>
 
-#include "render/gltf_loader.h"
-#include "render/tangents.h"
+#include "gltf/scene_reader.h"
+#include "gltf/tangents.h"
 
 namespace svbrdf {
 namespace {

@@ -1,4 +1,4 @@
-#include "scenes/lod_metrics.h"
+#include "lod/metrics.h"
 
 #include <algorithm>
 #include <cmath>

@@ -20,7 +20,7 @@
 #include "base/interrupt.h"
 #include "base/message_line.h"
 #include "base/resource_limits.h"
-#include "render/gltf_loader.h"
+#include "gltf/scene_reader.h"
 #include "render/output.h"
 #include "render/progress.h"
 #include "render/render_setup.h"

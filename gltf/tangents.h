@@ -6,7 +6,7 @@
 // tangents along ∂p/∂u, projected into each vertex's tangent plane, weighted by the corner angle,
 // summed over the triangles that share a vertex (same position, normal and uv) and the same uv
 // orientation, with the bitangent sign from the uv orientation.
-#include "render/scene.h"
+#include "gltf/scene.h"
 
 namespace svbrdf {
 

@@ -1,4 +1,4 @@
-#include "appearance/svg.h"
+#include "apps/svg.h"
 
 #include <cmath>
 #include <cstdio>

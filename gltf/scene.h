@@ -10,7 +10,7 @@
 
 #include <glm/glm.hpp>
 
-#include "render/material_desc.h"
+#include "gltf/material_desc.h"
 #include "textures/image.h"
 #include "textures/sampler.h"
 

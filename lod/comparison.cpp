@@ -1,4 +1,4 @@
-#include "scenes/lod_comparison.h"
+#include "lod/comparison.h"
 
 #include <algorithm>
 #include <chrono>
@@ -9,7 +9,7 @@
 
 #include "base/error.h"
 #include "render/camera.h"
-#include "render/gltf_loader.h"
+#include "gltf/scene_reader.h"
 #include "render/lights.h"
 #include "render/material_mips.h"
 #include "render/render_setup.h"

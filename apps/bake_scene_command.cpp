@@ -10,7 +10,7 @@
 #include <optional>
 #include <string>
 
-#include "mip/bake_commands.h"
+#include "apps/bake_commands.h"
 #include "scenes/recipe.h"
 #include "scenes/scene_assembly.h"
 #include "textures/color.h"

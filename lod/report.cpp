@@ -1,4 +1,4 @@
-#include "scenes/lod_report.h"
+#include "lod/report.h"
 
 #include <algorithm>
 #include <cmath>

@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "appearance/albedo.h"
-#include "appearance/direction_text.h"
-#include "appearance/fresnel_plot.h"
-#include "appearance/polar_plot.h"
+#include "apps/direction_text.h"
+#include "apps/fresnel_plot.h"
+#include "apps/polar_plot.h"
 #include "appearance/registry.h"
 #include "appearance/rng.h"
 #include "base/cli_checks.h"

@@ -15,8 +15,8 @@
 #include "base/error.h"
 #include "base/interrupt.h"
 #include "base/message_line.h"
-#include "scenes/lod_comparison.h"
-#include "scenes/lod_report.h"
+#include "lod/comparison.h"
+#include "lod/report.h"
 #include "scenes/lod_scenes.h"
 #include "textures/color.h"
 

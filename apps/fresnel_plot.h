@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "appearance/bsdf.h"
-#include "appearance/svg.h"
+#include "apps/svg.h"
 
 namespace svbrdf {
 

@@ -1,4 +1,4 @@
-#include "appearance/fresnel_plot.h"
+#include "apps/fresnel_plot.h"
 
 #include <cmath>
 #include <cstdio>

@@ -1,4 +1,4 @@
-#include "render/tangents.h"
+#include "gltf/tangents.h"
 
 #include <algorithm>
 #include <cmath>

@@ -5,9 +5,9 @@
 // offending object, e.g. "scene.gltf: meshes[2].primitives[0].attributes.POSITION: ...".
 //
 // What is read: the default scene's node hierarchy (matrix or TRS), triangle primitives (indexed or
-// not; strips and fans become lists), POSITION, NORMAL, TANGENT, TEXCOORD_0/1, COLOR_0; materials with
-// the extensions listed in supported_extensions(); cameras; KHR_lights_punctual. Missing normals are
-// generated flat, missing tangents (where a normal map needs them) MikkTSpace-compatible. An
+// not; strips and fans become lists), POSITION, NORMAL, TANGENT, TEXCOORD_0/1, COLOR_0; cameras;
+// KHR_lights_punctual; images, textures and materials through gltf/material_reader.h. Missing normals
+// are generated flat, missing tangents (where a normal map needs them) MikkTSpace-compatible. An
 // unsupported extension in extensionsRequired is an error; one only in extensionsUsed is a warning.
 // Not read: animations and morph targets (the static pose is drawn), skins (meshes drawn in their
 // bind pose, with a warning), occlusion textures are kept in the MaterialDesc but a path tracer
@@ -16,13 +16,10 @@
 #include <string>
 #include <vector>
 
-#include "render/scene.h"
+#include "gltf/scene.h"
 
 namespace svbrdf {
 
 Scene load_gltf(const std::filesystem::path& path);
-
-// The glTF extensions the loader understands.
-const std::vector<std::string>& supported_extensions();
 
 }  // namespace svbrdf

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "base/cli_checks.h"
-#include "mip/bake_commands.h"
+#include "apps/bake_commands.h"
 #include "textures/color.h"
 #include "textures/material_family.h"
 #include "textures/texture_set.h"

@@ -16,12 +16,12 @@
 #include <string>
 #include <vector>
 
-#include "appearance/direction_text.h"
+#include "apps/direction_text.h"
 #include "base/cli_checks.h"
 #include "base/error.h"
 #include "base/resource_limits.h"
-#include "mip/bake_commands.h"
-#include "mip/compare_report.h"
+#include "apps/bake_commands.h"
+#include "apps/compare_report.h"
 #include "mip/gltf_material.h"
 #include "mip/mip_file.h"
 #include "textures/color.h"

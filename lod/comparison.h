@@ -25,7 +25,7 @@
 #include <string>
 #include <vector>
 
-#include "scenes/lod_metrics.h"
+#include "lod/metrics.h"
 #include "scenes/lod_scenes.h"
 #include "textures/color.h"
 #include "textures/image.h"

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <string>
 
-#include "scenes/lod_comparison.h"
+#include "lod/comparison.h"
 #include "textures/color.h"
 
 namespace svbrdf {

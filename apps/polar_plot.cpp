@@ -1,4 +1,4 @@
-#include "appearance/polar_plot.h"
+#include "apps/polar_plot.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "appearance/direction_text.h"
+#include "apps/direction_text.h"
 
 #include <cmath>
 #include <cstdlib>

@@ -8,7 +8,7 @@
 #include "base/error.h"
 #include "base/interrupt.h"
 #include "base/message_line.h"
-#include "mip/bake_commands.h"
+#include "apps/bake_commands.h"
 
 int main(int argc, char** argv) {
   // A Ctrl-C or SIGTERM ends a bake at once with one line (exit 130 / 143), removing the temporary of

@@ -1,4 +1,4 @@
-#include "mip/compare_report.h"
+#include "apps/compare_report.h"
 
 #include <cstdio>
 

@@ -1,0 +1,256 @@
+#include "gltf/material_reader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <span>
+#include <sstream>
+
+#include <tiny_gltf.h>
+
+#include "base/error.h"
+#include "textures/image.h"
+
+namespace svbrdf::gltf {
+
+namespace {
+
+class MaterialReader {
+ public:
+  explicit MaterialReader(const Document& doc) : doc_(doc), model_(doc.model) {}
+
+  Materials run() {
+    read_images();
+    read_textures();
+    read_materials();
+    return std::move(out_);
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& where, const std::string& what) const {
+    throw input_error(doc_.path.string() + (where.empty() ? "" : ": " + where), what);
+  }
+
+  void read_images() {
+    const std::size_t n = model_.images.size();
+    out_.images.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const tinygltf::Image& im = model_.images[i];
+      ImageDesc& d = out_.images[i];
+      d.name = im.name;
+      d.uri = im.uri;
+      d.mime_type = im.mimeType;
+      d.where = json_index("images", int(i));
+      if (i >= doc_.images.size()) fail(d.where, "has no image data");
+      const ImageBytes& ib = doc_.images[i];
+      if (!ib.error.empty()) fail(d.where, ib.error);
+      if (!ib.loaded || ib.bytes.empty())
+        fail(d.where, im.uri.empty() ? "has no image data" : "cannot read the image file '" + im.uri + "'");
+    }
+  }
+
+  void read_textures() {
+    for (std::size_t i = 0; i < model_.textures.size(); ++i) {
+      const tinygltf::Texture& t = model_.textures[i];
+      TextureDesc d;
+      d.where = json_index("textures", int(i));
+      if (t.source >= 0) {
+        if (static_cast<std::size_t>(t.source) >= model_.images.size())
+          fail(d.where + ".source", "names " + json_index("images", t.source) + ", but the file has " +
+                                        std::to_string(model_.images.size()) + " images");
+        d.image = t.source;
+      }
+      if (t.sampler >= 0) {
+        if (static_cast<std::size_t>(t.sampler) >= model_.samplers.size())
+          fail(d.where + ".sampler", "names " + json_index("samplers", t.sampler) + ", but the file has " +
+                                         std::to_string(model_.samplers.size()) + " samplers");
+        const auto& s = model_.samplers[static_cast<std::size_t>(t.sampler)];
+        const std::string sw = json_index("samplers", t.sampler);
+        const std::string file = doc_.path.string() + ": ";
+        d.sampler.wrap_s = wrap_mode_from_gltf(s.wrapS, file + sw + ".wrapS");
+        d.sampler.wrap_t = wrap_mode_from_gltf(s.wrapT, file + sw + ".wrapT");
+        if (s.magFilter >= 0) d.sampler.filter = filter_mode_from_gltf(s.magFilter, file + sw + ".magFilter");
+      }
+      out_.textures.push_back(d);
+    }
+  }
+
+  // --- materials ---------------------------------------------------------------------------
+
+  float checked(double x, double lo, double hi, const std::string& where) const {
+    return in_range(x, lo, hi, doc_.path, where);
+  }
+
+  void apply_texture_transform(TextureRef& r, const tinygltf::Value& ext, const std::string& where) const {
+    if (!ext.IsObject() || !ext.Has("KHR_texture_transform")) return;
+    const tinygltf::Value& tt = ext.Get("KHR_texture_transform");
+    const std::string w = where + ".extensions.KHR_texture_transform";
+    auto vec2 = [&](const char* key, glm::vec2 fallback) {
+      if (!tt.Has(key)) return fallback;
+      const tinygltf::Value& a = tt.Get(key);
+      if (!a.IsArray() || a.ArrayLen() != 2 || !a.Get(0).IsNumber() || !a.Get(1).IsNumber())
+        fail(w + "." + key, "must be an array of two numbers");
+      const glm::vec2 v(a.Get(0).GetNumberAsDouble(), a.Get(1).GetNumberAsDouble());
+      if (!std::isfinite(v.x) || !std::isfinite(v.y)) fail(w + "." + key, "is not finite");
+      return v;
+    };
+    const double rot = number_or(tt, "rotation", 0.0);
+    if (!std::isfinite(rot)) fail(w + ".rotation", "is not a finite number");
+    int override_set = -1;
+    if (tt.Has("texCoord")) {
+      const double tc = number_or(tt, "texCoord", 0);
+      if (tc != 0 && tc != 1) fail(w + ".texCoord", "is " + std::to_string(tc) + "; TEXCOORD_0 and _1 are read");
+      override_set = int(tc);
+    }
+    r.transform = TextureTransform::make(vec2("offset", glm::vec2(0)), float(rot), vec2("scale", glm::vec2(1)), override_set);
+  }
+
+  TextureRef texture_ref(int index, int tex_coord, const tinygltf::ExtensionMap& ext, const std::string& where) const {
+    TextureRef r;
+    if (index < 0) return r;
+    if (static_cast<std::size_t>(index) >= out_.textures.size())
+      fail(where + ".index", "names " + json_index("textures", index) + ", but the file has " +
+                                 std::to_string(out_.textures.size()) + " textures");
+    if (out_.textures[static_cast<std::size_t>(index)].image < 0)
+      fail(where + ".index", json_index("textures", index) + " has no image this renderer can read");
+    if (tex_coord != 0 && tex_coord != 1)
+      fail(where + ".texCoord", "is " + std::to_string(tex_coord) + "; TEXCOORD_0 and _1 are read");
+    r.texture = index;
+    r.tex_coord = tex_coord;
+    tinygltf::Value::Object o(ext.begin(), ext.end());
+    apply_texture_transform(r, tinygltf::Value(o), where);
+    return r;
+  }
+
+  // A textureInfo inside an extension object (tinygltf leaves those as generic values).
+  TextureRef texture_ref(const tinygltf::Value& ext_obj, const char* key, const std::string& where) const {
+    if (!ext_obj.IsObject() || !ext_obj.Has(key)) return {};
+    const tinygltf::Value& ti = ext_obj.Get(key);
+    const std::string w = where + "." + key;
+    if (!ti.IsObject() || !ti.Has("index") || !ti.Get("index").IsNumber()) fail(w, "is not a textureInfo");
+    const std::optional<int> index = whole_index(ti.Get("index"));
+    if (!index) fail(w + ".index", "is not a texture index (a whole number from 0)");
+    const std::optional<int> tc = ti.Has("texCoord") ? whole_index(ti.Get("texCoord")) : std::optional<int>(0);
+    if (!tc) fail(w + ".texCoord", "is not a TEXCOORD set number (a whole number from 0)");
+    tinygltf::ExtensionMap none;
+    TextureRef r = texture_ref(*index, *tc, none, w);
+    if (ti.Has("extensions")) apply_texture_transform(r, ti.Get("extensions"), w);
+    return r;
+  }
+
+  void read_materials() {
+    for (std::size_t i = 0; i < model_.materials.size(); ++i) {
+      const tinygltf::Material& m = model_.materials[i];
+      MaterialDesc d;
+      d.name = m.name;
+      d.where = json_index("materials", int(i));
+      const std::string w = d.where;
+      const auto& pbr = m.pbrMetallicRoughness;
+      const std::string wp = w + ".pbrMetallicRoughness";
+      if (pbr.baseColorFactor.size() != 4 || !finite_all(pbr.baseColorFactor))
+        fail(wp + ".baseColorFactor", "must be four finite numbers");
+      for (int c = 0; c < 3; ++c)
+        d.base_color[c] = checked(pbr.baseColorFactor[std::size_t(c)], 0, 1, wp + ".baseColorFactor");
+      d.base_alpha = checked(pbr.baseColorFactor[3], 0, 1, wp + ".baseColorFactor");
+      d.base_color_texture = texture_ref(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+                                         pbr.baseColorTexture.extensions, wp + ".baseColorTexture");
+      d.metallic = checked(pbr.metallicFactor, 0, 1, wp + ".metallicFactor");
+      d.roughness = checked(pbr.roughnessFactor, 0, 1, wp + ".roughnessFactor");
+      d.metallic_roughness_texture =
+          texture_ref(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+                      pbr.metallicRoughnessTexture.extensions, wp + ".metallicRoughnessTexture");
+      d.normal_texture = texture_ref(m.normalTexture.index, m.normalTexture.texCoord, m.normalTexture.extensions,
+                                     w + ".normalTexture");
+      if (!std::isfinite(m.normalTexture.scale)) fail(w + ".normalTexture.scale", "is not finite");
+      d.normal_texture.scale = float(m.normalTexture.scale);
+      d.occlusion_texture = texture_ref(m.occlusionTexture.index, m.occlusionTexture.texCoord,
+                                        m.occlusionTexture.extensions, w + ".occlusionTexture");
+      d.occlusion_texture.scale = checked(m.occlusionTexture.strength, 0, 1, w + ".occlusionTexture.strength");
+      if (m.emissiveFactor.size() != 3 || !finite_all(m.emissiveFactor))
+        fail(w + ".emissiveFactor", "must be three finite numbers");
+      for (int c = 0; c < 3; ++c) d.emissive[c] = checked(m.emissiveFactor[std::size_t(c)], 0, 1, w + ".emissiveFactor");
+      d.emissive_texture = texture_ref(m.emissiveTexture.index, m.emissiveTexture.texCoord,
+                                       m.emissiveTexture.extensions, w + ".emissiveTexture");
+      if (m.alphaMode == "OPAQUE") d.alpha_mode = AlphaMode::opaque;
+      else if (m.alphaMode == "MASK") d.alpha_mode = AlphaMode::mask;
+      else if (m.alphaMode == "BLEND") d.alpha_mode = AlphaMode::blend;
+      else fail(w + ".alphaMode", "is '" + m.alphaMode + "'; glTF allows OPAQUE, MASK and BLEND");
+      d.alpha_cutoff = checked(m.alphaCutoff, 0, 1e30, w + ".alphaCutoff");
+      d.double_sided = m.doubleSided;
+      read_material_extensions(m.extensions, d);
+      out_.materials.push_back(std::move(d));
+    }
+  }
+
+  void read_material_extensions(const tinygltf::ExtensionMap& ext, MaterialDesc& d) const {
+    const std::string w = d.where + ".extensions.";
+    auto get = [&](const char* name) -> const tinygltf::Value* {
+      auto it = ext.find(name);
+      return it == ext.end() ? nullptr : &it->second;
+    };
+    if (const auto* e = get("KHR_materials_emissive_strength")) {
+      const std::string we = w + "KHR_materials_emissive_strength.emissiveStrength";
+      d.emissive_strength = checked(number_or(*e, "emissiveStrength", 1.0), 0, 1e30, we);
+    }
+    if (const auto* e = get("KHR_materials_ior")) {
+      const double ior = number_or(*e, "ior", 1.5);
+      // The extension allows ior = 0 as "specular off" in older drafts; glTF says ior ≥ 1.
+      d.ior = checked(ior, 1.0, 1e3, w + "KHR_materials_ior.ior");
+    }
+    if (const auto* e = get("KHR_materials_specular")) {
+      const std::string ws = w + "KHR_materials_specular";
+      d.specular = checked(number_or(*e, "specularFactor", 1.0), 0, 1, ws + ".specularFactor");
+      d.specular_texture = texture_ref(*e, "specularTexture", ws);
+      if (e->Has("specularColorFactor")) {
+        const auto& a = e->Get("specularColorFactor");
+        if (!a.IsArray() || a.ArrayLen() != 3) fail(ws + ".specularColorFactor", "must be three numbers");
+        for (int c = 0; c < 3; ++c)
+          d.specular_color[c] = checked(a.Get(c).IsNumber() ? a.Get(c).GetNumberAsDouble() : std::nan(""), 0, 1e30,
+                                        ws + ".specularColorFactor");
+      }
+      d.specular_color_texture = texture_ref(*e, "specularColorTexture", ws);
+    }
+    if (const auto* e = get("KHR_materials_transmission")) {
+      const std::string wt = w + "KHR_materials_transmission";
+      d.transmission = checked(number_or(*e, "transmissionFactor", 0.0), 0, 1, wt + ".transmissionFactor");
+      d.transmission_texture = texture_ref(*e, "transmissionTexture", wt);
+    }
+    if (const auto* e = get("KHR_materials_diffuse_roughness")) {
+      const std::string wr = w + "KHR_materials_diffuse_roughness";
+      d.diffuse_roughness = checked(number_or(*e, "diffuseRoughnessFactor", 0.0), 0, 1, wr + ".diffuseRoughnessFactor");
+      d.diffuse_roughness_texture = texture_ref(*e, "diffuseRoughnessTexture", wr);
+    }
+    if (get("KHR_materials_unlit")) d.unlit = true;
+  }
+
+  const Document& doc_;
+  const tinygltf::Model& model_;
+  Materials out_;
+};
+
+}  // namespace
+
+Materials read_materials(const Document& doc) { return MaterialReader(doc).run(); }
+
+void decode_image(Document& doc, Materials& m, std::size_t i) {
+  ImageDesc& d = m.images.at(i);
+  if (d.pixels.width > 0) return;
+  auto& b = doc.images.at(i).bytes;
+  try {
+    d.pixels = read_image_from_memory(std::as_bytes(std::span(b.data(), b.size())), d.mime_type,
+                                      d.uri.empty() ? d.where : d.where + " ('" + d.uri + "')");
+  } catch (const Error& e) {
+    throw input_error(doc.path.string(), e.what());
+  }
+  std::vector<unsigned char>().swap(b);
+}
+
+const std::vector<std::string>& supported_extensions() {
+  static const std::vector<std::string> k = {
+      "KHR_texture_transform",        "KHR_materials_emissive_strength", "KHR_materials_ior",
+      "KHR_materials_specular",       "KHR_materials_transmission",      "KHR_materials_diffuse_roughness",
+      "KHR_materials_unlit",          "KHR_lights_punctual",             "KHR_mesh_quantization"};
+  return k;
+}
+
+}  // namespace svbrdf::gltf
