@@ -6,7 +6,7 @@
 namespace svbrdf {
 namespace {
 
-constexpr double kSqrtPi = 1.7724538509055160273;
+const double kSqrtPi = std::sqrt(kPiD);
 
 // Unnormalized CDF of the visible slope x for the α = 1 Beckmann surface seen from θ (incident
 // direction in the xz plane): ∫_{−∞}^{x} (cosθ − t sinθ) exp(−t²)/√π dt
@@ -60,7 +60,7 @@ glm::vec3 sample_beckmann_visible(float alpha, const glm::vec3& wo, const glm::v
     // Normal view: all normals visible in proportion to D cos, i.e. the slope density
     // exp(−|s|²)/π itself: |s|² ~ Exp(1).
     const double r = std::sqrt(-std::log(1.0 - ux));
-    const double phi = 2.0 * 3.14159265358979323846 * u.y;
+    const double phi = 2.0 * kPiD * u.y;
     sx = r * std::cos(phi);
     sy = r * std::sin(phi);
   } else {

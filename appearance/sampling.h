@@ -52,7 +52,7 @@ inline glm::vec3 sample_power_cosine(const glm::vec2& u, float n) {
   const double one_minus_c = -std::expm1(log_u / (static_cast<double>(n) + 1.0));
   const double c = 1.0 - one_minus_c;
   const double s = std::sqrt(std::max(0.0, one_minus_c * (1.0 + c)));
-  const double phi = 2.0 * 3.14159265358979323846 * static_cast<double>(u.y);
+  const double phi = 2.0 * kPiD * static_cast<double>(u.y);
   return {static_cast<float>(s * std::cos(phi)), static_cast<float>(s * std::sin(phi)), static_cast<float>(c)};
 }
 inline float power_cosine_pdf(float cos_theta, float n) {

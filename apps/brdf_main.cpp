@@ -15,6 +15,7 @@
 #include "base/error.h"
 #include "base/interrupt.h"
 #include "base/message_line.h"
+#include "base/math.h"
 
 namespace {
 
@@ -143,7 +144,7 @@ int main(int argc, char** argv) {
     } else if (albedo->parsed()) {
       check_angle(theta_o, 90, "--theta-o");
       const auto bsdf = m.build();
-      const double t = theta_o * 3.14159265358979323846 / 180.0;
+      const double t = radians_of(theta_o);
       const glm::vec3 wo(static_cast<float>(std::sin(t)), 0.0f, static_cast<float>(std::cos(t)));
       const Rgb a = directional_albedo(*bsdf, wo, strata), imp = impulse_total(*bsdf, wo);
       std::printf("finite %.9g %.9g %.9g\nimpulse %.9g %.9g %.9g\n", static_cast<double>(a.x), static_cast<double>(a.y),

@@ -8,10 +8,12 @@
 // atan2(0, 0) is 0, as std::atan2 gives for +0; NaN in, NaN out.
 #include <cmath>
 
+#include "base/math.h"
+
 namespace svbrdf {
 
 inline float fast_atan2(float y, float x) {
-  constexpr float kHalfPi = 1.57079632679489661923f, kPi = 3.14159265358979323846f;
+  constexpr float kHalfPi = 0.5f * kPi;
   const float ax = std::abs(x), ay = std::abs(y);
   const float hi = ax > ay ? ax : ay, lo = ax > ay ? ay : ax;
   const float a = hi == 0.0f ? 0.0f : lo / hi;  // ∈ [0, 1]; 0/0 avoided, NaN kept

@@ -16,6 +16,7 @@
 #include "gltf/accessor.h"
 #include "gltf/material_reader.h"
 #include "gltf/tangents.h"
+#include "base/math.h"
 
 namespace svbrdf {
 
@@ -222,7 +223,7 @@ class Loader {
       d.intensity = checked(l.intensity, 0, 1e30, w + ".intensity");
       d.range = checked(l.range, 0, 1e30, w + ".range");
       if (d.type == LightDesc::Type::spot) {
-        d.outer_cone = checked(l.spot.outerConeAngle, 1e-6, 1.5707963267948966, w + ".spot.outerConeAngle");
+        d.outer_cone = checked(l.spot.outerConeAngle, 1e-6, 0.5 * kPiD, w + ".spot.outerConeAngle");
         d.inner_cone = checked(l.spot.innerConeAngle, 0, d.outer_cone, w + ".spot.innerConeAngle");
       }
       light_templates_.push_back(d);
@@ -310,7 +311,8 @@ class Loader {
     d.to_world = world;
     if (c.type == "perspective") {
       d.type = CameraDesc::Type::perspective;
-      d.yfov = checked(c.perspective.yfov, 1e-6, 3.14159, w + ".perspective.yfov");
+      // Strictly below π, so that tan(yfov / 2) stays finite.
+      d.yfov = checked(c.perspective.yfov, 1e-6, kPiD * (1 - 1e-6), w + ".perspective.yfov");
       d.aspect_ratio = checked(c.perspective.aspectRatio, 0, 1e6, w + ".perspective.aspectRatio");
       d.znear = checked(c.perspective.znear, 0, 1e30, w + ".perspective.znear");
       d.zfar = checked(c.perspective.zfar, 0, 1e30, w + ".perspective.zfar");

@@ -5,12 +5,9 @@
 
 #include "base/error.h"
 #include "base/fast_atan2.h"
+#include "base/math.h"
 
 namespace svbrdf {
-
-namespace {
-constexpr float kPiF = 3.14159265358979323846f;
-}  // namespace
 
 LightArrival arrive(const LightDesc& l, const glm::vec3& p) {
   LightArrival a;
@@ -78,7 +75,7 @@ Environment Environment::from_image(Image im, const std::string& where) {
   e.pixel_func_.resize(std::size_t(w) * h);
   double total = 0.0;
   for (int j = 0; j < h; ++j) {
-    const float sin_theta = std::sin(kPiF * (j + 0.5f) / float(h));
+    const float sin_theta = std::sin(kPi * (j + 0.5f) / float(h));
     for (int i = 0; i < w; ++i) {
       const float* px = &e.image_.pixels[(std::size_t(j) * w + i) * 3];
       // Luminance (Rec.709) times the sphere's area element; a small floor keeps every direction
@@ -98,8 +95,8 @@ Environment::Pixel Environment::pixel_of(const glm::vec3& d) const {
   // and 1 − d.y² lose every digit.
   Pixel p;
   p.sin_theta = std::sqrt(d.x * d.x + d.z * d.z);
-  const float u = 0.5f + fast_atan2(d.x, -d.z) * (0.5f / kPiF);
-  const float v = fast_atan2(p.sin_theta, d.y) * (1.0f / kPiF);
+  const float u = 0.5f + fast_atan2(d.x, -d.z) * (0.5f / kPi);
+  const float v = fast_atan2(p.sin_theta, d.y) * (1.0f / kPi);
   p.i = std::size_t(std::clamp(int(u * float(image_.width)), 0, image_.width - 1));
   p.j = std::size_t(std::clamp(int(v * float(image_.height)), 0, image_.height - 1));
   return p;
@@ -110,12 +107,12 @@ float Environment::pixel_pdf(std::size_t i, std::size_t j, float sin_theta) cons
   // Density in (u, v) is f·w·h / total; the map (u, v) → direction has Jacobian 2π²·sinθ.
   const float w = float(image_.width), h = float(image_.height);
   const float p_uv = pixel_func_[j * std::size_t(image_.width) + i] * w * h / total_;
-  return p_uv / (2.0f * kPiF * kPiF * sin_theta);
+  return p_uv / (2.0f * kPi * kPi * sin_theta);
 }
 
 Rgb Environment::radiance(const glm::vec3& d, float* pdf) const {
   if (image_.pixels.empty()) {
-    if (pdf) *pdf = 1.0f / (4.0f * kPiF);
+    if (pdf) *pdf = 1.0f / (4.0f * kPi);
     return uniform_;
   }
   const Pixel p = pixel_of(d);
@@ -127,8 +124,8 @@ Rgb Environment::radiance(const glm::vec3& d, float* pdf) const {
 glm::vec3 Environment::sample(glm::vec3 u, float& pdf, Rgb* radiance) const {
   if (image_.pixels.empty()) {
     // Uniform on the sphere.
-    const float z = 1.0f - 2.0f * u.x, r = std::sqrt(std::max(0.0f, 1.0f - z * z)), phi = 2.0f * kPiF * u.y;
-    pdf = 1.0f / (4.0f * kPiF);
+    const float z = 1.0f - 2.0f * u.x, r = std::sqrt(std::max(0.0f, 1.0f - z * z)), phi = 2.0f * kPi * u.y;
+    pdf = 1.0f / (4.0f * kPi);
     if (radiance) *radiance = uniform_;
     return {r * std::cos(phi), z, r * std::sin(phi)};
   }
@@ -139,7 +136,7 @@ glm::vec3 Environment::sample(glm::vec3 u, float& pdf, Rgb* radiance) const {
   const std::size_t i = k % std::size_t(w), j = k / std::size_t(w);
   const float uu = (float(i) + du) / float(w);
   const float vv = (float(j) + u.z) / float(h);
-  const float theta = vv * kPiF, phi = (uu - 0.5f) * 2.0f * kPiF;
+  const float theta = vv * kPi, phi = (uu - 0.5f) * 2.0f * kPi;
   const float st = std::sin(theta);
   const glm::vec3 d(st * std::sin(phi), std::cos(theta), -st * std::cos(phi));
   // The pixel drawn gives the density and the radiance: d is not mapped back to the image.
@@ -152,7 +149,7 @@ glm::vec3 Environment::sample(glm::vec3 u, float& pdf, Rgb* radiance) const {
 }
 
 float Environment::pdf(const glm::vec3& d) const {
-  if (image_.pixels.empty()) return 1.0f / (4.0f * kPiF);
+  if (image_.pixels.empty()) return 1.0f / (4.0f * kPi);
   const Pixel p = pixel_of(d);
   return pixel_pdf(p.i, p.j, p.sin_theta);
 }

@@ -10,6 +10,7 @@
 #include "base/error.h"
 #include "textures/families.h"
 #include "textures/noise.h"
+#include "base/math.h"
 
 namespace svbrdf::family {
 
@@ -58,8 +59,8 @@ float residue(const Print& f, glm::dvec2 p) {
   const double rho = std::sqrt(cx * cx + (cy / 1.25) * (cy / 1.25));
   const double theta = std::atan2(cy, cx);
   const double warp = 0.6 * noise::gradient(f.seed ^ 0x77, x / 2.0 + 50.0, y / 2.0 + 50.0, 1 << 20, 1 << 20);
-  const double phase = rho / f.ridge_mm + f.spin * theta / (2.0 * 3.14159265358979) + warp;
-  const float ridge = noise::smoothstep(0.50f, 0.62f, float(0.5 + 0.5 * std::cos(2.0 * 3.14159265358979 * phase)));
+  const double phase = rho / f.ridge_mm + f.spin * theta / (2.0 * kPiD) + warp;
+  const float ridge = noise::smoothstep(0.50f, 0.62f, float(0.5 + 0.5 * std::cos(2.0 * kPiD * phase)));
   // Pressure varies over the contact: parts of the print are faint or missing.
   const float pressure = noise::smoothstep(-0.35f, 0.25f, noise::gradient(f.seed ^ 0x55, x / 3.0 + 7.0, y / 3.0 + 7.0, 1 << 20, 1 << 20));
   return ridge * envelope * pressure;

@@ -10,6 +10,7 @@
 #include "base/error.h"
 #include "textures/families.h"
 #include "textures/noise.h"
+#include "base/math.h"
 
 namespace svbrdf::family {
 
@@ -128,9 +129,9 @@ struct Halftone {
     // Screen coordinates: the grid turned 45°; one cell is pitch × pitch.
     const double a = (x_mm + y_mm) / (pitch * std::sqrt(2.0)), b = (y_mm - x_mm) / (pitch * std::sqrt(2.0));
     const double fa = a - std::floor(a) - 0.5, fb = b - std::floor(b) - 0.5;  // from the cell center
-    if (tone <= 0.5f) return fa * fa + fb * fb <= tone / 3.14159265358979;  // a round dot of area `tone`
+    if (tone <= 0.5f) return fa * fa + fb * fb <= tone / kPiD;  // a round dot of area `tone`
     const double ca = 0.5 - std::abs(fa), cb = 0.5 - std::abs(fb);          // from the nearest corner
-    return ca * ca + cb * cb > (1.0 - tone) / 3.14159265358979;             // round holes of area 1 − tone
+    return ca * ca + cb * cb > (1.0 - tone) / kPiD;             // round holes of area 1 − tone
   }
 };
 

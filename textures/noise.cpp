@@ -1,4 +1,5 @@
 #include "textures/noise.h"
+#include "base/math.h"
 
 #include <array>
 #include <cmath>
@@ -22,7 +23,7 @@ const std::array<glm::vec2, 256>& gradient_table() {
   static const std::array<glm::vec2, 256> table = [] {
     std::array<glm::vec2, 256> t{};
     for (int k = 0; k < 256; ++k) {
-      const double a = 2.0 * 3.14159265358979323846 * (k + 0.5) / 256.0;
+      const double a = 2.0 * kPiD * (k + 0.5) / 256.0;
       t[k] = glm::vec2(float(std::cos(a)), float(std::sin(a)));
     }
     return t;
