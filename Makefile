@@ -39,7 +39,7 @@ render: build
 bench: build
 	@for b in $(BUILD)/bench/*/bench_*; do echo "== $$b"; $$b --benchmark_repetitions=5 --benchmark_report_aggregates_only=true; done
 
-# The distance-LOD report (issue 7) at its full size (4096 samples per pixel; long: about 80 minutes
+# The distance-LOD report at its full size (4096 samples per pixel; long: about 80 minutes
 # on 2 cores, 54 with only --filter param --filter brdf): out/lod-report/index.html.
 lod-report: build
 	$(BUILD)/svbrdf-lod-report --full --out out/lod-report

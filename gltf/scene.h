@@ -69,7 +69,7 @@ struct CameraDesc {
   int node = -1;
 };
 
-// KHR_lights_punctual, in world space. Units are radiometric (issue 6, "Units"): a directional
+// KHR_lights_punctual, in world space. Units are radiometric: a directional
 // light's intensity is the irradiance it delivers to a surface facing it, a point or spot light's
 // its radiant intensity.
 struct LightDesc {

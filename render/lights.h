@@ -1,6 +1,6 @@
 #pragma once
 // The lights the integrator samples: KHR_lights_punctual lights (plus --sun) and the environment.
-// Units are radiometric (issue 6, "Units"): a directional light delivers `intensity` W/m² to a surface
+// Units are radiometric: a directional light delivers `intensity` W/m² to a surface
 // facing it; a point or spot light has radiant intensity `intensity` W/sr, falling off with the
 // inverse square and glTF's range window; the environment's value is radiance.
 #include <memory>

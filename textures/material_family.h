@@ -1,5 +1,5 @@
 #pragma once
-// The procedural material families (issue 4): sandstone, painted-wall, printed-paper, metal-tray,
+// The procedural material families: sandstone, painted-wall, printed-paper, metal-tray,
 // granite. Each is deterministic for a seed, has a physical scale (mm per texel; features keep
 // their size in mm whatever the texture size) and variants, and yields glTF metallic-roughness
 // parameters. Normals always come from a height field in mm (textures/height_field.h), so bump

@@ -1,6 +1,6 @@
 #pragma once
 // Small glTF files written by the tests themselves: a unit quad (or any triangles) with its buffer
-// embedded as a data URI, and knobs to break it in each way issue 6 lists as bad input.
+// embedded as a data URI, and knobs to break it in each way a malformed file can.
 #include <cstdint>
 #include <cstring>
 #include <filesystem>

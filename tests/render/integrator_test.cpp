@@ -1,4 +1,4 @@
-// Closed-form checks of the path tracer (issue 6, "Tests"): every expectation comes from a formula
+// Closed-form checks of the path tracer: every expectation comes from a formula
 // or a property, never from the renderer's own output.
 #include <gtest/gtest.h>
 
@@ -28,7 +28,7 @@ glm::vec3 pixel(const Image& im, int x, int y) {
   return {p[0], p[1], p[2]};
 }
 
-// Issue 6, "Units": a Lambertian quad of albedo ρ facing a directional light of intensity E at
+// Units: a Lambertian quad of albedo ρ facing a directional light of intensity E at
 // incidence θ, seen by any camera with a black environment, has pixel value ρ/π·E·cosθ exactly.
 TEST(Integrator, LambertianQuadUnderDirectionalLight) {
   const Rgb rho(0.2f, 0.5f, 0.8f);

@@ -1,5 +1,5 @@
-// The procedural families against the physical ranges issue 4 states for them (mean albedo,
-// roughness histogram, slopes and bump geometry in mm), determinism, and bad input.
+// The procedural families against the physical ranges stated for them in textures/material_family.h
+// (mean albedo, roughness histogram, slopes and bump geometry in mm), determinism, and bad input.
 #include "textures/material_family.h"
 
 #include <gtest/gtest.h>
