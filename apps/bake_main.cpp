@@ -1,14 +1,10 @@
 // svbrdf-bake: bakes procedural materials into texture sets and builds, queries and compares MIP
 // chains (../shared/spec/brdf-mip.md, "svbrdf-bake surface").
 #include <CLI/CLI.hpp>
-#include <cstdio>
-#include <exception>
 
-#include "base/cli_checks.h"
-#include "base/error.h"
-#include "base/interrupt.h"
-#include "base/message_line.h"
 #include "apps/bake_commands.h"
+#include "apps/run_program.h"
+#include "base/interrupt.h"
 
 int main(int argc, char** argv) {
   // A Ctrl-C or SIGTERM ends a bake at once with one line (exit 130 / 143), removing the temporary of
@@ -19,16 +15,6 @@ int main(int argc, char** argv) {
   svbrdf::add_material_command(app);
   svbrdf::add_mip_commands(app);
   svbrdf::add_scene_command(app);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return svbrdf::cli::parse_failure(app, e, "svbrdf-bake");
-  } catch (const svbrdf::Error& e) {
-    std::fprintf(stderr, "svbrdf-bake: %s\n", svbrdf::message_line(e.what()).c_str());
-    return e.exit_code();
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "svbrdf-bake: internal error: %s\n", svbrdf::message_line(e.what()).c_str());
-    return 1;
-  }
-  return 0;
+  // The subcommands run as CLI11 callbacks, inside the parse.
+  return svbrdf::run_program("svbrdf-bake", app, argc, argv, [] { return 0; });
 }

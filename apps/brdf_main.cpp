@@ -13,6 +13,7 @@
 #include "appearance/rng.h"
 #include "base/cli_checks.h"
 #include "base/error.h"
+#include "apps/run_program.h"
 #include "base/interrupt.h"
 #include "base/message_line.h"
 #include "base/math.h"
@@ -120,13 +121,7 @@ int main(int argc, char** argv) {
   fresnel->add_option("--k", k_text, "conductor: imaginary part of the index (r,g,b or one number)");
   fresnel->add_option("--out", out, "output file (.svg)")->required();
 
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return cli::parse_failure(app, e, "svbrdf-brdf");
-  }
-
-  try {
+  return run_program("svbrdf-brdf", app, argc, argv, [&] {
     if (eval->parsed() || pdf->parsed()) {
       const auto bsdf = m.build();
       run_lines(*bsdf, pdf->parsed());
@@ -178,13 +173,6 @@ int main(int argc, char** argv) {
         std::printf("max |exact - schlick| %.6g at %.4g deg\n", static_cast<double>(c.max_difference[static_cast<std::size_t>(ch)]),
                     static_cast<double>(c.max_at_deg[static_cast<std::size_t>(ch)]));
     }
-  } catch (const Error& e) {
-    std::fprintf(stderr, "svbrdf-brdf: %s\n", message_line(e.what()).c_str());
-    return e.exit_code();
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "svbrdf-brdf: internal error: %s\n", message_line(e.what()).c_str());
-    return 1;
-  }
-  std::fflush(stdout);
-  return std::ferror(stdout) ? 1 : 0;
+    return 0;
+  });
 }
