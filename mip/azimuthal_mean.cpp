@@ -4,11 +4,11 @@
 #include <array>
 #include <cmath>
 
+#include "base/math.h"
+
 namespace svbrdf {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // ⟨1/(p + q cos φ)⟩ and ⟨1/(p + q cos φ)²⟩ from lo = p − |q| and hi = p + |q| (both > 0), which the
 // caller forms without cancellation (lo is ~α²/2 at a sharp lobe's peak).
@@ -71,7 +71,7 @@ void fourier_d(const LobeShape<double>& s, double theta, int count, double* out)
   if (!(cp > 1e-3) || std::max(s.alpha2, s.alpha2_hi) >= 1.0) {
     constexpr int kPoints = 1024;  // over [0, π]: the integrand is even in φ
     for (int i = 0; i < kPoints; ++i) {
-      const double phi = kPi * (i + 0.5) / kPoints, d = d_of_c(s, A + B * std::cos(phi));
+      const double phi = kPiD * (i + 0.5) / kPoints, d = d_of_c(s, A + B * std::cos(phi));
       for (int n = 0; n < count; ++n) out[n] += d * (n == 0 ? 1.0 : std::cos(n * phi)) / kPoints;
     }
     return;
@@ -82,18 +82,18 @@ void fourier_d(const LobeShape<double>& s, double theta, int count, double* out)
     // The band: 1/((1 − k_l x)(1 − k_h x)) = [k_l/(1 − k_l x) − k_h/(1 − k_h x)]/(k_l − k_h), x = c².
     for (int n = 0; n < count; ++n) {
       const double upper = s.two_point ? h * mh.inv2[n] : s.lmean * ((1 - l) * ml.inv1[n] - (1 - h) * mh.inv1[n]) / (h - l);
-      out[n] = (s.ggx * upper + (1 - s.ggx) * l * ml.inv2[n]) / kPi;
+      out[n] = (s.ggx * upper + (1 - s.ggx) * l * ml.inv2[n]) / kPiD;
     }
     return;
   }
   const Means m = ggx_means(1 - s.alpha2, cm, cp, count);
-  for (int n = 0; n < count; ++n) out[n] = s.ggx * s.alpha2 * m.inv2[n] / kPi;
+  for (int n = 0; n < count; ++n) out[n] = s.ggx * s.alpha2 * m.inv2[n] / kPiD;
   if (s.ggx < 1) {
     const double b2 = s.alpha2 * s.skirt, cmin = 1.0 / std::sqrt(1.0 + 60.0 * b2);
     if (cm > cmin) {
-      const double phi_max = B > 0 ? std::acos(std::clamp((cmin - A) / B, -1.0, 1.0)) : kPi;
+      const double phi_max = B > 0 ? std::acos(std::clamp((cmin - A) / B, -1.0, 1.0)) : kPiD;
       constexpr int kPoints = 48;
-      const double scale = (1 - s.ggx) / kPoints * (phi_max / kPi) / kPi;
+      const double scale = (1 - s.ggx) / kPoints * (phi_max / kPiD) / kPiD;
       for (int i = 0; i < kPoints; ++i) {
         const double phi = phi_max * (i + 0.5) / kPoints, c = A + B * std::cos(phi);
         if (!(c > 0)) continue;

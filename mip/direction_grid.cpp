@@ -2,15 +2,17 @@
 
 #include <cmath>
 
+#include "appearance/microfacet_core.h"
+#include "base/math.h"
+
 namespace svbrdf {
 
 DirectionGrid::DirectionGrid() {
-  constexpr double kDeg = 3.14159265358979323846 / 180.0;
   dirs_[0] = glm::dvec3(0, 0, 1);
   int d = 1;
   for (int t = 1; t <= 8; ++t)
     for (int k = 0; k < 8; ++k) {
-      const double theta = 10.0 * t * kDeg, phi = 45.0 * k * kDeg;
+      const double theta = radians_of(10.0 * t), phi = radians_of(45.0 * k);
       dirs_[static_cast<std::size_t>(d++)] =
           glm::dvec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
     }
@@ -40,8 +42,9 @@ const DirectionGrid& DirectionGrid::get() {
 namespace {
 
 // lobe_eval over every pair, with everything that depends on one direction only hoisted out of the
-// pair loop: the sides, and the visibility's sqrt(α² + (1 − α²)·cos²) per direction. The same
-// formulas as lobe.h term by term (the tests hold the two to rounding).
+// pair loop: the sides, and the visibility's root √(α² + (1 − α²)·cos²) per direction (smith_ggx_root;
+// the pair loop then forms smith_ggx_visibility from two of them). The same formulas as lobe.h term by
+// term (the tests hold the two to rounding).
 template <class T>
 void accumulate(const Lobe& lobe, double scale, std::span<glm::dvec3> table, const float* spec_scale) {
   using V3 = glm::vec<3, T>;
@@ -72,11 +75,11 @@ void accumulate(const Lobe& lobe, double scale, std::span<glm::dvec3> table, con
     wi_factor[k] = si.factor * T(lobe.weight) / w.z;
     wo_factor[k] = so.factor;
     cosine[k] = si.c;  // the clamped cosine (the same for both sides)
-    root[k] = std::sqrt(a2 + (T(1) - a2) * si.c * si.c);
+    root[k] = smith_ggx_root(a2, si.c);
   }
-  constexpr T kInvPi = T(0.318309886183790671537767526745);
+  constexpr T kInvPi = kInvPiOf<T>;
   // Plain GGX here (the shaped lobes took the loop above).
-  const T nx = shape.n.x, ny = shape.n.y, nz = shape.n.z, a2_pi = a2 * kInvPi;
+  const T nx = shape.n.x, ny = shape.n.y, nz = shape.n.z;
   const T rho_r = T(0.96) * kInvPi * T(lobe.diffuse.r), rho_g = T(0.96) * kInvPi * T(lobe.diffuse.g),
           rho_b = T(0.96) * kInvPi * T(lobe.diffuse.b);
   const T f0r = lobe.f0.r, f0g = lobe.f0.g, f0b = lobe.f0.b;
@@ -105,9 +108,9 @@ void accumulate(const Lobe& lobe, double scale, std::span<glm::dvec3> table, con
     for (int o = 0; o < nd; ++o) {
       const T ch = nx * hx[o] + ny * hy[o] + nz * hz[o];
       const T cx = ny * hz[o] - nz * hy[o], cy = nz * hx[o] - nx * hz[o], cz = nx * hy[o] - ny * hx[o];
-      const T denom = cx * cx + cy * cy + cz * cz + ch * ch * a2;
-      // denom ≥ α²·(n·h)² + |n×h|² > 0 for α² ≥ 1e-6, so the division is always safe to execute.
-      const T d = (ch > 0 ? T(1) : T(0)) * (a2_pi / (denom * denom));
+      // D's denominator |n×h|² + (n·h)²·α² > 0 for α² ≥ 1e-6, so its division is always safe to execute.
+      const T d = (ch > 0 ? T(1) : T(0)) * ggx_d_terms(a2, cx * cx + cy * cy + cz * cz, ch * ch);
+      // smith_ggx_visibility(α², ci, co) from the hoisted roots.
       const T vis = T(0.5) / (cosine[static_cast<std::size_t>(o)] * gi + ci * root[static_cast<std::size_t>(o)]);
       const T w = fw[o], s = vis * d * T(ks[o]), k = fi * wo_factor[static_cast<std::size_t>(o)];
       out_r[static_cast<std::size_t>(o)] = k * ((T(1) - w) * rho_r + s * (f0r + (T(1) - f0r) * w));

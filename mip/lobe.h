@@ -53,6 +53,9 @@
 
 #include <glm/glm.hpp>
 
+#include "appearance/gltf.h"
+#include "appearance/microfacet_core.h"
+#include "base/math.h"
 #include "base/series_log.h"
 
 namespace svbrdf {
@@ -73,7 +76,7 @@ struct Lobe {
 // roughness) and a unit shading normal: α = max(roughness², 1e-3) as brdf-models.md defines.
 inline Lobe lobe_from_texel(const glm::vec3& base_color, float metallic, float roughness,
                             const glm::vec3& normal, float weight = 1.0f) {
-  const float alpha = std::max(roughness * roughness, 1e-3f);
+  const float alpha = gltf_alpha(roughness);
   Lobe l;
   l.weight = weight;
   l.diffuse = (1.0f - metallic) * base_color;
@@ -99,8 +102,7 @@ PairTerms<T> pair_terms(const glm::vec<3, T>& wi, const glm::vec<3, T>& wo) {
   p.wo = wo;
   if (!(wi.z > 0) || !(wo.z > 0)) return p;
   p.h = glm::normalize(wi + wo);
-  const T x = T(1) - std::abs(glm::dot(wo, p.h));
-  p.fresnel_w = (x * x) * (x * x) * x;
+  p.fresnel_w = schlick_weight(std::abs(glm::dot(wo, p.h)));
   p.inv_wi_z = T(1) / wi.z;
   p.valid = true;
   return p;
@@ -219,13 +221,12 @@ LobeSide<T> lobe_wo_side(const LobeShape<T>& s, T c) {
 
 // D of a lobe at a half vector with n̂·h = ch and n̂×h = nxh (the shapes at the top of this file), with
 // 1 − (n·h)² written as |n×h|², which keeps its precision at the peak of sharp lobes.
-//   D_GGX = α² / (π·(|n×h|² + (n·h)²·α²)²)                    (Walter et al. 2007, eq. 33)
+//   D_GGX = α² / (π·(|n×h|² + (n·h)²·α²)²)                    (ggx_d_terms, microfacet_core.h)
 //   its log-uniform mixture: ∫ α²/(α² + t)² dα²/α² over [l, h] / ln(h/l) = (1/(l + t) − 1/(h + t))/ln(h/l)
 //   with t = tan²θ, which is L(l, h)/((l + t)(h + t)) (÷ π·cos⁴θ)
 //   D_Beckmann = exp(−tan²θ/α²) / (π·α²·cos⁴θ), tan²θ = |n×h|²/(n·h)²   (Walter et al. 2007, eq. 25)
 template <class T>
 T lobe_d(const LobeShape<T>& s, T ch, const glm::vec<3, T>& nxh) {
-  constexpr T kInvPi = T(0.318309886183790671537767526745);
   if (!(ch > 0)) return T(0);
   const T a2 = s.alpha2, sin2 = glm::dot(nxh, nxh);
   const T denom = sin2 + ch * ch * a2;
@@ -235,9 +236,9 @@ T lobe_d(const LobeShape<T>& s, T ch, const glm::vec<3, T>& nxh) {
     const T upper = s.two_point ? s.alpha2_hi / (denom_hi * denom_hi) : s.lmean / (denom * denom_hi);
     T d = s.ggx * upper;
     if (s.ggx != T(1)) d += (T(1) - s.ggx) * a2 / (denom * denom);
-    return d * kInvPi;
+    return d * kInvPiOf<T>;
   }
-  T d = s.ggx * a2 * kInvPi / (denom * denom);
+  T d = s.ggx * ggx_d_terms(a2, sin2, ch * ch);
   if (s.ggx != T(1)) {
     // Past tan²θ/α² = 60 the Beckmann share is below e⁻⁶⁰ of its peak: skipped, which also keeps
     // 0·∞ out at grazing half vectors.
@@ -247,7 +248,7 @@ T lobe_d(const LobeShape<T>& s, T ch, const glm::vec<3, T>& nxh) {
       T ex;
       if constexpr (std::is_same_v<T, float>) ex = series_exp(-x);
       else ex = std::exp(-x);
-      d += (T(1) - s.ggx) * ex * kInvPi / (b2 * c2 * c2);
+      d += (T(1) - s.ggx) * ex * kInvPiOf<T> / (b2 * c2 * c2);
     }
   }
   return d;
@@ -258,14 +259,11 @@ T lobe_d(const LobeShape<T>& s, T ch, const glm::vec<3, T>& nxh) {
 template <class T>
 glm::vec<3, T> lobe_brdf(const Lobe& lobe, const LobeShape<T>& s, const PairTerms<T>& p, T ci, T co, T spec_scale = T(1)) {
   using V3 = glm::vec<3, T>;
-  constexpr T kInvPi = T(0.318309886183790671537767526745);
   const T ch = glm::dot(s.n, p.h);
   const glm::vec<3, T> nxh = glm::cross(s.n, p.h);
   const T d = lobe_d(s, ch, nxh);
-  // Height-correlated Smith visibility of glTF (brdf-models.md, `gltf`).
-  const auto visibility = [&](T a2) {
-    return T(0.5) / (co * std::sqrt(a2 + (T(1) - a2) * ci * ci) + ci * std::sqrt(a2 + (T(1) - a2) * co * co));
-  };
+  // Height-correlated Smith visibility of glTF (brdf-models.md, `gltf`) at α² = a2.
+  const auto visibility = [&](T a2) { return smith_ggx_visibility(a2, ci, co); };
   T vis;
   if (s.two_point && ch > 0) {
     // A two-point mixture: each atom's V weighted by its share of D at this half vector.
@@ -281,7 +279,8 @@ glm::vec<3, T> lobe_brdf(const Lobe& lobe, const LobeShape<T>& s, const PairTerm
 #if defined(__SSE2__)
     if constexpr (std::is_same_v<T, float>) {
       // The three nodes side by side (the renderer's eval: 2 square roots and 2 divisions of four
-      // lanes instead of 6 and 6); the fourth lane is the atom at l (weight 0 without one).
+      // lanes instead of 6 and 6); the fourth lane is the atom at l (weight 0 without one). It is
+      // smith_ggx_visibility (microfacet_core.h) over four lanes, each weighted by its share of D.
       const T atom = (T(1) - s.ggx) / s.ggx;  // relative to the band's weights (β > 0: lobe_reduction.cpp)
       const __m128 a = _mm_setr_ps(s.node_a2[0], s.node_a2[1], s.node_a2[2], s.alpha2);
       const __m128 wk = _mm_setr_ps(kW[0], kW[1], kW[2], atom);
@@ -317,7 +316,7 @@ glm::vec<3, T> lobe_brdf(const Lobe& lobe, const LobeShape<T>& s, const PairTerm
   }
   const T w = p.fresnel_w;
   const V3 f0(lobe.f0), rho(lobe.diffuse);
-  return (T(0.96) * (T(1) - w) * kInvPi) * rho + (vis * d * spec_scale) * (f0 + (V3(1) - f0) * w);
+  return (T(0.96) * (T(1) - w) * kInvPiOf<T>) * rho + (vis * d * spec_scale) * (f0 + (V3(1) - f0) * w);
 }
 
 // weight · f_eff of one lobe for one pair (see the top of this file), in precision T.

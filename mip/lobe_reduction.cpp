@@ -8,13 +8,13 @@
 #include <utility>
 #include <vector>
 
+#include "appearance/microfacet_core.h"
+#include "base/math.h"
 #include "base/series_log.h"
 
 namespace svbrdf {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // The resolution below which the cost model stops telling specular lobes apart: every lobe is seen
 // blurred by a GGX-like kernel of α² = kResolutionAlpha2 (α = 0.1, about 6°, the scale of the metric's
@@ -79,7 +79,7 @@ struct Summary {
 // these, for every candidate merge). 0 past 90° (t infinite).
 double d_at_tan2(const DShape& sh, double t) {
   if (!std::isfinite(t)) return 0.0;
-  const double a2 = sh.alpha2, q = (1 + t) * (1 + t) / kPi;
+  const double a2 = sh.alpha2, q = (1 + t) * (1 + t) / kPiD;
   if (sh.alpha2_hi > 0) {
     const double hi = sh.alpha2_hi;
     const double upper = sh.two_point ? hi / ((t + hi) * (t + hi)) : sh.lmean / ((t + a2) * (t + hi));
@@ -105,7 +105,7 @@ void profile_of(const DShape& sh, std::array<double, kProfileSteps>& out) {
     Steps s;
     for (std::size_t j = 0; j < kProfileSteps; ++j) {
       s.t[j] = std::pow(10.0, -6.0 + 7.0 * double(j) / (kProfileSteps - 1));
-      s.q[j] = (1 + s.t[j]) * (1 + s.t[j]) / kPi;
+      s.q[j] = (1 + s.t[j]) * (1 + s.t[j]) / kPiD;
     }
     return s;
   }();
@@ -238,13 +238,13 @@ class SpecAlbedoTable {
       const double a2 = std::exp(std::log(kMin) * (1.0 - double(k) / (kSize - 1)));
       double sa = 0, sb = 0, sba = 0, sbb = 0;
       for (double theta : {0.0, 45.0, 75.0}) {
-        const glm::dvec3 wi(std::sin(theta * kPi / 180), 0, std::cos(theta * kPi / 180));
+        const glm::dvec3 wi(std::sin(radians_of(theta)), 0, std::cos(radians_of(theta)));
         for (int p = 0; p < n; ++p)
           for (int q = 0; q < n; ++q) {
             // h with density D(h)·cosθh: tan²θh = α²·u/(1 − u) (Walter et al. 2007); then
             // f·wo.z/pdf(wo) with pdf(wo) = D·cosθh/(4·wo·h), so D cancels.
             // Beckmann: tan²θh = −α²·ln(1 − u) (Walter et al. 2007, eq. 28).
-            const double u = (p + 0.5) / n, phi = 2 * kPi * (q + 0.5) / n;
+            const double u = (p + 0.5) / n, phi = 2 * kPiD * (q + 0.5) / n;
             for (int beckmann = 0; beckmann < 2; ++beckmann) {
               const double tan2 = beckmann ? -a2 * std::log1p(-u) : a2 * u / (1 - u);
               const double c = 1 / std::sqrt(1 + tan2), sn = std::sqrt(std::max(0.0, 1 - c * c));
@@ -252,8 +252,7 @@ class SpecAlbedoTable {
               const double oh = glm::dot(wi, h);
               const glm::dvec3 wo = 2 * oh * h - wi;
               if (wo.z <= 0 || oh <= 0) continue;
-              const double vis = 0.5 / (wo.z * std::sqrt(a2 + (1 - a2) * wi.z * wi.z) + wi.z * std::sqrt(a2 + (1 - a2) * wo.z * wo.z));
-              const double x = 1 - oh, w = x * x * x * x * x;
+              const double vis = smith_ggx_visibility(a2, wi.z, wo.z), w = schlick_weight(oh);
               const double g = 4 * vis * wo.z * oh / c;
               (beckmann ? sba : sa) += g;      // F0 = 1: F = 1
               (beckmann ? sbb : sb) += g * w;  // F0 = 0: F = w
@@ -384,7 +383,7 @@ double union_cost(std::span<const Member> u, double self, const HorizonSums& hs,
     }
   }
   return std::max(0.0, spec) + horizon + peak_weight * peak * peak +
-         width * width / (3 * kPi * kResolutionAlpha2 * kResolutionAlpha2 * kResolutionAlpha2) +
+         width * width / (3 * kPiD * kResolutionAlpha2 * kResolutionAlpha2 * kResolutionAlpha2) +
          kProfileWeight * k * k * e / kProfileSteps;
 }
 
@@ -510,7 +509,7 @@ struct GaussLegendre {
   std::array<double, N> x{}, w{};
   GaussLegendre() {
     for (int i = 0; i < N; ++i) {
-      double z = std::cos(kPi * (i + 0.75) / (N + 0.5)), dp = 1.0;
+      double z = std::cos(kPiD * (i + 0.75) / (N + 0.5)), dp = 1.0;
       for (int it = 0; it < 100; ++it) {
         double p0 = 1.0, p1 = z;  // P_0, P_1, then up to P_N by the three-term recurrence
         for (int k = 2; k <= N; ++k) {
@@ -857,7 +856,7 @@ Merged merge_union(std::span<const Member> u, const UnionTerms* terms, float spr
     double centre = 0;
     for (const Member& x : u) {
       const Summary& a = *x.sum;
-      centre += (by_amp ? a.amp : a.weight) * kPi * d_at_tan2(a.d_shape, tan2_between(a.n, n));
+      centre += (by_amp ? a.amp : a.weight) * kPiD * d_at_tan2(a.d_shape, tan2_between(a.n, n));
     }
     return centre / K;
   };

@@ -5,20 +5,20 @@
 
 #include <glm/gtc/packing.hpp>
 
+#include "base/math.h"
 #include "base/series_log.h"
 #include "mip/azimuthal_mean.h"
 
 namespace svbrdf {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 // θ of node 1 against the sharpest lobe's α: inside its core, where a sharp lobe's profile turns.
 constexpr double kInnerPerAlpha = 1.0;
-constexpr double kInnerMin = 0.03 * kPi / 180, kInnerMax = 1.0 * kPi / 180;
+constexpr double kInnerMin = radians_of(0.03), kInnerMax = radians_of(1.0);
 // The gate's amplitudes: full correction below kGateOn, none from kGateOff.
 constexpr double kGateOn = 0.05, kGateOff = 0.15;
 
-bool gated(const RadialGrid& grid, std::size_t r) { return grid.theta[r] > RadialGrid::kGateFromDeg * kPi / 180; }
+bool gated(const RadialGrid& grid, std::size_t r) { return grid.theta[r] > radians_of(RadialGrid::kGateFromDeg); }
 
 float to_half(float x) { return glm::unpackHalf1x16(glm::packHalf1x16(x)); }
 }  // namespace
@@ -32,12 +32,12 @@ RadialGrid RadialGrid::with_inner(float inner, float outer_deg) {
   g.inner = inner;
   g.outer_deg = outer_deg;
   const double half_inner = std::sin(0.5 * double(inner));
-  const double u1 = 2.0 * half_inner * half_inner, un = 1.0 - std::cos(outer_deg * kPi / 180);  // 1 − cos, precise
+  const double u1 = 2.0 * half_inner * half_inner, un = 1.0 - std::cos(radians_of(double(outer_deg)));  // 1 − cos, precise
   const double step = std::log(un / u1) / (kNodes - 2);
   g.u1 = static_cast<float>(u1);
   g.log_u1 = static_cast<float>(std::log(u1));
   g.inv_step = static_cast<float>(1.0 / step);
-  const double u_fade = 1.0 - std::cos(kFadePerOuter * outer_deg * kPi / 180);
+  const double u_fade = 1.0 - std::cos(radians_of(kFadePerOuter * outer_deg));
   g.log_u_outer = static_cast<float>(std::log(un));
   g.inv_fade = static_cast<float>(1.0 / std::log(u_fade / un));
   g.theta[0] = 0.0;
