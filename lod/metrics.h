@@ -1,5 +1,5 @@
 #pragma once
-// The metrics of the distance-LOD comparison (issue 7), over the object's pixels:
+// The metrics of the distance-LOD comparison, over the object's pixels:
 //
 //   relative MSE   e = Σ_p Σ_c (X − R)² / Σ_p Σ_c R²           (p over the mask, c over R, G, B)
 //   flux bias      b = Σ_p Σ_c X / Σ_p Σ_c R − 1                (the total radiant flux toward the

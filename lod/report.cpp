@@ -246,7 +246,7 @@ fs::path write_lod_report(const LodResults& r, const LodManifest& m, const fs::p
       fmt("%.0f", r.seconds) + " s.</p>\n");
   {
     // Which MIP levels the distances read: each camera sample filters its share of the pixel, so a
-    // distance's level is not log₂ k (bench/results/mip.md, ninth session).
+    // distance's level is not log₂ k (bench/results/mip.md, "LOD renders", the footprint scale).
     const double scale = resolve_footprint_scale(r.options.footprint_scale, r.options.spp);
     int size = 0;
     bool one_size = true;

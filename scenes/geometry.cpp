@@ -1,9 +1,9 @@
 #include "scenes/geometry.h"
 
 #include <cmath>
-#include <numbers>
 
 #include "base/error.h"
+#include "base/math.h"
 
 namespace svbrdf {
 
@@ -58,11 +58,11 @@ TriangleMesh tray(const glm::dvec3& s, double rim, double plate, double uv_per_m
 }
 
 double CorrugatedRoof::max_slope_deg() const {
-  return std::atan(2 * std::numbers::pi * amplitude_m / period_m) * 180 / std::numbers::pi;
+  return std::atan(2 * kPiD * amplitude_m / period_m) * 180 / kPiD;
 }
 
 glm::dvec3 roof_normal(const CorrugatedRoof& r, double x) {
-  const double k = 2 * std::numbers::pi / r.period_m;
+  const double k = 2 * kPiD / r.period_m;
   const double dzdx = -r.amplitude_m * k * std::sin(k * x);
   return glm::normalize(glm::dvec3(-dzdx, 0.0, 1.0));
 }
@@ -81,7 +81,7 @@ TriangleMesh corrugated_roof(const CorrugatedRoof& r) {
   const int columns = r.periods * r.segments + 1;
   const double step = r.period_m / r.segments;
   const double x0 = -r.length_m() / 2;
-  const double k = 2 * std::numbers::pi / r.period_m;
+  const double k = 2 * kPiD / r.period_m;
   for (int i = 0; i < columns; ++i) {
     // x from the integer column index so that x0 + i·step hits crests exactly where it should.
     const double x = x0 + i * step;

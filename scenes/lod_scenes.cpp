@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "base/error.h"
+#include "base/math.h"
 #include "scenes/geometry.h"
 #include "scenes/gltf_writer.h"
 #include "scenes/json.h"
@@ -24,7 +24,7 @@ double one_texel_per_pixel_distance(double texel_m, int image_height, double yfo
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kDeg = kPiD / 180.0;
 
 struct LodCamera {
   std::string name;

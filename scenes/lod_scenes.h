@@ -1,5 +1,5 @@
 #pragma once
-// The distance-LOD scenes of issue 7 and their manifest.
+// The distance-LOD scenes and their manifest.
 //
 // Each material family lies on a square quad in the XY plane facing +Z, its texture repeating, seen
 // by perspective cameras on the +Z axis looking at the quad's centre from k × d₁ for every k of the

@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <set>
 
 #include "base/error.h"
+#include "base/math.h"
 #include "scenes/json.h"
 
 namespace svbrdf {
@@ -249,7 +249,7 @@ Recipe from_root(const json::Value& v, const std::string& name) {
 }  // namespace
 
 glm::dvec3 SunRecipe::toward() const {
-  const double e = elevation_deg * std::numbers::pi / 180, a = azimuth_deg * std::numbers::pi / 180;
+  const double e = elevation_deg * kPiD / 180, a = azimuth_deg * kPiD / 180;
   return {std::cos(e) * std::sin(a), std::sin(e), std::cos(e) * std::cos(a)};
 }
 

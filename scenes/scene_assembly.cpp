@@ -1,12 +1,12 @@
 #include "scenes/scene_assembly.h"
 
 #include <cmath>
-#include <numbers>
 
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
 #include "base/error.h"
+#include "base/math.h"
 #include "scenes/geometry.h"
 #include "scenes/lod_scenes.h"
 #include "scenes/sky.h"
@@ -58,7 +58,7 @@ int write_material(GltfWriter& writer, const ProceduralMaterial& m, const std::s
 
 namespace {
 
-glm::dquat yaw(double deg) { return glm::angleAxis(deg * std::numbers::pi / 180, glm::dvec3(0, 1, 0)); }
+glm::dquat yaw(double deg) { return glm::angleAxis(deg * kPiD / 180, glm::dvec3(0, 1, 0)); }
 
 std::vector<fs::path> bake_composed(const SceneRecipe& r, const fs::path& out, const ColorConfig& color,
                                     const ProgressFn& progress) {
@@ -104,7 +104,7 @@ std::vector<fs::path> bake_composed(const SceneRecipe& r, const fs::path& out, c
     Placement where;
     where.translation = c.position;
     where.rotation = look_rotation(c.target - c.position);
-    w.add_camera(c.name, c.yfov_deg * std::numbers::pi / 180, c.aspect, 0.01, 0.0, where);
+    w.add_camera(c.name, c.yfov_deg * kPiD / 180, c.aspect, 0.01, 0.0, where);
   }
   if (r.sun) w.add_directional_light("sun", r.sun->color, r.sun->irradiance, -r.sun->toward());
   if (r.sky) {

@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
+
+#include "base/math.h"
 
 namespace svbrdf {
 
@@ -17,14 +18,14 @@ glm::dvec3 sky_radiance(const SkyModel& sky, const glm::dvec3& d) {
   }
   if (sky.disc != glm::dvec3(0.0)) {
     const double c = glm::dot(d, glm::normalize(sky.disc_direction));
-    if (c >= std::cos(sky.disc_radius_deg * std::numbers::pi / 180)) L += sky.disc;
+    if (c >= std::cos(sky.disc_radius_deg * kPiD / 180)) L += sky.disc;
   }
   return L;
 }
 
 glm::dvec3 sky_direction(double u, double v) {
-  const double theta = v * std::numbers::pi;
-  const double phi = (u - 0.5) * 2 * std::numbers::pi;  // atan2(d.x, −d.z)
+  const double theta = v * kPiD;
+  const double phi = (u - 0.5) * 2 * kPiD;  // atan2(d.x, −d.z)
   const double s = std::sin(theta);
   return {s * std::sin(phi), std::cos(theta), -s * std::cos(phi)};
 }

@@ -1,5 +1,5 @@
-// Scene recipes: the project's own recipes hold what issue 7 asks for, and bad recipes are refused
-// with one message naming the file, the line and the member.
+// Scene recipes: the project's own recipes hold what the LOD comparison needs, and bad recipes are
+// refused with one message naming the file, the line and the member.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -24,7 +24,7 @@ std::string error_of(const std::string& text) {
   return "";
 }
 
-TEST(Recipe, ShowcaseHasWhatTheIssueLists) {
+TEST(Recipe, ShowcaseHasItsMaterialsSunSkyAndCamera) {
   const Recipe r = read_recipe(kSource + "/scenes/showcase.json");
   ASSERT_EQ(r.kind, "scene");
   std::set<std::string> looks;
@@ -53,11 +53,12 @@ TEST(Recipe, ShowcaseHasWhatTheIssueLists) {
   EXPECT_LT(std::abs(page.position.z - tray.position.z), tray.size.z / 2);
 }
 
-TEST(Recipe, LodRecipeHasTheIssuesDistancesAndLights) {
+TEST(Recipe, LodRecipeHasItsDistancesAndLights) {
   const Recipe r = read_recipe(kSource + "/scenes/lod.json");
   ASSERT_EQ(r.kind, "lod");
-  // The issue's six, and two beyond them at which the filters read the coarsest level at 256 and at
-  // 4096 samples per pixel (each sample filters 1/√spp of its pixel: scenes/README.md).
+  // The comparison's six (1× to 1024×), and two beyond them at which the filters read the coarsest
+  // level at 256 and at 4096 samples per pixel (each sample filters 1/√spp of its pixel:
+  // scenes/README.md).
   EXPECT_EQ(r.lod.distances, (std::vector<double>{1, 4, 16, 64, 256, 1024, 4096, 16384}));
   std::set<std::string> presets;
   for (const LodFamily& f : r.lod.families) presets.insert(f.recipe.preset);
