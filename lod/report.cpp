@@ -9,10 +9,10 @@
 
 #include "base/atomic_file.h"
 #include "base/error.h"
+#include "base/json.h"
 #include "base/markup_escape.h"
 #include "render/output.h"
 #include "render/renderer.h"
-#include "scenes/json.h"
 #include "textures/image.h"
 
 namespace svbrdf {
@@ -77,7 +77,7 @@ float scene_exposure(const ReportScene& g) {
 void write_png(const fs::path& path, const Image& display) { write_image(path, display, PixelFormat::uint8); }
 
 std::string image_name(const ReportScene& g, const LodShot& s, const std::string& what) {
-  return g.id + "_" + json::number_text(s.multiple) + "x_" + what + ".png";
+  return g.id + "_" + number_text(s.multiple) + "x_" + what + ".png";
 }
 
 constexpr double kErrorScale = 0.5;  // false-color full scale: |ΔY| / mean Y
@@ -127,7 +127,7 @@ std::string svg_chart(const std::string& title, const std::string& y_label, cons
            fmt("%.1f", top + ph + 4) + "\" class=\"ax\"/>";
     if (e % 2 == 0)
       out += "<text x=\"" + fmt("%.1f", x) + "\" y=\"" + fmt("%.1f", top + ph + 15) + "\" class=\"tx\">" +
-             json::number_text(std::exp2(e)) + "×</text>";
+             number_text(std::exp2(e)) + "×</text>";
   }
   // y ticks: decades, or five linear steps.
   const auto ytick = [&](double v, const std::string& label) {
@@ -162,7 +162,7 @@ std::string svg_chart(const std::string& title, const std::string& y_label, cons
       if ((log_y && !(s.y[i] > 0)) || !std::isfinite(s.y[i])) continue;
       points += fmt("%.1f", X(s.x[i])) + "," + fmt("%.1f", Y(s.y[i])) + " ";
       out += "<circle cx=\"" + fmt("%.1f", X(s.x[i])) + "\" cy=\"" + fmt("%.1f", Y(s.y[i])) + "\" r=\"2.5\" fill=\"" +
-             s.color + "\"><title>" + markup_escape(s.name) + ": " + sig(s.y[i]) + " at " + json::number_text(s.x[i]) +
+             s.color + "\"><title>" + markup_escape(s.name) + ": " + sig(s.y[i]) + " at " + number_text(s.x[i]) +
              "×</title></circle>";
     }
     out += "<polyline points=\"" + points + "\" fill=\"none\" stroke=\"" + s.color + "\" stroke-width=\"1.5\"" +
@@ -234,7 +234,7 @@ fs::path write_lod_report(const LodResults& r, const LodManifest& m, const fs::p
   // What was done.
   add("<p>Each material family lies on a quad seen head-on from k × d₁, where d₁ = s·H / (2·tan(φ/2)) is the distance at "
       "which one texel (side s) covers one pixel (image height H = " + std::to_string(m.image_size) + " pixels, field of "
-      "view φ = " + json::number_text(m.yfov_deg) + "°): at k × d₁ a pixel covers k × k texels. The quad fills the "
+      "view φ = " + number_text(m.yfov_deg) + "°): at k × d₁ a pixel covers k × k texels. The quad fills the "
       "frame at every distance, so every pixel is an object pixel. Glossy families are also seen in the mirror "
       "configuration of the 45° light. The tile roof (Exercise 27.11(c)) compares a flat proxy, whose normal map "
       "holds the roof's normals, against the real corrugated geometry, with one scattering event.</p>\n");
@@ -257,19 +257,19 @@ fs::path write_lod_report(const LodResults& r, const LodManifest& m, const fs::p
     const double coarsest = one_size && size > 0 ? std::floor(std::log2(double(size))) : INFINITY;
     std::string levels;
     for (std::size_t i = 0; i < m.distances.size(); ++i)
-      levels += (i ? ", level " : "level ") + json::number_text(std::clamp(std::log2(m.distances[i] * scale), 0.0, coarsest)) +
-                " at " + json::number_text(m.distances[i]) + "×";
+      levels += (i ? ", level " : "level ") + number_text(std::clamp(std::log2(m.distances[i] * scale), 0.0, coarsest)) +
+                " at " + number_text(m.distances[i]) + "×";
     add("<p>Under the MIP filters each camera sample filters its own share of the pixel: its footprint is scaled by " +
-        json::number_text(scale) + " (the renderer's default, 1/√spp, unless set), so at k × d₁ the lookups "
-        "read MIP level log₂(k × " + json::number_text(scale) + "), clamped to the pyramid's levels" +
-        (std::isfinite(coarsest) ? " (0 to " + json::number_text(coarsest) + " for the " + std::to_string(size) + "² textures)" : "") +
+        number_text(scale) + " (the renderer's default, 1/√spp, unless set), so at k × d₁ the lookups "
+        "read MIP level log₂(k × " + number_text(scale) + "), clamped to the pyramid's levels" +
+        (std::isfinite(coarsest) ? " (0 to " + number_text(coarsest) + " for the " + std::to_string(size) + "² textures)" : "") +
         ": " + levels + ".</p>\n");
   }
   if (!info.command.empty()) add("<p class=\"note\">Made by <code>" + markup_escape(info.command) + "</code>.</p>\n");
   add("<p>Metrics over the object's pixels (those whose depth is positive in the ground truth): relative MSE "
       "Σ(X−R)²/ΣR² over pixels and RGB channels; flux bias ΣX/ΣR − 1; peak ratio max Y(X) / max Y(R) (Y: luminance). "
       "The noise floor is the relative MSE between the two ground truths. False-color images show |Y(X) − Y(R)| / "
-      "mean Y(R) from 0 (black) to " + json::number_text(kErrorScale) + " (yellow) <svg width=\"120\" height=\"10\">"
+      "mean Y(R) from 0 (black) to " + number_text(kErrorScale) + " (yellow) <svg width=\"120\" height=\"10\">"
       "<defs><linearGradient id=\"cm\">");
   for (int i = 0; i <= 5; ++i) {
     float c[3];
@@ -299,7 +299,7 @@ fs::path write_lod_report(const LodResults& r, const LodManifest& m, const fs::p
   for (const std::string& f : r.filters) {
     add("<h2 id=\"summary-" + markup_escape(f) + "\">Summary: relative MSE of <code>" + markup_escape(f) +
         "</code> over the noise floor (flux bias in brackets)</h2>\n<table>\n<tr><th class=\"l\">scene</th>");
-    for (double k : distances) add("<th>" + json::number_text(k) + "×</th>");
+    for (double k : distances) add("<th>" + number_text(k) + "×</th>");
     add("</tr>\n");
     for (const ReportScene& g : scenes) {
       add("<tr><td class=\"l\"><a href=\"#" + markup_escape(g.id) + "\">" + markup_escape(g.case_name + " / " + g.view + " / " + g.light) +
@@ -355,7 +355,7 @@ fs::path write_lod_report(const LodResults& r, const LodManifest& m, const fs::p
       for (const std::string& f : r.filters) add("<th>error: " + markup_escape(f) + "</th>");
       add("</tr>\n");
       for (const LodShot* s : g.shots) {
-        add("<tr><td>" + json::number_text(s->multiple) + "×</td>");
+        add("<tr><td>" + number_text(s->multiple) + "×</td>");
         const auto img = [&](const std::string& what, const std::string& alt) {
           add("<td><img src=\"img/" + markup_escape(image_name(g, *s, what)) + "\" alt=\"" + markup_escape(alt) + "\"></td>");
         };
@@ -372,7 +372,7 @@ fs::path write_lod_report(const LodResults& r, const LodManifest& m, const fs::p
       add("<th>" + markup_escape(f) + " rel. MSE</th><th>×floor</th><th>flux bias</th><th>peak ratio</th>");
     add("<th>floor flux</th><th>floor peak</th><th>flux σ</th></tr>\n");
     for (const LodShot* s : g.shots) {
-      add("<tr><td>" + json::number_text(s->multiple) + "×</td><td class=\"l\">" + markup_escape(s->camera) + "</td><td>" +
+      add("<tr><td>" + number_text(s->multiple) + "×</td><td class=\"l\">" + markup_escape(s->camera) + "</td><td>" +
           sig(s->floor.rel_mse) + "</td>");
       for (const std::string& f : r.filters) {
         const auto* fr = s->find(f);
@@ -392,40 +392,30 @@ fs::path write_lod_report(const LodResults& r, const LodManifest& m, const fs::p
 
   // The numbers, machine-readable.
   {
-    json::Value doc = json::Value::object();
-    doc.set("spp", json::Value::of(r.options.spp));
-    doc.set("seeds", json::Value::numbers({double(r.options.seed), double(r.options.second_seed), double(r.options.filter_seed)}));
-    doc.set("footprint_scale", json::Value::of(double(r.options.footprint_scale)));
-    doc.set("image_size", json::Value::of(r.image_size));
-    json::Value filters = json::Value::array(), unavailable = json::Value::array();
-    for (const auto& f : r.filters) filters.push(json::Value::of(f));
-    for (const auto& f : r.unavailable) unavailable.push(json::Value::of(f));
-    doc.set("filters", std::move(filters));
-    doc.set("unavailable", std::move(unavailable));
     const auto metrics = [](const LodMetrics& mm) {
-      json::Value v = json::Value::object();
-      v.set("rel_mse", json::Value::of(mm.rel_mse));
-      v.set("flux_bias", json::Value::of(mm.flux_bias));
-      v.set("peak_ratio", json::Value::of(mm.peak_ratio));
-      return v;
+      return Json{{"rel_mse", mm.rel_mse}, {"flux_bias", mm.flux_bias}, {"peak_ratio", mm.peak_ratio}};
     };
-    json::Value shots = json::Value::array();
+    Json shots = Json::array();
     for (const LodShot& s : r.shots) {
-      json::Value v = json::Value::object();
-      v.set("case", json::Value::of(s.case_name));
-      v.set("view", json::Value::of(s.view));
-      v.set("light", json::Value::of(s.light));
-      v.set("camera", json::Value::of(s.camera));
-      v.set("multiple", json::Value::of(s.multiple));
-      v.set("floor", metrics(s.floor));
-      v.set("flux_sigma", json::Value::of(s.flux_sigma));
-      json::Value fs_ = json::Value::object();
-      for (const auto& f : s.filters) fs_.set(f.filter, metrics(f.metrics));
-      v.set("filters", std::move(fs_));
-      shots.push(std::move(v));
+      Json filters = Json::object();
+      for (const auto& f : s.filters) filters[f.filter] = metrics(f.metrics);
+      shots.push_back({{"case", s.case_name},
+                       {"view", s.view},
+                       {"light", s.light},
+                       {"camera", s.camera},
+                       {"multiple", s.multiple},
+                       {"floor", metrics(s.floor)},
+                       {"flux_sigma", s.flux_sigma},
+                       {"filters", std::move(filters)}});
     }
-    doc.set("shots", std::move(shots));
-    json::write_file(dir / "results.json", doc);
+    const Json doc = {{"spp", r.options.spp},
+                      {"seeds", Json::array({r.options.seed, r.options.second_seed, r.options.filter_seed})},
+                      {"footprint_scale", double(r.options.footprint_scale)},
+                      {"image_size", r.image_size},
+                      {"filters", r.filters},
+                      {"unavailable", r.unavailable},
+                      {"shots", std::move(shots)}};
+    write_json_file(dir / "results.json", doc);
   }
 
   const fs::path index = dir / "index.html";

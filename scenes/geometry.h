@@ -4,7 +4,7 @@
 // repeating), and the corrugated tile roof of Exercise 27.11(c).
 #include <glm/glm.hpp>
 
-#include "scenes/gltf_writer.h"
+#include "gltf/writer.h"
 
 namespace svbrdf {
 

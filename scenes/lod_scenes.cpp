@@ -4,10 +4,10 @@
 #include <cmath>
 
 #include "base/error.h"
+#include "base/json.h"
 #include "base/math.h"
+#include "gltf/writer.h"
 #include "scenes/geometry.h"
-#include "scenes/gltf_writer.h"
-#include "scenes/json.h"
 #include "scenes/scene_assembly.h"
 #include "scenes/sky.h"
 #include "textures/image.h"
@@ -16,7 +16,6 @@
 namespace svbrdf {
 
 namespace fs = std::filesystem;
-using json::Value;
 
 double one_texel_per_pixel_distance(double texel_m, int image_height, double yfov_rad) {
   return texel_m * image_height / (2.0 * std::tan(yfov_rad / 2.0));
@@ -32,7 +31,7 @@ struct LodCamera {
   glm::dvec3 position{0.0};
 };
 
-std::string camera_name(const std::string& prefix, double k) { return prefix + "d" + json::number_text(k); }
+std::string camera_name(const std::string& prefix, double k) { return prefix + "d" + number_text(k); }
 
 // The cameras of a case: head-on at every distance, and mirror ones when asked.
 std::vector<LodCamera> cameras(const LodRecipe& r, double d1, const LodLight* mirror) {
@@ -71,32 +70,18 @@ void add_cameras(GltfWriter& w, const std::vector<LodCamera>& cams, double yfov,
     Placement where;
     where.translation = c.position;
     where.rotation = look_rotation(-c.position);
-    Value extras = Value::object();
-    Value info = Value::object();
-    info.set("lod_multiple", Value::of(c.multiple));
-    info.set("one_texel_per_pixel_m", Value::of(d1));
-    extras.set("svbrdf", std::move(info));
+    const Json extras = {{"svbrdf", {{"lod_multiple", c.multiple}, {"one_texel_per_pixel_m", d1}}}};
     const double dist = glm::length(c.position);
-    w.add_camera(c.name, yfov, 1.0, 0.01 * dist, 0.0, where, std::move(extras));
+    w.add_camera(c.name, yfov, 1.0, 0.01 * dist, 0.0, where, extras);
   }
 }
 
-Value string_array(const std::vector<std::string>& v) {
-  Value a = Value::array();
-  for (const auto& s : v) a.push(Value::of(s));
-  return a;
-}
-
-Value view_value(const std::string& name, const std::vector<LodCamera>& cams, const std::string& prefix,
-                 const std::vector<std::string>& lights) {
-  Value v = Value::object();
-  v.set("name", Value::of(name));
+Json view_value(const std::string& name, const std::vector<LodCamera>& cams, const std::string& prefix,
+                const std::vector<std::string>& lights) {
   std::vector<std::string> names;
   for (const LodCamera& c : cams)
     if (c.name.rfind(prefix + "d", 0) == 0) names.push_back(c.name);
-  v.set("cameras", string_array(names));
-  v.set("lights", string_array(lights));
-  return v;
+  return {{"name", name}, {"cameras", names}, {"lights", lights}};
 }
 
 }  // namespace
@@ -114,33 +99,27 @@ std::vector<fs::path> bake_lod_scenes(const LodRecipe& r, const fs::path& out, c
   write_image(out / "sky.hdr", sky_image(r.sky.model, r.sky.width, r.sky.height), PixelFormat::float32);
   written.push_back(out / "sky.hdr");
 
-  Value manifest = Value::object();
-  manifest.set("generator", Value::of("svbrdf-bake scene"));
-  manifest.set("recipe", Value::of(r.name));
-  manifest.set("image_size", Value::of(r.image_size));
-  manifest.set("yfov_deg", Value::of(r.yfov_deg));
-  manifest.set("distances", Value::numbers(r.distances));
-  Value lights = Value::array();
+  Json manifest = {{"generator", "svbrdf-bake scene"}, {"recipe", r.name}, {"image_size", r.image_size},
+                   {"yfov_deg", r.yfov_deg}, {"distances", r.distances}};
+  Json lights = Json::array();
   std::vector<std::string> all_lights;
   const LodLight* mirror = nullptr;
   for (const LodLight& l : r.lights) {
-    Value v = Value::object();
-    v.set("name", Value::of(l.name));
-    v.set("environment", Value::of(l.environment));
+    Json v = {{"name", l.name}, {"environment", l.environment}};
     if (l.environment) {
-      v.set("sun", Value::of(""));
-      v.set("env", Value::of("sky.hdr"));
+      v["sun"] = "";
+      v["env"] = "sky.hdr";
     } else {
-      v.set("incidence_deg", Value::of(l.incidence_deg));
-      v.set("sun", Value::of("0," + json::number_text(l.incidence_deg) + "," + json::number_text(l.irradiance)));
-      v.set("env", Value::of("0,0,0"));
+      v["incidence_deg"] = l.incidence_deg;
+      v["sun"] = "0," + number_text(l.incidence_deg) + "," + number_text(l.irradiance);
+      v["env"] = "0,0,0";
     }
-    lights.push(std::move(v));
+    lights.push_back(std::move(v));
     all_lights.push_back(l.name);
     if (l.name == r.mirror_light) mirror = &l;
   }
-  manifest.set("lights", std::move(lights));
-  Value cases = Value::array();
+  manifest["lights"] = std::move(lights);
+  Json cases = Json::array();
 
   for (const LodFamily& fam : r.families) {
     stage(fam.name);
@@ -165,24 +144,21 @@ std::vector<fs::path> bake_lod_scenes(const LodRecipe& r, const fs::path& out, c
     w.write(gltf);
     written.push_back(gltf);
 
-    Value c = Value::object();
-    c.set("name", Value::of(fam.name));
-    c.set("kind", Value::of("family"));
-    c.set("preset", Value::of(m.preset));
-    c.set("variant", Value::of(m.variant));
-    c.set("glossy", Value::of(fam.glossy));
-    c.set("gltf", Value::of(fam.name + "/" + fam.name + ".gltf"));
-    c.set("reference", Value::of(fam.name + "/" + fam.name + ".gltf"));
-    c.set("max_depth", Value::of(16));
-    c.set("texel_m", Value::of(texel));
-    c.set("texture_size", Value::of(m.texels.width));
-    c.set("one_texel_per_pixel_m", Value::of(d1));
-    c.set("texture_repeats", Value::of(repeats));
-    Value views = Value::array();
-    views.push(view_value("head-on", cams, "", all_lights));
-    if (fam.glossy && mirror) views.push(view_value("mirror", cams, "mirror-", {mirror->name}));
-    c.set("views", std::move(views));
-    cases.push(std::move(c));
+    Json views = Json::array({view_value("head-on", cams, "", all_lights)});
+    if (fam.glossy && mirror) views.push_back(view_value("mirror", cams, "mirror-", {mirror->name}));
+    cases.push_back({{"name", fam.name},
+                     {"kind", "family"},
+                     {"preset", m.preset},
+                     {"variant", m.variant},
+                     {"glossy", fam.glossy},
+                     {"gltf", fam.name + "/" + fam.name + ".gltf"},
+                     {"reference", fam.name + "/" + fam.name + ".gltf"},
+                     {"max_depth", 16},
+                     {"texel_m", texel},
+                     {"texture_size", m.texels.width},
+                     {"one_texel_per_pixel_m", d1},
+                     {"texture_repeats", repeats},
+                     {"views", std::move(views)}});
   }
 
   if (r.tile_roof) {
@@ -207,19 +183,13 @@ std::vector<fs::path> bake_lod_scenes(const LodRecipe& r, const fs::path& out, c
     make_output_dir(dir / "textures");
 
     const auto factors = [&](const std::string& name) {
-      Value mat = Value::object();
-      mat.set("name", Value::of(name));
-      Value pbr = Value::object();
-      pbr.set("baseColorFactor", Value::numbers({t.base_color.r, t.base_color.g, t.base_color.b, 1.0}));
-      pbr.set("metallicFactor", Value::of(t.metallic));
-      pbr.set("roughnessFactor", Value::of(t.roughness));
-      mat.set("pbrMetallicRoughness", std::move(pbr));
-      return mat;
+      return Json{{"name", name},
+                  {"pbrMetallicRoughness",
+                   {{"baseColorFactor", Json::array({t.base_color.r, t.base_color.g, t.base_color.b, 1.0})},
+                    {"metallicFactor", t.metallic},
+                    {"roughnessFactor", t.roughness}}}};
     };
-    Value roof_info = Value::object();
-    roof_info.set("period_m", Value::of(t.period_m));
-    roof_info.set("amplitude_m", Value::of(t.amplitude_m));
-    roof_info.set("max_slope_deg", Value::of(roof.max_slope_deg()));
+    const Json roof_info = {{"period_m", t.period_m}, {"amplitude_m", t.amplitude_m}, {"max_slope_deg", roof.max_slope_deg()}};
 
     // The real geometry.
     {
@@ -228,9 +198,7 @@ std::vector<fs::path> bake_lod_scenes(const LodRecipe& r, const fs::path& out, c
       const int mat = w.add_material(factors(t.name));
       w.add_mesh_node(t.name, w.add_mesh(t.name, corrugated_roof(roof), mat));
       add_cameras(w, cams, yfov, d1);
-      Value extras = Value::object();
-      extras.set("svbrdf", Value::object()).set("tile_roof", roof_info);
-      w.set_scene_extras(std::move(extras));
+      w.set_scene_extras({{"svbrdf", {{"tile_roof", roof_info}}}});
       const fs::path gltf = dir / (t.name + ".gltf");
       w.write(gltf);
       written.push_back(gltf);
@@ -249,8 +217,8 @@ std::vector<fs::path> bake_lod_scenes(const LodRecipe& r, const fs::path& out, c
       written.push_back(dir / "textures" / stem);
       GltfWriter w("svbrdf-bake scene");
       w.set_scene_name(t.name + "-proxy");
-      Value mat = factors(t.name + "-proxy");
-      mat.set("normalTexture", Value::object()).set("index", Value::of(w.add_texture("textures/" + stem)));
+      Json mat = factors(t.name + "-proxy");
+      mat["normalTexture"] = {{"index", w.add_texture("textures/" + stem)}};
       const int mi = w.add_material(std::move(mat));
       const TriangleMesh quad = rectangle({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, roof.length_m(), roof.length_m(), 1.0 / side);
       w.add_mesh_node(t.name + "-proxy", w.add_mesh(t.name + "-proxy quad", quad, mi));
@@ -259,29 +227,25 @@ std::vector<fs::path> bake_lod_scenes(const LodRecipe& r, const fs::path& out, c
       w.write(gltf);
       written.push_back(gltf);
     }
-    Value c = Value::object();
-    c.set("name", Value::of(t.name));
-    c.set("kind", Value::of("tile-roof"));
-    c.set("preset", Value::of(""));
-    c.set("variant", Value::of(""));
-    c.set("glossy", Value::of(false));
-    c.set("gltf", Value::of(t.name + "/" + t.name + "-proxy.gltf"));
-    c.set("reference", Value::of(t.name + "/" + t.name + ".gltf"));
-    c.set("max_depth", Value::of(1));
-    c.set("texel_m", Value::of(texel));
-    c.set("texture_size", Value::of(t.texture_size));
-    c.set("one_texel_per_pixel_m", Value::of(d1));
-    c.set("texture_repeats", Value::of(repeats));
-    c.set("tile_roof", roof_info);
-    Value views = Value::array();
-    views.push(view_value("head-on", cams, "", t.lights.empty() ? all_lights : t.lights));
-    c.set("views", std::move(views));
-    cases.push(std::move(c));
+    cases.push_back({{"name", t.name},
+                     {"kind", "tile-roof"},
+                     {"preset", ""},
+                     {"variant", ""},
+                     {"glossy", false},
+                     {"gltf", t.name + "/" + t.name + "-proxy.gltf"},
+                     {"reference", t.name + "/" + t.name + ".gltf"},
+                     {"max_depth", 1},
+                     {"texel_m", texel},
+                     {"texture_size", t.texture_size},
+                     {"one_texel_per_pixel_m", d1},
+                     {"texture_repeats", repeats},
+                     {"tile_roof", roof_info},
+                     {"views", Json::array({view_value("head-on", cams, "", t.lights.empty() ? all_lights : t.lights)})}});
   }
 
-  manifest.set("cases", std::move(cases));
+  manifest["cases"] = std::move(cases);
   const fs::path file = out / "manifest.json";
-  json::write_file(file, manifest);
+  write_json_file(file, manifest);
   written.insert(written.begin(), file);
   return written;
 }
@@ -293,14 +257,14 @@ const LodLightSpec& LodManifest::light(const std::string& name) const {
 }
 
 LodManifest read_lod_manifest(const fs::path& file) {
-  const json::Value v = json::parse_file(file.string());
-  const json::Node root(v, file.string());
+  const JsonDocument doc = JsonDocument::read(file);
+  const JsonNode root = doc.root();
   LodManifest m;
   m.dir = fs::absolute(file).parent_path();
   m.image_size = root["image_size"].integer(1, 1 << 15);
   m.yfov_deg = root["yfov_deg"].number(1e-3, 179.0);
-  for (const json::Node& d : root["distances"].items()) m.distances.push_back(d.number(1e-9, 1e9));
-  for (const json::Node& l : root["lights"].items()) {
+  for (const JsonNode& d : root["distances"].items()) m.distances.push_back(d.number(1e-9, 1e9));
+  for (const JsonNode& l : root["lights"].items()) {
     LodLightSpec s;
     s.name = l["name"].string();
     s.environment = l["environment"].boolean();
@@ -310,7 +274,7 @@ LodManifest read_lod_manifest(const fs::path& file) {
     else s.incidence_deg = l["incidence_deg"].number(0.0, 90.0);
     m.lights.push_back(std::move(s));
   }
-  for (const json::Node& c : root["cases"].items()) {
+  for (const JsonNode& c : root["cases"].items()) {
     LodCase k;
     k.name = c["name"].string();
     k.kind = c["kind"].string();
@@ -323,11 +287,11 @@ LodManifest read_lod_manifest(const fs::path& file) {
     k.texel_m = c["texel_m"].number(1e-12, 1e3);
     k.texture_size = c["texture_size"].integer(1, 1 << 15);
     k.one_texel_per_pixel_m = c["one_texel_per_pixel_m"].number(1e-12, 1e9);
-    for (const json::Node& vw : c["views"].items()) {
+    for (const JsonNode& vw : c["views"].items()) {
       LodView view;
       view.name = vw["name"].string();
-      for (const json::Node& n : vw["cameras"].items()) view.cameras.push_back(n.string());
-      for (const json::Node& n : vw["lights"].items()) {
+      for (const JsonNode& n : vw["cameras"].items()) view.cameras.push_back(n.string());
+      for (const JsonNode& n : vw["lights"].items()) {
         view.lights.push_back(n.string());
         (void)m.light(n.string());  // must exist
       }

@@ -5,14 +5,14 @@
 #include <set>
 
 #include "base/error.h"
+#include "base/json.h"
 #include "base/math.h"
-#include "scenes/json.h"
 
 namespace svbrdf {
 
 namespace {
 
-using json::Node;
+using Node = JsonNode;
 
 glm::dvec3 vec3(const Node& n) {
   const auto v = n.numbers(3);
@@ -234,11 +234,11 @@ LodRecipe lod(const Node& root) {
   return r;
 }
 
-Recipe from_root(const json::Value& v, const std::string& name) {
-  const Node root(v, name);
+Recipe from_document(const JsonDocument& doc) {
+  const Node root = doc.root();
   if (!root.is_object()) root.fail("a recipe is a JSON object");
   Recipe r;
-  r.file = name;
+  r.file = doc.name();
   r.kind = root["kind"].string();
   if (r.kind == "scene") r.scene = scene(root);
   else if (r.kind == "lod") r.lod = lod(root);
@@ -253,7 +253,7 @@ glm::dvec3 SunRecipe::toward() const {
   return {std::cos(e) * std::sin(a), std::sin(e), std::cos(e) * std::cos(a)};
 }
 
-Recipe read_recipe(const std::string& path) { return from_root(json::parse_file(path), path); }
-Recipe parse_recipe(const std::string& text, const std::string& name) { return from_root(json::parse(text, name), name); }
+Recipe read_recipe(const std::string& path) { return from_document(JsonDocument::read(path)); }
+Recipe parse_recipe(const std::string& text, const std::string& name) { return from_document(JsonDocument::parse(text, name)); }
 
 }  // namespace svbrdf

@@ -4,11 +4,11 @@
 //   "scene" — a composed scene: procedural materials, boxes, trays and quads placed in the world, a
 //             sun (KHR_lights_punctual directional light), a sky (an equirectangular image the
 //             renderer uses as its environment) and cameras. The showcase is one.
-//   "lod"   — the distance-LOD scenes of issue 7: each material family on a quad, cameras at
+//   "lod"   — the distance-LOD scenes: each material family on a quad, cameras at
 //             multiples of the one-texel-per-pixel distance, one scene per light, and the tile
 //             roof of Exercise 27.11(c) with its flat proxy; plus a manifest for the comparison.
 // Parsing checks everything (unknown members included, to catch typos) and throws svbrdf::Error
-// naming the file, line and JSON pointer before anything is written.
+// naming the file, line and JSON path before anything is written.
 #include <cstdint>
 #include <optional>
 #include <string>

@@ -15,7 +15,6 @@
 namespace svbrdf {
 
 namespace fs = std::filesystem;
-using json::Value;
 
 void make_output_dir(const fs::path& dir) {
   std::error_code ec;
@@ -39,21 +38,17 @@ int write_material(GltfWriter& writer, const ProceduralMaterial& m, const std::s
     written.push_back(dir / "textures" / stems[k]);
     tex[k] = writer.add_texture("textures/" + stems[k]);
   }
-  Value mat = Value::object();
-  mat.set("name", Value::of(name));
-  Value pbr = Value::object();
-  pbr.set("baseColorTexture", Value::object()).set("index", Value::of(tex[0]));
-  pbr.set("metallicRoughnessTexture", Value::object()).set("index", Value::of(tex[1]));
-  mat.set("pbrMetallicRoughness", std::move(pbr));
-  mat.set("normalTexture", Value::object()).set("index", Value::of(tex[2]));
-  Value info = Value::object();
-  info.set("preset", Value::of(m.preset));
-  info.set("variant", Value::of(m.variant));
-  info.set("seed", Value::of(m.seed));
-  info.set("size", Value::of(m.texels.width));
-  info.set("mm_per_texel", Value::of(m.mm_per_texel));
-  mat.set("extras", Value::object()).set("svbrdf", std::move(info));
-  return writer.add_material(std::move(mat));
+  return writer.add_material(
+      {{"name", name},
+       {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", tex[0]}}}, {"metallicRoughnessTexture", {{"index", tex[1]}}}}},
+       {"normalTexture", {{"index", tex[2]}}},
+       {"extras",
+        {{"svbrdf",
+          {{"preset", m.preset},
+           {"variant", m.variant},
+           {"seed", m.seed},
+           {"size", m.texels.width},
+           {"mm_per_texel", m.mm_per_texel}}}}}});
 }
 
 namespace {
@@ -112,9 +107,7 @@ std::vector<fs::path> bake_composed(const SceneRecipe& r, const fs::path& out, c
     const fs::path sky = out / "sky.hdr";
     write_image(sky, sky_image(r.sky->model, r.sky->width, r.sky->height), PixelFormat::float32);
     written.push_back(sky);
-    Value extras = Value::object();
-    extras.set("svbrdf", Value::object()).set("environment", Value::of("sky.hdr"));
-    w.set_scene_extras(std::move(extras));
+    w.set_scene_extras({{"svbrdf", {{"environment", "sky.hdr"}}}});
   }
   stage("glTF");
   const fs::path gltf = out / (r.name + ".gltf");

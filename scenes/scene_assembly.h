@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "scenes/gltf_writer.h"
+#include "gltf/writer.h"
 #include "scenes/recipe.h"
 #include "textures/color.h"
 #include "textures/material_family.h"

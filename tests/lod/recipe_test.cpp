@@ -1,5 +1,5 @@
 // Scene recipes: the project's own recipes hold what the LOD comparison needs, and bad recipes are
-// refused with one message naming the file, the line and the member.
+// refused with one message naming the file, the line and the member's JSON path.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -85,33 +85,33 @@ TEST(Recipe, BadRecipesNameTheFileLineAndMember) {
   "cameras": [{"name": "c", "position": [0, 0, 1], "target": [0, 0, 0]}],
 )";
   EXPECT_EQ(error_of(scene_head + R"(  "objects": [{"name": "b", "shape": "box", "size": [1, 1, 1], "position": [0, 0, 0], "material": "m", "colour": 1}]})"),
-            "r.json:4: /objects/0/colour: unknown member (known here: name, shape, size, position, yaw_deg, rim, plate, material)");
+            "r.json:4: objects[0].colour: unknown member (known here: name, shape, size, position, yaw_deg, rim, plate, material)");
   EXPECT_EQ(error_of(scene_head + R"(  "objects": [{"name": "b", "shape": "cone", "size": [1, 1, 1], "position": [0, 0, 0], "material": "m"}]})"),
-            "r.json:4: /objects/0/shape: unknown shape \"cone\" (known: box, tray, quad)");
+            "r.json:4: objects[0].shape: unknown shape \"cone\" (known: box, tray, quad)");
   EXPECT_EQ(error_of(scene_head + R"(  "objects": [{"name": "b", "shape": "box", "size": [1, 0, 1], "position": [0, 0, 0], "material": "m"}]})"),
-            "r.json:4: /objects/0/size: sizes must be positive");
+            "r.json:4: objects[0].size: sizes must be positive");
   EXPECT_EQ(error_of(scene_head + R"(  "objects": [{"name": "b", "shape": "box", "size": [1, 1, 1], "position": [0, 0, 0], "material": "x"}]})"),
-            "r.json:4: /objects/0/material: no material named \"x\"");
+            "r.json:4: objects[0].material: no material named \"x\"");
   EXPECT_EQ(error_of(scene_head + R"(  "objects": [{"name": "b c", "shape": "box", "size": [1, 1, 1], "position": [0, 0, 0], "material": "m"}]})"),
-            "r.json:4: /objects/0/name: a name must be 1-64 letters, digits, '-' or '_'");
+            "r.json:4: objects[0].name: a name must be 1-64 letters, digits, '-' or '_'");
   EXPECT_EQ(error_of(R"({"kind": "scene", "name": "s", "materials": {"m": {"preset": "marble"}}})"),
-            "r.json:1: /materials/m/preset: unknown preset \"marble\" (known: sandstone, painted-wall, printed-paper, metal-tray, granite)");
+            "r.json:1: materials.m.preset: unknown preset \"marble\" (known: sandstone, painted-wall, printed-paper, metal-tray, granite)");
   EXPECT_EQ(error_of(R"({"kind": "scene", "name": "s", "materials": {"m": {"preset": "granite", "variant": "blue"}}})"),
-            "r.json:1: /materials/m/variant: unknown variant \"blue\" of granite (known: gray, pink, polished)");
+            "r.json:1: materials.m.variant: unknown variant \"blue\" of granite (known: gray, pink, polished)");
   EXPECT_EQ(error_of(R"({"kind": "scene", "name": "s", "materials": {"m": {"preset": "granite", "size": 100}}})"),
-            "r.json:1: /materials/m/size: must be a power of two, got 100");
-  EXPECT_EQ(error_of(R"({"kind": "tree"})"), "r.json:1: /kind: unknown kind \"tree\" (known: scene, lod)");
-  EXPECT_EQ(error_of(R"([1])"), "r.json:1: /: a recipe is a JSON object");
+            "r.json:1: materials.m.size: must be a power of two, got 100");
+  EXPECT_EQ(error_of(R"({"kind": "tree"})"), "r.json:1: kind: unknown kind \"tree\" (known: scene, lod)");
+  EXPECT_EQ(error_of(R"([1])"), "r.json:1: a recipe is a JSON object");
   EXPECT_EQ(error_of(R"({"kind": "lod", "name": "l", "families": [], "lights": [{"name": "e", "environment": true}],
   "mirror_light": "e"})"),
-            "r.json:2: /mirror_light: must name a directional light with incidence ≥ 1°");
+            "r.json:2: mirror_light: must name a directional light with incidence ≥ 1°");
   EXPECT_EQ(error_of(R"({"kind": "lod", "name": "l", "families": [], "lights": [{"name": "s", "incidence_deg": 95}]})"),
-            "r.json:1: /lights/0/incidence_deg: must be in [0, 89], got 95");
+            "r.json:1: lights[0].incidence_deg: must be in [0, 89], got 95");
   EXPECT_EQ(error_of(R"({"kind": "lod", "name": "l", "families": [], "lights": [{"name": "s", "incidence_deg": 0}],
   "tile_roof": {"texels_per_period": 12}})"),
-            "r.json:2: /tile_roof: texture_size must be a multiple of texels_per_period, so the normal map tiles");
+            "r.json:2: tile_roof: texture_size must be a multiple of texels_per_period, so the normal map tiles");
   EXPECT_EQ(error_of(R"({"kind": "lod", "name": "l", "distances": [4, 1], "families": [], "lights": []})"),
-            "r.json:1: /distances: distances must be increasing");
+            "r.json:1: distances: distances must be increasing");
 }
 
 TEST(Recipe, UnreadableFileIsBadInput) {

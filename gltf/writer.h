@@ -15,7 +15,7 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "scenes/json.h"
+#include "base/json.h"
 
 namespace svbrdf {
 
@@ -51,42 +51,43 @@ class GltfWriter {
   // wrapping and trilinear filtering; returns the texture index.
   int add_texture(const std::string& uri);
   // A material (a glTF material object, built by the caller); returns its index.
-  int add_material(json::Value material);
+  int add_material(Json material);
   // A mesh of one primitive; returns the mesh index. Throws svbrdf::Error (internal) when the
   // attribute arrays disagree in length, an index is out of range or a normal is not unit.
   int add_mesh(const std::string& name, const TriangleMesh& mesh, int material);
   // A node holding a mesh; returns the node index. Nodes are roots of the scene.
   int add_mesh_node(const std::string& name, int mesh, const Placement& where = {});
   // A perspective camera (yfov radians, aspect width/height) and its node; returns the camera index.
+  // `extras` (an object, or null for none) becomes the camera's extras.
   int add_camera(const std::string& name, double yfov, double aspect, double znear, double zfar, const Placement& where,
-                 json::Value extras = {});
+                 Json extras = nullptr);
   // A KHR_lights_punctual directional light of `irradiance` W/m² on a surface facing it (the
-  // renderer's units, issue 6) shining along `direction` (the way the light travels).
+  // renderer's units) shining along `direction` (the way the light travels).
   int add_directional_light(const std::string& name, const glm::dvec3& color, double irradiance,
                             const glm::dvec3& direction);
   // The scene's extras (e.g. the sky the renderer should use).
-  void set_scene_extras(json::Value extras) { scene_extras_ = std::move(extras); }
+  void set_scene_extras(Json extras) { scene_extras_ = std::move(extras); }
   void set_scene_name(std::string name) { scene_name_ = std::move(name); }
 
   // Writes path (.gltf) and, when the buffer is larger than `embed_limit` bytes, path's stem + .bin
   // beside it (first, so the .gltf never names a missing file); both atomically.
   void write(const std::filesystem::path& path, std::size_t embed_limit = 1 << 16) const;
   // The document alone, with the buffer under `buffer_uri` (for tests; write() calls it).
-  json::Value document(const std::string& buffer_uri) const;
+  Json document(const std::string& buffer_uri) const;
   std::span<const std::byte> buffer() const { return bin_; }
 
  private:
   int add_accessor(std::span<const std::byte> bytes, int component_type, int count, const char* type, int target,
-                   json::Value min = {}, json::Value max = {});
+                   Json min = nullptr, Json max = nullptr);
 
   std::string generator_;
   std::string scene_name_ = "scene";
   std::vector<std::byte> bin_;
-  json::Value buffer_views_ = json::Value::array(), accessors_ = json::Value::array();
-  json::Value images_ = json::Value::array(), textures_ = json::Value::array();
-  json::Value materials_ = json::Value::array(), meshes_ = json::Value::array();
-  json::Value nodes_ = json::Value::array(), cameras_ = json::Value::array(), lights_ = json::Value::array();
-  json::Value scene_extras_;
+  Json buffer_views_ = Json::array(), accessors_ = Json::array();
+  Json images_ = Json::array(), textures_ = Json::array();
+  Json materials_ = Json::array(), meshes_ = Json::array();
+  Json nodes_ = Json::array(), cameras_ = Json::array(), lights_ = Json::array();
+  Json scene_extras_;
 };
 
 }  // namespace svbrdf
