@@ -1,6 +1,10 @@
 #include "apps/compare_report.h"
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
+
+#include "base/json.h"
 
 namespace svbrdf {
 
@@ -11,14 +15,11 @@ std::string format(const char* f, A... a) {
   std::snprintf(buf, sizeof buf, f, a...);
   return buf;
 }
-std::string json_string(const std::string& s) {
-  std::string o = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') o += '\\', o += c;
-    else if (static_cast<unsigned char>(c) < 0x20) o += format("\\u%04x", c);
-    else o += c;
-  }
-  return o + "\"";
+// Six significant digits (%.6g), what the metrics are good for; a NaN (a metric of nothing) is null,
+// which JSON can hold.
+Json six_digits(double v) {
+  if (!std::isfinite(v)) return nullptr;
+  return std::strtod(format("%.6g", v).c_str(), nullptr);
 }
 }  // namespace
 
@@ -40,22 +41,25 @@ std::string comparison_table(const std::vector<LevelComparison>& levels, int sub
 }
 
 std::string comparison_json(const std::vector<LevelComparison>& levels, int subset, const std::string& file) {
-  std::string s = "{\"file\": " + json_string(file) + ", \"subset\": " + std::to_string(subset) + ", \"levels\": [";
-  for (std::size_t i = 0; i < levels.size(); ++i) {
-    const LevelComparison& l = levels[i];
-    s += i ? ", " : "";
-    s += format("{\"level\": %d, \"width\": %d, \"height\": %d, \"measured\": %d, \"random_subset\": %s, \"modes\": {", l.level,
-                l.extent.width, l.extent.height, l.measured, l.subset ? "true" : "false");
-    for (std::size_t k = 0; k < l.modes.size(); ++k) {
-      const ModeLevelStats& m = l.modes[k];
-      const std::string_view mode = mode_name(m.mode);
-      s += k ? ", " : "";
-      s += format("\"%.*s\": {\"e_rel_mean\": %.6g, \"e_rel_max\": %.6g, \"e_log\": %.6g, \"e_mean\": %.6g, \"bytes_per_texel\": %d}",
-                  int(mode.size()), mode.data(), m.erel_mean, m.erel_max, m.elog_mean, m.emean, m.bytes_per_texel);
+  Json rows = Json::array();
+  for (const LevelComparison& l : levels) {
+    Json modes = Json::object();
+    for (const ModeLevelStats& m : l.modes) {
+      Json stats = {{"e_rel_mean", six_digits(m.erel_mean)},
+                    {"e_rel_max", six_digits(m.erel_max)},
+                    {"e_log", six_digits(m.elog_mean)},
+                    {"e_mean", six_digits(m.emean)},
+                    {"bytes_per_texel", m.bytes_per_texel}};
+      modes[std::string(mode_name(m.mode))] = std::move(stats);
     }
-    s += "}}";
+    rows.push_back({{"level", l.level},
+                    {"width", l.extent.width},
+                    {"height", l.extent.height},
+                    {"measured", l.measured},
+                    {"random_subset", l.subset},
+                    {"modes", std::move(modes)}});
   }
-  return s + "]}\n";
+  return json_text({{"file", file}, {"subset", subset}, {"levels", std::move(rows)}});
 }
 
 }  // namespace svbrdf
