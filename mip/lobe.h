@@ -21,9 +21,9 @@
 //     [alpha2, alpha2_hi], in closed form
 //       D_band = L(l, h) / (π·(|n×h|² + (n·h)²·l)·(|n×h|² + (n·h)²·h)),  L(l, h) = (h − l)/ln(h/l),
 //     or (skirt = 0) a second GGX atom at h (a two-point mixture). β = 1 with the band is the plain
-//     log-uniform mixture; the atom keeps a sharp peak that a band alone cannot (lobe_reduction.cpp);
+//     log-uniform mixture; the atom keeps a sharp peak that a band alone cannot (lobe_fit.cpp);
 //   - a spread core (alpha2_hi = 0, ggx = μ ≤ 1): D = μ·D_GGX(α²) + (1 − μ)·D_Beckmann(c·α²), c = skirt ≥ 1
-//     (a skirt wider than the core: lobe_reduction.cpp, set_shape).
+//     (a skirt wider than the core: lobe_fit.cpp, set_shape).
 // Why two: far from its peak a GGX lobe falls as α²/(π·tan⁴θ·cos⁴θ), so a mixture's tail is set by
 // the mean α² (A) and its peak by the mean 1/α² (P). Lobes of different roughness have A·P > 1 —
 // heavier tails than any one GGX; the log-uniform mixture matches both moments (A = L(l, h),
@@ -281,7 +281,7 @@ glm::vec<3, T> lobe_brdf(const Lobe& lobe, const LobeShape<T>& s, const PairTerm
       // The three nodes side by side (the renderer's eval: 2 square roots and 2 divisions of four
       // lanes instead of 6 and 6); the fourth lane is the atom at l (weight 0 without one). It is
       // smith_ggx_visibility (microfacet_core.h) over four lanes, each weighted by its share of D.
-      const T atom = (T(1) - s.ggx) / s.ggx;  // relative to the band's weights (β > 0: lobe_reduction.cpp)
+      const T atom = (T(1) - s.ggx) / s.ggx;  // relative to the band's weights (β > 0: lobe_fit.cpp)
       const __m128 a = _mm_setr_ps(s.node_a2[0], s.node_a2[1], s.node_a2[2], s.alpha2);
       const __m128 wk = _mm_setr_ps(kW[0], kW[1], kW[2], atom);
       const __m128 one = _mm_set1_ps(1.0f), r = _mm_div_ps(one, _mm_add_ps(a, _mm_set1_ps(t)));

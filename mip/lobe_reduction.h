@@ -9,15 +9,14 @@
 // the normal; each lobe's peak widened by its tilt to the merged normal, α² + γ·tan²θ, as LEAN mapping
 // composes slope variances, Olano & Baker 2010, before they add — blended with the union's exact D at
 // the merged normal where the merge becomes a spread core; lobe_reduction.cpp says why). The merged
-// lobe is the one shape of lobe.h with that A and P: a log-uniform mixture of GGX roughness when
-// A·P ≥ 1 (roughness spread: heavier tails than one GGX), a GGX core with a Beckmann share when
-// A·P < 1 (normal spread: lighter tails); a core narrower than ~4° also matches a third moment, its
-// mass within 2.8° of its normal, with a Beckmann share wider than the GGX one (its skirt), and a
-// mixture whose union is much sharper at its centre than the log-uniform band (sharp lobes with rough
-// ones) matches its mass within its core, with a GGX atom at its lower end under the band or under a
-// second atom. For two
-// GGX lobes of α² 0.03 and 0.12 this keeps D within 1.5 % from the peak to 45° off it, where any
-// single GGX misses by 15-35 %; the metal-tray level means, which the lobes' tails carry under oblique
+// lobe is the one shape of lobe.h with that A and P (lobe_fit.h): a log-uniform mixture of GGX
+// roughness when A·P ≥ 1 (roughness spread: heavier tails than one GGX), a GGX core with a Beckmann
+// share when A·P < 1 (normal spread: lighter tails); a core narrower than ~4° also matches a third
+// moment, its mass within 2.8° of its normal, with a Beckmann share wider than the GGX one (its skirt),
+// and a mixture whose union is much sharper at its centre than the log-uniform band (sharp lobes with
+// rough ones) matches its mass within its core, with a GGX atom at its lower end under the band or
+// under a second atom. For two GGX lobes of α² 0.03 and 0.12 this keeps D within 1.5 % from the peak
+// to 45° off it, where any single GGX misses by 15-35 %; the metal-tray level means, which the lobes' tails carry under oblique
 // light, stay within 2 % to the coarsest level (bench/results/mip.md).
 //
 // GGX loses energy as α grows (single scattering), so a merged lobe would not reflect the flux of the
@@ -27,7 +26,7 @@
 // Which lobes to merge: first the whole union into one lobe, kept when its estimated error (below)
 // is within `tolerance` of the texel's own norm — most texels of smooth regions end there, after one
 // merge instead of the ~n² of the pairwise search. Otherwise greedily the pair whose merge costs least
-// under a closed-form estimate of the squared L2 error it adds (lobe_reduction.cpp: each specular lobe
+// under a closed-form estimate of the squared L2 error it adds (merge_cost.h: each specular lobe
 // seen as a Gaussian of reflected directions blurred to the metric's ~6° resolution, whose L2 inner
 // products are closed form; a term for the horizons; a log-space error of the merged D profile against
 // the pair's, which the moments do not pin; a small term for the mixture's highlight about the
@@ -35,6 +34,10 @@
 // accumulated estimate stays below `tolerance`² of the texel's own squared norm (the lobe count is
 // chosen per texel by the estimated reduction error, up to max_lobes), so uniform regions end up with
 // one lobe.
+//
+// Where it is written (the files but this one are private to mip/): lobe_reduction.cpp, the merge and
+// the search; merge_cost.h, the cost model; lobe_fit.h, the merged lobe's shape; albedo_table.h, the
+// specular flux merges keep; reduction_numerics.h, the numerical tools.
 #include <span>
 
 #include "mip/lobe.h"

@@ -1,0 +1,72 @@
+#include "mip/albedo_table.h"
+
+#include <cmath>
+
+#include "appearance/microfacet_core.h"
+#include "base/math.h"
+#include "mip/reduction_numerics.h"
+
+namespace svbrdf::reduction {
+
+const SpecAlbedoTable& SpecAlbedoTable::get() {
+  static const SpecAlbedoTable t;
+  return t;
+}
+
+SpecAlbedoTable::SpecAlbedoTable() {
+  constexpr int n = 64;
+  for (int k = 0; k < kSize; ++k) {
+    const double a2 = std::exp(std::log(kMin) * (1.0 - double(k) / (kSize - 1)));
+    double sa = 0, sb = 0, sba = 0, sbb = 0;
+    for (double theta : {0.0, 45.0, 75.0}) {
+      const glm::dvec3 wi(std::sin(radians_of(theta)), 0, std::cos(radians_of(theta)));
+      for (int p = 0; p < n; ++p)
+        for (int q = 0; q < n; ++q) {
+          // h with density D(h)·cosθh: tan²θh = α²·u/(1 − u) (Walter et al. 2007); then
+          // f·wo.z/pdf(wo) with pdf(wo) = D·cosθh/(4·wo·h), so D cancels.
+          // Beckmann: tan²θh = −α²·ln(1 − u) (Walter et al. 2007, eq. 28).
+          const double u = (p + 0.5) / n, phi = 2 * kPiD * (q + 0.5) / n;
+          for (int beckmann = 0; beckmann < 2; ++beckmann) {
+            const double tan2 = beckmann ? -a2 * std::log1p(-u) : a2 * u / (1 - u);
+            const double c = 1 / std::sqrt(1 + tan2), sn = std::sqrt(std::max(0.0, 1 - c * c));
+            const glm::dvec3 h(sn * std::cos(phi), sn * std::sin(phi), c);
+            const double oh = glm::dot(wi, h);
+            const glm::dvec3 wo = 2 * oh * h - wi;
+            if (wo.z <= 0 || oh <= 0) continue;
+            const double vis = smith_ggx_visibility(a2, wi.z, wo.z), w = schlick_weight(oh);
+            const double g = 4 * vis * wo.z * oh / c;
+            (beckmann ? sba : sa) += g;      // F0 = 1: F = 1
+            (beckmann ? sbb : sb) += g * w;  // F0 = 0: F = w
+          }
+        }
+    }
+    a_[static_cast<std::size_t>(k)] = sa / (n * n);
+    b_[static_cast<std::size_t>(k)] = sb / (n * n);
+    ba_[static_cast<std::size_t>(k)] = sba / (n * n);
+    bb_[static_cast<std::size_t>(k)] = sbb / (n * n);
+  }
+}
+
+double specular_flux(const Lobe& l) {
+  const SpecAlbedoTable& t = SpecAlbedoTable::get();
+  double spec = 0;
+  if (l.alpha2_hi > l.alpha2) {
+    // A roughness mixture reflects the mean of its components' albedos: its band's over log-uniform α²
+    // (midpoint rule in log α², 8 points), or its upper atom's, and its lower atom's.
+    const double lo = series_log(double(l.alpha2)), f0 = mean3(l.f0);
+    if (l.skirt == 0.0f) {
+      spec = t.ggx_albedo_at_log(series_log(double(l.alpha2_hi)), f0);
+    } else {
+      const double step = series_log(double(l.alpha2_hi) / double(l.alpha2)) / 8;
+      for (int k = 0; k < 8; ++k) spec += t.ggx_albedo_at_log(lo + (k + 0.5) * step, f0) / 8;
+    }
+    spec = l.ggx * spec + (1 - l.ggx) * t.ggx_albedo_at_log(lo, f0);
+  } else {
+    spec = l.skirt > 1.0f ? l.ggx * t.albedo(l.alpha2, mean3(l.f0), 1.0) +
+                                (1 - l.ggx) * t.albedo(double(l.alpha2) * l.skirt, mean3(l.f0), 0.0)
+                          : t.albedo(l.alpha2, mean3(l.f0), l.ggx);
+  }
+  return double(l.weight) * glm::length(glm::dvec3(l.normal)) * spec;
+}
+
+}  // namespace svbrdf::reduction

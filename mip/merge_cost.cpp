@@ -1,0 +1,193 @@
+#include "mip/merge_cost.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "mip/reduction_numerics.h"
+
+namespace svbrdf::reduction {
+
+namespace {
+
+// D at h = z (the geometric normal) of a lobe.
+double d_at_z(const LobeShape<double>& sh) {
+  if (!sh.valid) return 0.0;
+  return d_at_tan2(DShape::of(sh), tan2_between(sh.n, glm::dvec3(0, 0, 1)));
+}
+
+}  // namespace
+
+void profile_of(const DShape& sh, std::array<double, kProfileSteps>& out) {
+  struct Steps {
+    std::array<double, kProfileSteps> t{}, q{};  // tan²θ and d_at_tan2's (1 + t)²/π
+  };
+  static const Steps steps = [] {
+    Steps s;
+    for (std::size_t j = 0; j < kProfileSteps; ++j) {
+      s.t[j] = std::pow(10.0, -6.0 + 7.0 * double(j) / (kProfileSteps - 1));
+      s.q[j] = (1 + s.t[j]) * (1 + s.t[j]) / kPiD;
+    }
+    return s;
+  }();
+  const double a2 = sh.alpha2;
+  if (sh.alpha2_hi > 0) {
+    const double hi = sh.alpha2_hi, atom = (1.0 - sh.ggx) * a2;
+    if (sh.two_point) {
+      const double c = sh.ggx * hi;
+      for (std::size_t j = 0; j < kProfileSteps; ++j) out[j] = c / ((steps.t[j] + hi) * (steps.t[j] + hi));
+    } else {
+      const double c = sh.ggx * sh.lmean;
+      for (std::size_t j = 0; j < kProfileSteps; ++j) out[j] = c / ((steps.t[j] + a2) * (steps.t[j] + hi));
+    }
+    for (std::size_t j = 0; j < kProfileSteps; ++j) out[j] = steps.q[j] * (out[j] + atom / ((steps.t[j] + a2) * (steps.t[j] + a2)));
+    return;
+  }
+  {
+    const double c = sh.ggx * a2;
+    for (std::size_t j = 0; j < kProfileSteps; ++j) out[j] = c / ((steps.t[j] + a2) * (steps.t[j] + a2));
+  }
+  if (sh.ggx != 1.0) {
+    const double b2 = a2 * sh.skirt;
+    for (std::size_t j = 0; j < kProfileSteps; ++j) {
+      const double x = steps.t[j] / b2;
+      if (x < 60.0) out[j] += (1.0 - sh.ggx) * double(series_exp(static_cast<float>(-x))) / b2;
+    }
+  }
+  for (std::size_t j = 0; j < kProfileSteps; ++j) out[j] = steps.q[j] * out[j];
+}
+
+Summary summarize(const Lobe& l) {
+  Summary s;
+  const glm::dvec3 nbar(l.normal);
+  const double len = glm::length(nbar);
+  s.n = len > 0 ? nbar / len : glm::dvec3(0, 0, 1);
+  s.weight = l.weight;
+  s.rho = mean3(l.diffuse);
+  s.f0 = mean3(l.f0);
+  s.amp = specular_amp(l.weight, len, s.f0);
+  const LobeShape<double> sh = lobe_shape<double>(l, false);
+  s.ggx = sh.ggx;
+  if (sh.alpha2_hi > 0) {
+    // A roughness mixture: its atom at l (share 1 − β) and its upper part (lobe.h). The width term of
+    // union_cost takes it as one GGX core (μ = 1).
+    const double beta = sh.ggx, l = sh.alpha2, h = sh.alpha2_hi;
+    s.tail = beta * (sh.two_point ? h : sh.lmean) + (1 - beta) * l;
+    s.peak = beta * (sh.two_point ? 1 / h : sh.lmean / (l * h)) + (1 - beta) / l;
+    s.ggx = 1;
+  } else {
+    s.tail = s.ggx * sh.alpha2;
+    s.peak = (s.ggx + (1 - s.ggx) / sh.skirt) / sh.alpha2;
+  }
+  s.alpha2 = 1 / s.peak;
+  s.d_shape = DShape::of(sh);
+  s.d_z = d_at_z(sh);
+  profile_of(s.d_shape, s.profile);
+  return s;
+}
+
+double union_spec_norm2(std::span<const Member> u) {
+  double s = 0;
+  for (std::size_t i = 0; i < u.size(); ++i) {
+    const Summary& a = *u[i].sum;
+    s += a.amp * a.amp * spec_inner(a.alpha2, a.alpha2, 0);
+    for (std::size_t j = i + 1; j < u.size(); ++j) {
+      const Summary& b = *u[j].sum;
+      s += 2 * a.amp * b.amp * spec_inner(a.alpha2, b.alpha2, tan2_between(a.n, b.n));
+    }
+  }
+  return s;
+}
+
+HorizonSums horizon_sums(std::span<const Member> u, double W) {
+  HorizonSums h;
+  const double inv_w = 1.0 / W;
+  for (std::size_t i = 0; i < u.size(); ++i)
+    for (std::size_t j = i + 1; j < u.size(); ++j) {
+      const Summary &a = *u[i].sum, &b = *u[j].sum;
+      const double ab = a.weight * b.weight * inv_w;
+      const double cos_ab = std::clamp(glm::dot(a.n, b.n), -1.0, 1.0);
+      const glm::dvec3 d = a.n - b.n;
+      const double delta = std::sqrt(glm::dot(d, d));  // the angle between the normals, to O(δ³)
+      const double drho = a.rho - b.rho;
+      h.lune += ab * delta;
+      h.coupling += (8.0 / 3.0) * ab * ab * drho * drho * (1.0 - cos_ab);
+    }
+  return h;
+}
+
+double union_weight(std::span<const Member> u) {
+  double W = 0;
+  for (const Member& x : u) W += x.sum->weight;
+  return W;
+}
+
+double union_cost_bound(std::span<const Member> u, const HorizonSums& h) {
+  double W = 0, rho = 0, f0 = 0;
+  for (const Member& x : u) W += x.sum->weight, rho += x.sum->weight * x.sum->rho, f0 += x.sum->weight * x.sum->f0;
+  return (1.0 - 1e-6) * h.cost(rho / W, f0 / W);
+}
+
+double union_cost(std::span<const Member> u, double self, const HorizonSums& hs, const Summary& m, bool by_amp,
+                  double peak_weight) {
+  double Am = 0, peak = 0, width = 0, spec = self, W = 0;
+  for (const Member& x : u) Am += x.sum->amp, W += x.sum->weight;
+  spec += Am * Am * spec_inner(m.alpha2, m.alpha2, 0);
+  for (const Member& x : u) {
+    const Summary& a = *x.sum;
+    spec -= 2 * Am * a.amp * spec_inner(m.alpha2, a.alpha2, tan2_between(a.n, m.n));
+    peak += a.amp * a.d_z;
+    width += a.amp * a.ggx * a.alpha2;
+  }
+  const double horizon = hs.cost(m.rho, m.f0);
+  // The highlight about the geometric normal. Every mirror pair of the metric has h = z, and a
+  // polished surface seen from afar shows its highlight there, so a merge that lowers or raises the
+  // mixture's peak at h = z is charged for it (the blurred L2 above cannot see the height of narrow
+  // peaks).
+  peak -= Am * m.d_z;
+  // The change of the amplitude-weighted core width Σ amp·μ·α² (α² = 1/P, lobe.h). For plain GGX
+  // lobes μ·α² is the tail coefficient: far from the peak D ≈ μα²/(π·t²) (t = tan²θ), so a change Δ
+  // of it changes D by Δ/(π·t²), whose squared L2 over slope space (dA = π·dt) from the resolution
+  // outward, ∫ Δ²/(π·t⁴) dt over t > α²_res, is Δ²/(3π·α⁶_res). It keeps rough lobes of different
+  // widths — the fingerprints' glow — from being merged into narrow ones, which the peak-dominated
+  // terms above allow.
+  width -= m.amp * m.ggx * m.alpha2;
+  // The log profile: what the moments do not pin, the shape between peak and tail (profile_of), with
+  // the lobes weighted by their amplitudes (by weight when no lobe has a specular part: !by_amp).
+  const double k = by_amp ? Am : W;
+  double e = 0;
+  for (std::size_t j = 0; j < kProfileSteps; ++j) {
+    double ex = 0;
+    for (const Member& x : u) ex += (by_amp ? x.sum->amp : x.sum->weight) * x.sum->profile[j];
+    const double ap = k * m.profile[j];
+    if (ex > 0 && ap > 0) {
+      // ln(ap/ex) = 2·atanh(q), q = (ap − ex)/(ap + ex): for the near matches that decide merges
+      // (|q| < ½, a ratio within 3) the series to q⁹ (within 4e-5) in one division.
+      const double q = (ap - ex) / (ap + ex), q2 = q * q;
+      const double r = q2 < 0.25 ? 2 * q * (1 + q2 * (1.0 / 3 + q2 * (1.0 / 5 + q2 * (1.0 / 7 + q2 * (1.0 / 9)))))
+                                 : series_log(ap / ex);
+      e += r * r;
+    }
+  }
+  return std::max(0.0, spec) + horizon + peak_weight * peak * peak +
+         width * width / (3 * kPiD * kResolutionAlpha2 * kResolutionAlpha2 * kResolutionAlpha2) +
+         kProfileWeight * k * k * e / kProfileSteps;
+}
+
+UnionTerms union_terms(std::span<const Member> u) { return {union_spec_norm2(u), horizon_sums(u, union_weight(u))}; }
+
+double rough_distance(const Summary& a, const Summary& b) {
+  const double w = a.weight + b.weight;
+  const double ab = a.weight * b.weight / w;
+  const double width = a.alpha2 + b.alpha2 + 2.0 * kResolutionAlpha2;
+  const double amp = (a.amp + b.amp) / w;
+  const glm::dvec3 dn = a.n - b.n;
+  const double dn2 = glm::dot(dn, dn);
+  const double dl = series_log(a.alpha2 / b.alpha2);
+  const double rho = 0.5 * (a.rho + b.rho), f0 = 0.5 * (a.f0 + b.f0);
+  const double horizon_amp = rho + f0 + 0.2 * (1.0 - f0);
+  const double drho = a.rho - b.rho;
+  return ab * (amp * amp / (2.0 * width) * (0.25 * dl * dl + dn2 / width) + 0.4 * horizon_amp * horizon_amp * std::sqrt(dn2)) +
+         (4.0 / 3.0) * ab * ab * drho * drho * dn2;
+}
+
+}  // namespace svbrdf::reduction
