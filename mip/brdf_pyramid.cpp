@@ -4,10 +4,8 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <string>
 
-#include <glm/gtc/packing.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -16,81 +14,10 @@
 #include "base/error.h"
 #include "mip/direction_grid.h"
 #include "mip/exact_reference.h"
+#include "mip/stored_lobe.h"
+#include "mip/stored_normal.h"
 
 namespace svbrdf {
-
-namespace {
-// x rounded to the nearest half float (ties to even), as a float. In half's normal range by the bits:
-// drop 13 of the 23 mantissa bits with rounding (this runs for every stored number of every lobe);
-// elsewhere (zero, subnormal halves, overflow, NaN) through glm's conversion.
-float to_half(float x) {
-  const float a = std::abs(x);
-  if (!(a >= 6.103515625e-05f && a < 65504.0f)) return glm::unpackHalf1x16(glm::packHalf1x16(x));
-  std::uint32_t b;
-  std::memcpy(&b, &x, sizeof b);
-  b += 0x0fffu + ((b >> 13) & 1u);
-  b &= ~0x1fffu;
-  float r;
-  std::memcpy(&r, &b, sizeof r);
-  return r;
-}
-bool is_mixture(const Lobe& lobe) { return lobe.alpha2_hi > lobe.alpha2 * 1.001f; }
-}  // namespace
-
-float lobe_shape_code(const Lobe& lobe) {
-  if (is_mixture(lobe)) {
-    const float span = static_cast<float>(std::log(double(lobe.alpha2_hi) / double(lobe.alpha2)));
-    return to_half(lobe.skirt == 0.0f ? -(1.0f + span) : span);
-  }
-  return to_half(-std::clamp(lobe.ggx, 0.0f, 1.0f));
-}
-
-void set_lobe_shape_code(Lobe& lobe, float code) {
-  if (code > 0 || code < -1) {
-    // In double, so that writing the lobe again gives back the same half (the float rounding of
-    // alpha2_hi moves the logarithm by 6e-8, far below a half's spacing at the smallest code, 1e-3).
-    const bool two_point = code < -1;
-    const double span = two_point ? -double(code) - 1.0 : double(code);
-    lobe.alpha2_hi = static_cast<float>(double(lobe.alpha2) * std::exp(span));
-    lobe.ggx = 1.0f;
-    lobe.skirt = two_point ? 0.0f : 1.0f;
-  } else {
-    lobe.alpha2_hi = 0.0f;
-    lobe.ggx = std::min(1.0f, -code);
-    lobe.skirt = 1.0f;
-  }
-}
-
-float lobe_skirt_code(const Lobe& lobe) {
-  if (is_mixture(lobe)) {
-    const float beta = std::clamp(lobe.ggx, 1e-3f, 1.0f);
-    return to_half(beta <= 0.5f ? beta : beta - 1.0f);  // β − 1 is exact in a float
-  }
-  return lobe.ggx < 1.0f ? std::max(1.0f, to_half(lobe.skirt)) : 1.0f;
-}
-
-void set_lobe_skirt_code(Lobe& lobe, float code) {
-  // β ≥ 1e-3 as set_shape makes it (the atom's weight in V is (1 − β)/β); 1 + a half in (−½, 0] is exact.
-  if (lobe.alpha2_hi > 0.0f)
-    lobe.ggx = std::clamp(code > 0.0f ? code : 1.0f + code, 1e-3f, 1.0f);
-  else
-    lobe.skirt = code;
-}
-
-void round_to_stored(Lobe& lobe) {
-  lobe.weight = to_half(lobe.weight);
-  // α as a half (α ≥ 1e-3 is in its normal range): 2.4e-4 relative on α, and α·α is exact in a float.
-  const float alpha = to_half(std::sqrt(lobe.alpha2));
-  lobe.alpha2 = alpha * alpha;
-  for (int c = 0; c < 3; ++c) {
-    lobe.diffuse[c] = to_half(lobe.diffuse[c]);
-    lobe.f0[c] = to_half(lobe.f0[c]);
-  }
-  lobe.normal = round_normal(lobe.normal);
-  const float skirt_code = lobe_skirt_code(lobe);
-  set_lobe_shape_code(lobe, lobe_shape_code(lobe));
-  set_lobe_skirt_code(lobe, skirt_code);
-}
 
 namespace {
 
@@ -220,6 +147,72 @@ BrdfLevel level_from_below(Extent level0, int level, const BrdfLevel& fine, cons
   return out;
 }
 
+// Tilts every lobe of texel t by d (radians, in the tangent plane), keeping each normal's length, to the
+// nearest normal the MIP file stores.
+void recentre(BrdfLevel& level, std::size_t t, const glm::dvec2& d) {
+  if (d == glm::dvec2(0.0)) return;
+  for (Lobe& l : level.texel_lobes(t)) {
+    const glm::dvec3 nbar(l.normal);
+    const double len = glm::length(nbar);
+    if (!(len > 0)) continue;
+    l.normal = round_normal(glm::vec3(glm::normalize(nbar / len + glm::dvec3(d, 0.0)) * len));
+  }
+}
+
+// The radial corrections of the levels from kFirstCorrectedLevel on (radial_correction.h), each level's
+// lobes re-centred first when asked; returns their grid.
+RadialGrid build_corrections(const MaterialTexels& m, std::vector<BrdfLevel>& levels, bool recentre_lobes) {
+  const Extent level0{m.width, m.height};
+  float roughness_min = 1.0f;
+  for (float r : m.roughness) roughness_min = std::min(roughness_min, r);
+  const double alpha_min = gltf_alpha(roughness_min);  // α grows with roughness
+  const RadialGrid grid = RadialGrid::for_sharpest(alpha_min * alpha_min);
+  // The true profiles of the level below, carried up exactly (area-weighted means of the children's).
+  std::vector<RadialProfile> below;
+  std::vector<AzimuthalHarmonics> below_harmonics;
+  for (int level = kFirstCorrectedLevel; level < static_cast<int>(levels.size()); ++level) {
+    const Extent e = levels[static_cast<std::size_t>(level)].extent;
+    const std::size_t texels = static_cast<std::size_t>(e.width) * e.height;
+    std::vector<RadialProfile> truth(texels, RadialProfile{});
+    std::vector<AzimuthalHarmonics> harmonics(texels, AzimuthalHarmonics{});
+    BrdfLevel& out = levels[static_cast<std::size_t>(level)];
+    out.correction.assign(texels, RadialCorrection{});
+    tbb::parallel_for(0, e.height, [&](int j) {
+      std::array<Lobe, kUnionCap> buf;
+      for (int i = 0; i < e.width; ++i) {
+        const std::size_t t = static_cast<std::size_t>(j) * e.width + i;
+        if (level == kFirstCorrectedLevel) {
+          const int cnt = gather_children(level0, level, i, j, levels[static_cast<std::size_t>(level - 1)], m, buf);
+          const std::span<const Lobe> children(buf.data(), static_cast<std::size_t>(cnt));
+          add_to_profile(grid, children, truth[t], &harmonics[t]);
+        } else {
+          const Span cx = child_span(level0.width, level, i), cy = child_span(level0.height, level, j);
+          const double total = static_cast<double>(level0_span(level0.width, level, i).size()) *
+                               level0_span(level0.height, level, j).size();
+          const int fine_width = levels[static_cast<std::size_t>(level - 1)].extent.width;
+          for (int y = cy.begin; y < cy.end; ++y)
+            for (int x = cx.begin; x < cx.end; ++x) {
+              const double share = static_cast<double>(level0_span(level0.width, level - 1, x).size()) *
+                                   level0_span(level0.height, level - 1, y).size() / total;
+              const std::size_t child = static_cast<std::size_t>(y) * fine_width + x;
+              const RadialProfile& c = below[child];
+              const AzimuthalHarmonics& ch = below_harmonics[child];
+              for (std::size_t r = 0; r < RadialGrid::kNodes; ++r) {
+                truth[t][r] += share * c[r];
+                for (std::size_t k = 0; k < 4; ++k) harmonics[t][r][k] += share * ch[r][k];
+              }
+            }
+        }
+        if (recentre_lobes) recentre(out, t, recentring_tilt(grid, harmonics[t], out.texel_lobes(t)));
+        out.correction[t] = correction_to(grid, truth[t], harmonics[t], out.texel_lobes(t));
+      }
+    });
+    below = std::move(truth);
+    below_harmonics = std::move(harmonics);
+  }
+  return grid;
+}
+
 }  // namespace
 
 BrdfPyramid BrdfPyramid::build(const MaterialTexels& m, const BrdfBuildOptions& options,
@@ -234,74 +227,13 @@ BrdfPyramid BrdfPyramid::build(const MaterialTexels& m, const BrdfBuildOptions& 
   for (int level = 1; level < n; ++level)
     p.levels_.push_back(level_from_below(p.level0_, level, p.levels_.back(), m, options,
                                          stats ? &(*stats)[static_cast<std::size_t>(level)] : nullptr));
-  if (options.radial_correction && n > kFirstCorrectedLevel) p.build_corrections(m, options.recentre);
+  if (options.radial_correction && n > kFirstCorrectedLevel) p.grid_ = build_corrections(m, p.levels_, options.recentre);
   return p;
 }
 
-namespace {
-
-// Tilts every lobe of texel t by d (radians, in the tangent plane), keeping each normal's length, to the
-// nearest normal the MIP file stores.
-void recentre(BrdfLevel& level, std::size_t t, const glm::dvec2& d) {
-  if (d == glm::dvec2(0.0)) return;
-  for (Lobe& l : level.texel_lobes(t)) {
-    const glm::dvec3 nbar(l.normal);
-    const double len = glm::length(nbar);
-    if (!(len > 0)) continue;
-    l.normal = round_normal(glm::vec3(glm::normalize(nbar / len + glm::dvec3(d, 0.0)) * len));
-  }
-}
-
-}  // namespace
-
-void BrdfPyramid::build_corrections(const MaterialTexels& m, bool recentre_lobes) {
-  float roughness_min = 1.0f;
-  for (float r : m.roughness) roughness_min = std::min(roughness_min, r);
-  const double alpha_min = gltf_alpha(roughness_min);  // α grows with roughness
-  grid_ = RadialGrid::for_sharpest(alpha_min * alpha_min);
-  // The true profiles of the level below, carried up exactly (area-weighted means of the children's).
-  std::vector<RadialProfile> below;
-  std::vector<AzimuthalHarmonics> below_harmonics;
-  for (int level = kFirstCorrectedLevel; level < levels(); ++level) {
-    const Extent e = extent(level);
-    const std::size_t texels = static_cast<std::size_t>(e.width) * e.height;
-    std::vector<RadialProfile> truth(texels, RadialProfile{});
-    std::vector<AzimuthalHarmonics> harmonics(texels, AzimuthalHarmonics{});
-    BrdfLevel& out = levels_[static_cast<std::size_t>(level)];
-    out.correction.assign(texels, RadialCorrection{});
-    tbb::parallel_for(0, e.height, [&](int j) {
-      std::array<Lobe, kUnionCap> buf;
-      for (int i = 0; i < e.width; ++i) {
-        const std::size_t t = static_cast<std::size_t>(j) * e.width + i;
-        if (level == kFirstCorrectedLevel) {
-          const int cnt = gather_children(level0_, level, i, j, levels_[static_cast<std::size_t>(level - 1)], m, buf);
-          const std::span<const Lobe> children(buf.data(), static_cast<std::size_t>(cnt));
-          add_to_profile(grid_, children, truth[t], &harmonics[t]);
-        } else {
-          const Span cx = child_span(level0_.width, level, i), cy = child_span(level0_.height, level, j);
-          const double total = static_cast<double>(level0_span(level0_.width, level, i).size()) *
-                               level0_span(level0_.height, level, j).size();
-          const int fine_width = extent(level - 1).width;
-          for (int y = cy.begin; y < cy.end; ++y)
-            for (int x = cx.begin; x < cx.end; ++x) {
-              const double share = static_cast<double>(level0_span(level0_.width, level - 1, x).size()) *
-                                   level0_span(level0_.height, level - 1, y).size() / total;
-              const std::size_t child = static_cast<std::size_t>(y) * fine_width + x;
-              const RadialProfile& c = below[child];
-              const AzimuthalHarmonics& ch = below_harmonics[child];
-              for (std::size_t r = 0; r < RadialGrid::kNodes; ++r) {
-                truth[t][r] += share * c[r];
-                for (std::size_t k = 0; k < 4; ++k) harmonics[t][r][k] += share * ch[r][k];
-              }
-            }
-        }
-        if (recentre_lobes) recentre(out, t, recentring_tilt(grid_, harmonics[t], out.texel_lobes(t)));
-        out.correction[t] = correction_to(grid_, truth[t], harmonics[t], out.texel_lobes(t));
-      }
-    });
-    below = std::move(truth);
-    below_harmonics = std::move(harmonics);
-  }
+int BrdfPyramid::bytes_per_texel(int level) const {
+  const BrdfLevel& l = this->level(level);
+  return l.slots * kBytesPerLobe + (l.correction.empty() ? 0 : kBytesPerCorrection);
 }
 
 BrdfPyramid BrdfPyramid::from_levels(const MaterialTexels& m, int max_lobes, std::vector<BrdfLevel> coarse,

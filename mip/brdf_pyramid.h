@@ -15,17 +15,18 @@
 // each texel's first lobe there, and every texel's count. A lookup thus waits for one memory access
 // where the packed layout alone made it wait for two in a row (the index, then the lobes). `slots`
 // is the most lobes any texel of the level kept: the MIP file's fixed slots. The lobes are rounded
-// to what the file stores (round_to_stored).
+// to what the file stores (stored_lobe.h: the file's codes, which the build and the MIP file use and a
+// user of the pyramid does not need).
 #include <cassert>
 #include <cstdint>
 #include <span>
 #include <vector>
 
+#include "mip/cache_lines.h"
 #include "mip/lobe.h"
 #include "mip/lobe_reduction.h"
 #include "mip/pyramid_shape.h"
 #include "mip/radial_correction.h"
-#include "mip/stored_normal.h"
 #include "textures/material_texels.h"
 
 namespace svbrdf {
@@ -82,31 +83,6 @@ struct BrdfBuildOptions {
   int stats_samples = 0;  // texels per level whose reduction error is measured (0: none)
 };
 
-// A lobe's shape (lobe.h) in two numbers, the MIP file's shape and skirt channels, as half floats.
-// The shape code: ln(alpha2_hi/alpha2) > 0 for a roughness mixture whose upper part is the band,
-// −(1 + ln(alpha2_hi/alpha2)) < −1 for one whose upper part is an atom (a two-point mixture), −μ ∈ [−1, 0]
-// for a spread core with GGX share μ (−1: plain GGX): 5e-4 relative on μ and on the mixture's span,
-// which moves its tail and peak moments by less than that. Mixtures spanning less than 0.1 % of α²
-// store as plain GGX (lobe_shape treats them so below 0.01 %). set_lobe_shape_code sets alpha2_hi, the
-// mixture's kind (skirt 1 or 0) or the core's μ (ggx).
-float lobe_shape_code(const Lobe& lobe);
-void set_lobe_shape_code(Lobe& lobe, float code);
-// The skirt code: a spread core's c ≥ 1; a roughness mixture's upper share β, two-sided — β itself up
-// to ½, β − 1 ∈ (−½, 0] above — so that a half keeps 5e-4 relative on the smaller of β and 1 − β (both
-// shares carry moments: the atom the peak, the upper part the tail); 1 for plain GGX.
-// set_lobe_skirt_code needs the lobe's shape code set first (it tells a mixture from a core).
-float lobe_skirt_code(const Lobe& lobe);
-void set_lobe_skirt_code(Lobe& lobe, float code);
-
-// Rounds a lobe to what the MIP file stores: weight, colors, α (the square root of alpha2), shape code
-// and skirt as half floats, the normal as stored_normal.h codes it. The BRDF pyramid holds its lobes so
-// rounded, which is what makes the file's round trip bit-identical and what its figures measure.
-void round_to_stored(Lobe& lobe);
-
-// Bytes a stored lobe takes: the normal's direction as a 32-bit code (stored_normal.h); weight, ρ (3),
-// F0 (3), the normal's length deficit, α, the shape code and the skirt as half floats.
-inline constexpr int kBytesPerLobe = 4 + 11 * 2;
-
 class BrdfPyramid {
  public:
   BrdfPyramid() = default;
@@ -131,9 +107,7 @@ class BrdfPyramid {
     const std::size_t t = static_cast<std::size_t>(j) * l.extent.width + i;
     // The reads a texel may need are issued together: the count, the single slot, the index into the
     // packed lobes (the branch on the count would otherwise order them) and the radial correction.
-    prefetch_single(l, t);
-    __builtin_prefetch(l.first.data() + t);
-    prefetch_correction(l, t);
+    prefetch_reads(l, t);
     return l.texel_lobes(t);
   }
   // Asks the memory system for what texel(level, i, j) reads first, for a caller with other work to
@@ -142,15 +116,10 @@ class BrdfPyramid {
     const BrdfLevel& l = levels_[static_cast<std::size_t>(level)];
     const std::size_t t = static_cast<std::size_t>(j) * l.extent.width + i;
     __builtin_prefetch(l.counts.data() + t);
-    prefetch_single(l, t);
-    __builtin_prefetch(l.first.data() + t);
-    prefetch_correction(l, t);
+    prefetch_reads(l, t);
   }
   // Bytes per texel of a level as the MIP file stores it (fixed slots; memory holds fewer).
-  int bytes_per_texel(int level) const {
-    const BrdfLevel& l = this->level(level);
-    return l.slots * kBytesPerLobe + (l.correction.empty() ? 0 : kBytesPerCorrection);
-  }
+  int bytes_per_texel(int level) const;
   // The radial correction of texel (i, j) of `level` ≥ 0, or null (below kFirstCorrectedLevel, level 0
   // included, or none built).
   const RadialCorrection* correction(int level, int i, int j) const {
@@ -161,20 +130,11 @@ class BrdfPyramid {
   const RadialGrid& radial_grid() const { return grid_; }
 
  private:
-  // The radial corrections of the levels from kFirstCorrectedLevel on (radial_correction.h).
-  void build_corrections(const MaterialTexels& level0, bool recentre);
-  // A texel's correction (48 B) may straddle two cache lines: both are asked for.
-  static void prefetch_correction(const BrdfLevel& l, std::size_t t) {
-    if (l.correction.empty()) return;
-    const char* p = reinterpret_cast<const char*>(l.correction.data() + t);
-    __builtin_prefetch(p);
-    __builtin_prefetch(p + sizeof(RadialCorrection) - 1);
-  }
-  // A Lobe may straddle two cache lines: both are asked for.
-  static void prefetch_single(const BrdfLevel& l, std::size_t t) {
-    const char* p = reinterpret_cast<const char*>(l.single.data() + t);
-    __builtin_prefetch(p);
-    __builtin_prefetch(p + sizeof(Lobe) - 1);
+  // Texel t's single slot, its index into the packed lobes and its radial correction.
+  static void prefetch_reads(const BrdfLevel& l, std::size_t t) {
+    prefetch_object(l.single.data() + t);
+    __builtin_prefetch(l.first.data() + t);
+    if (!l.correction.empty()) prefetch_object(l.correction.data() + t);
   }
 
   Extent level0_{};

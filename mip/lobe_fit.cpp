@@ -280,7 +280,7 @@ void set_shape(Lobe& m, double A, double P, const UnionMass* union_mass) {
     // granite's highlight at level 7 from +1.6 % to +3.3 %: the better of the two compounds.)
     const MixtureFit& f = std::abs(a.mass(s) - cam) <= std::abs(b.mass(s) - cam) ? a : b;
     // The upper end at least 0.2 % above the atom: what the MIP file stores as a mixture (0.1 %,
-    // brdf_pyramid.h) once α is rounded to a half (5e-4 on α²).
+    // stored_lobe.h) once α is rounded to a half (5e-4 on α²).
     const double l = std::clamp(f.x / P, 1e-6, 1.0);
     if (l * 1.002 > 1.0) return;
     m.alpha2 = static_cast<float>(l);

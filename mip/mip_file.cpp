@@ -16,6 +16,7 @@
 #include "base/atomic_file.h"
 #include "base/error.h"
 #include "base/resource_limits.h"
+#include "mip/stored_lobe.h"
 #include "mip/stored_normal.h"
 
 namespace svbrdf {

@@ -27,7 +27,7 @@
 //                               GGX core with Beckmann share 1 − μ (−1: plain GGX)        half
 //   lobeK.skirt                 a core's c ≥ 1 (the Beckmann share's α² is c·alpha2); a
 //                               mixture's upper share β, as β ≤ ½ or β − 1 ∈ (−½, 0]; 1
-//                               otherwise (brdf_pyramid.h, lobe_skirt_code)             half
+//                               otherwise (stored_lobe.h, lobe_skirt_code)              half
 // and, for L ≥ kFirstCorrectedLevel (4), 24 bytes (radial_correction.h):
 //   radial.R0 .. radial.R11     the texel's radial correction: the ratio of its true radial
 //                               profile of reflected light to its lobes' (gated beyond 10°)

@@ -1,0 +1,87 @@
+#include "mip/stored_lobe.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
+#include <glm/gtc/packing.hpp>
+
+#include "mip/stored_normal.h"
+
+namespace svbrdf {
+
+namespace {
+// x rounded to the nearest half float (ties to even), as a float. In half's normal range by the bits:
+// drop 13 of the 23 mantissa bits with rounding (this runs for every stored number of every lobe);
+// elsewhere (zero, subnormal halves, overflow, NaN) through glm's conversion.
+float to_half(float x) {
+  const float a = std::abs(x);
+  if (!(a >= 6.103515625e-05f && a < 65504.0f)) return glm::unpackHalf1x16(glm::packHalf1x16(x));
+  std::uint32_t b;
+  std::memcpy(&b, &x, sizeof b);
+  b += 0x0fffu + ((b >> 13) & 1u);
+  b &= ~0x1fffu;
+  float r;
+  std::memcpy(&r, &b, sizeof r);
+  return r;
+}
+bool is_mixture(const Lobe& lobe) { return lobe.alpha2_hi > lobe.alpha2 * 1.001f; }
+}  // namespace
+
+float lobe_shape_code(const Lobe& lobe) {
+  if (is_mixture(lobe)) {
+    const float span = static_cast<float>(std::log(double(lobe.alpha2_hi) / double(lobe.alpha2)));
+    return to_half(lobe.skirt == 0.0f ? -(1.0f + span) : span);
+  }
+  return to_half(-std::clamp(lobe.ggx, 0.0f, 1.0f));
+}
+
+void set_lobe_shape_code(Lobe& lobe, float code) {
+  if (code > 0 || code < -1) {
+    // In double, so that writing the lobe again gives back the same half (the float rounding of
+    // alpha2_hi moves the logarithm by 6e-8, far below a half's spacing at the smallest code, 1e-3).
+    const bool two_point = code < -1;
+    const double span = two_point ? -double(code) - 1.0 : double(code);
+    lobe.alpha2_hi = static_cast<float>(double(lobe.alpha2) * std::exp(span));
+    lobe.ggx = 1.0f;
+    lobe.skirt = two_point ? 0.0f : 1.0f;
+  } else {
+    lobe.alpha2_hi = 0.0f;
+    lobe.ggx = std::min(1.0f, -code);
+    lobe.skirt = 1.0f;
+  }
+}
+
+float lobe_skirt_code(const Lobe& lobe) {
+  if (is_mixture(lobe)) {
+    const float beta = std::clamp(lobe.ggx, 1e-3f, 1.0f);
+    return to_half(beta <= 0.5f ? beta : beta - 1.0f);  // β − 1 is exact in a float
+  }
+  return lobe.ggx < 1.0f ? std::max(1.0f, to_half(lobe.skirt)) : 1.0f;
+}
+
+void set_lobe_skirt_code(Lobe& lobe, float code) {
+  // β ≥ 1e-3 as set_shape makes it (the atom's weight in V is (1 − β)/β); 1 + a half in (−½, 0] is exact.
+  if (lobe.alpha2_hi > 0.0f)
+    lobe.ggx = std::clamp(code > 0.0f ? code : 1.0f + code, 1e-3f, 1.0f);
+  else
+    lobe.skirt = code;
+}
+
+void round_to_stored(Lobe& lobe) {
+  lobe.weight = to_half(lobe.weight);
+  // α as a half (α ≥ 1e-3 is in its normal range): 2.4e-4 relative on α, and α·α is exact in a float.
+  const float alpha = to_half(std::sqrt(lobe.alpha2));
+  lobe.alpha2 = alpha * alpha;
+  for (int c = 0; c < 3; ++c) {
+    lobe.diffuse[c] = to_half(lobe.diffuse[c]);
+    lobe.f0[c] = to_half(lobe.f0[c]);
+  }
+  lobe.normal = round_normal(lobe.normal);
+  const float skirt_code = lobe_skirt_code(lobe);
+  set_lobe_shape_code(lobe, lobe_shape_code(lobe));
+  set_lobe_skirt_code(lobe, skirt_code);
+}
+
+}  // namespace svbrdf

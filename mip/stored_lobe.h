@@ -1,0 +1,35 @@
+#pragma once
+// A lobe (lobe.h) as the MIP file stores it (mip_file.h), 26 bytes: its weight, ρ, F0, α, shape and
+// skirt as half floats and its normal as stored_normal.h codes it. The BRDF pyramid's build rounds
+// every lobe to this (round_to_stored), which is what makes the file's round trip bit-identical and
+// what its figures measure; the MIP file reads and writes the codes. A user of the pyramid needs none
+// of this.
+#include "mip/lobe.h"
+
+namespace svbrdf {
+
+// A lobe's shape (lobe.h) in two numbers, the MIP file's shape and skirt channels, as half floats.
+// The shape code: ln(alpha2_hi/alpha2) > 0 for a roughness mixture whose upper part is the band,
+// −(1 + ln(alpha2_hi/alpha2)) < −1 for one whose upper part is an atom (a two-point mixture), −μ ∈ [−1, 0]
+// for a spread core with GGX share μ (−1: plain GGX): 5e-4 relative on μ and on the mixture's span,
+// which moves its tail and peak moments by less than that. Mixtures spanning less than 0.1 % of α²
+// store as plain GGX (lobe_shape treats them so below 0.01 %). set_lobe_shape_code sets alpha2_hi, the
+// mixture's kind (skirt 1 or 0) or the core's μ (ggx).
+float lobe_shape_code(const Lobe& lobe);
+void set_lobe_shape_code(Lobe& lobe, float code);
+// The skirt code: a spread core's c ≥ 1; a roughness mixture's upper share β, two-sided — β itself up
+// to ½, β − 1 ∈ (−½, 0] above — so that a half keeps 5e-4 relative on the smaller of β and 1 − β (both
+// shares carry moments: the atom the peak, the upper part the tail); 1 for plain GGX.
+// set_lobe_skirt_code needs the lobe's shape code set first (it tells a mixture from a core).
+float lobe_skirt_code(const Lobe& lobe);
+void set_lobe_skirt_code(Lobe& lobe, float code);
+
+// Rounds a lobe to what the MIP file stores: weight, colors, α (the square root of alpha2), shape code
+// and skirt as half floats, the normal as stored_normal.h codes it.
+void round_to_stored(Lobe& lobe);
+
+// Bytes a stored lobe takes: the normal's direction as a 32-bit code (stored_normal.h); weight, ρ (3),
+// F0 (3), the normal's length deficit, α, the shape code and the skirt as half floats.
+inline constexpr int kBytesPerLobe = 4 + 11 * 2;
+
+}  // namespace svbrdf
