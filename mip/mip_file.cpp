@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <string>
@@ -28,50 +29,39 @@ namespace fs = std::filesystem;
 const char* const kParamChannels[8] = {"param.R",         "param.G",   "param.B",   "param.metallic",
                                        "param.roughness", "param.N.X", "param.N.Y", "param.N.Z"};
 
-// What a lobe channel holds, whichever version wrote it.
+// What a lobe channel holds.
 enum class Role {
   weight, diffuse_r, diffuse_g, diffuse_b, f0_r, f0_g, f0_b,
-  normal_x, normal_y, normal_z,            // versions 1–5: the normal as three floats
-  normal_direction, normal_deficit,        // version 6: stored_normal.h
-  alpha,                                   // version ≥ 4: α (half)
-  alpha2,                                  // versions 1–3: α² (float)
-  shape, skirt,                            // version ≥ 3 (skirt: ≥ 4)
-  alpha2_hi, ggx,                          // version 2's shape
+  normal_direction, normal_deficit,  // stored_normal.h
+  alpha, shape, skirt,               // stored_lobe.h
   count
 };
 struct LobeChannel {
   const char* suffix;
   Role role;
-  OIIO::TypeDesc::BASETYPE format;  // as this version writes it
+  OIIO::TypeDesc::BASETYPE format;
 };
 
-// A lobe's channels in the given version. Version 6: 26 bytes a lobe (kBytesPerLobe), the normal as an
-// octahedral code (version 8: warped toward the pole) and a length deficit; version 5 had the normal
-// as three floats (32 bytes), version 4 too but no atoms; version 3 α² as a float and no skirt;
-// version 2 the shape as α²'s upper end and μ; version 1 no shape (plain GGX).
-std::vector<LobeChannel> lobe_channels(int version) {
-  using B = OIIO::TypeDesc::BASETYPE;
-  const B h = OIIO::TypeDesc::HALF, f = OIIO::TypeDesc::FLOAT;
-  std::vector<LobeChannel> c = {{"weight", Role::weight, version >= 3 ? h : f},
-                                {"diffuse.R", Role::diffuse_r, h}, {"diffuse.G", Role::diffuse_g, h},
-                                {"diffuse.B", Role::diffuse_b, h}, {"F0.R", Role::f0_r, h},
-                                {"F0.G", Role::f0_g, h},           {"F0.B", Role::f0_b, h}};
-  if (version >= 6) {
-    c.push_back({"N.dir", Role::normal_direction, OIIO::TypeDesc::UINT});
-    c.push_back({"N.deficit", Role::normal_deficit, h});
-  } else {
-    c.insert(c.end(), {{"N.X", Role::normal_x, f}, {"N.Y", Role::normal_y, f}, {"N.Z", Role::normal_z, f}});
-  }
-  if (version >= 4) c.insert(c.end(), {{"alpha", Role::alpha, h}, {"shape", Role::shape, h}, {"skirt", Role::skirt, h}});
-  else if (version == 3) c.insert(c.end(), {{"alpha2", Role::alpha2, f}, {"shape", Role::shape, h}});
-  else if (version == 2) c.insert(c.end(), {{"alpha2", Role::alpha2, f}, {"alpha2_hi", Role::alpha2_hi, f}, {"ggx", Role::ggx, h}});
-  else c.push_back({"alpha2", Role::alpha2, f});
-  return c;
-}
+// A lobe's channels, 26 bytes (kBytesPerLobe): halves but for the normal's octahedral code.
+constexpr OIIO::TypeDesc::BASETYPE kHalf = OIIO::TypeDesc::HALF;
+constexpr LobeChannel kLobeChannels[] = {
+    {"weight", Role::weight, kHalf},
+    {"diffuse.R", Role::diffuse_r, kHalf},
+    {"diffuse.G", Role::diffuse_g, kHalf},
+    {"diffuse.B", Role::diffuse_b, kHalf},
+    {"F0.R", Role::f0_r, kHalf},
+    {"F0.G", Role::f0_g, kHalf},
+    {"F0.B", Role::f0_b, kHalf},
+    {"N.dir", Role::normal_direction, OIIO::TypeDesc::UINT},
+    {"N.deficit", Role::normal_deficit, kHalf},
+    {"alpha", Role::alpha, kHalf},
+    {"shape", Role::shape, kHalf},
+    {"skirt", Role::skirt, kHalf},
+};
+constexpr std::size_t kLobeChannelCount = std::size(kLobeChannels);
 
 constexpr const char* kRadialInner = "svbrdf:radial_inner";
 constexpr const char* kRadialOuter = "svbrdf:radial_outer";
-constexpr float kVersion6Outer = 10.0f;  // version 6's grid ended at 10° (it had no svbrdf:radial_outer)
 std::string radial_channel(int node) { return "radial.R" + std::to_string(node); }
 
 std::string where(const fs::path& p) { return p.string(); }
@@ -97,26 +87,15 @@ LobeValues pack_lobe(const Lobe& l) {
   out[Role::skirt] = lobe_skirt_code(l);
   return out;
 }
-Lobe unpack_lobe(int version, const LobeValues& in) {
+Lobe unpack_lobe(const LobeValues& in) {
   Lobe l;
   l.weight = in[Role::weight];
   l.diffuse = {in[Role::diffuse_r], in[Role::diffuse_g], in[Role::diffuse_b]};
   l.f0 = {in[Role::f0_r], in[Role::f0_g], in[Role::f0_b]};
-  // Versions 6 and 7 coded the direction linearly in the octahedron's coordinates (stored_normal.h).
-  if (version >= 6)
-    l.normal = load_normal(StoredNormal{in.direction, in[Role::normal_deficit]},
-                           version >= 8 ? NormalCode::warped : NormalCode::linear);
-  else l.normal = {in[Role::normal_x], in[Role::normal_y], in[Role::normal_z]};
-  l.alpha2 = version >= 4 ? in[Role::alpha] * in[Role::alpha] : in[Role::alpha2];
-  if (version >= 3) {
-    set_lobe_shape_code(l, in[Role::shape]);
-    // Version 4 had no atoms: its mixtures are bands of share 1 and its skirt channel holds 1 for them.
-    if (version >= 5) set_lobe_skirt_code(l, in[Role::skirt]);
-    else if (version == 4 && l.alpha2_hi == 0.0f) l.skirt = in[Role::skirt];
-  } else if (version == 2) {
-    l.alpha2_hi = in[Role::alpha2_hi];
-    l.ggx = in[Role::ggx];
-  }
+  l.normal = load_normal(StoredNormal{in.direction, in[Role::normal_deficit]});
+  l.alpha2 = in[Role::alpha] * in[Role::alpha];
+  set_lobe_shape_code(l, in[Role::shape]);
+  set_lobe_skirt_code(l, in[Role::skirt]);
   return l;
 }
 
@@ -192,8 +171,7 @@ std::uint64_t least_exr_bytes(const OIIO::ImageSpec& spec) {
 void write_mip_file(const fs::path& path, const MipData& mip) {
   const int levels = mip.levels();
   if (levels == 0) throw Error(where(path) + ": nothing to write (an empty material)", Error::Kind::internal);
-  const std::vector<LobeChannel> lobe_layout = lobe_channels(kMipFileVersion);
-  const int lobe_nch = static_cast<int>(lobe_layout.size());
+  const int lobe_nch = static_cast<int>(kLobeChannelCount);
   bool corrected = false;
   for (int level = 1; level < levels; ++level) corrected |= !mip.brdf.level(level).correction.empty();
   // OpenImageIO 2.4's multi-part OpenEXR writer ignores an "oiio:ioproxy" (it writes a file of the
@@ -222,7 +200,7 @@ void write_mip_file(const fs::path& path, const MipData& mip) {
       };
       for (const char* c : kParamChannels) add(c, OIIO::TypeDesc::FLOAT);
       for (int k = 0; k < slots; ++k)
-        for (const LobeChannel& c : lobe_layout) add("lobe" + std::to_string(k) + "." + c.suffix, c.format);
+        for (const LobeChannel& c : kLobeChannels) add("lobe" + std::to_string(k) + "." + c.suffix, c.format);
       if (radial)
         for (int r = 0; r < RadialGrid::kNodes; ++r) add(radial_channel(r), OIIO::TypeDesc::HALF);
       s.nchannels = static_cast<int>(s.channelnames.size());
@@ -264,7 +242,7 @@ void write_mip_file(const fs::path& path, const MipData& mip) {
           const LobeValues v = pack_lobe(k < static_cast<int>(lobes.size()) ? lobes[static_cast<std::size_t>(k)] : kEmpty);
           for (int c = 0; c < lobe_nch; ++c) {
             const std::size_t ch = 8 + static_cast<std::size_t>(k * lobe_nch + c);
-            const LobeChannel& lc = lobe_layout[static_cast<std::size_t>(c)];
+            const LobeChannel& lc = kLobeChannels[c];
             if (lc.role == Role::normal_direction) put_uint(px, layout, ch, v.direction);
             else put_float(px, layout, ch, v[lc.role]);
           }
@@ -290,10 +268,11 @@ MipData read_mip_file(const fs::path& path) {
   const OIIO::ImageSpec& first = in->spec();
   const int version = first.get_int_attribute("svbrdf:mip_version", 0);
   if (version == 0) throw input_error(where(path), "not an svbrdf MIP file (no svbrdf:mip_version attribute)");
-  if (version > kMipFileVersion)
-    throw input_error(where(path), "MIP file version " + std::to_string(version) +
-                                       " is newer than this program reads (version " + std::to_string(kMipFileVersion) +
-                                       "); rebuild it with svbrdf-bake mip or update svbrdf");
+  // Another version's channels mean other things (mip_file.h): refused, with the way to a current file.
+  if (version != kMipFileVersion)
+    throw input_error(where(path), "MIP file version " + std::to_string(version) + "; this build reads version " +
+                                       std::to_string(kMipFileVersion) + " only — rebuild it with `svbrdf-bake mip ... --out " +
+                                       where(path) + "`");
   const Extent level0{first.width, first.height};
   if (level0.width <= 0 || level0.height <= 0) throw input_error(where(path), "level 0 has no texels");
   const int levels = level_count(level0);
@@ -302,7 +281,7 @@ MipData read_mip_file(const fs::path& path) {
   if (first.find_attribute(kRadialInner) && !(radial_inner > 0.0f && radial_inner < 0.5f))
     throw input_error(where(path), std::string(kRadialInner) + " is " + std::to_string(radial_inner) +
                                        ", not an angle in (0, 0.5) radians");
-  const float radial_outer = version >= 7 ? first.get_float_attribute(kRadialOuter, 0.0f) : kVersion6Outer;
+  const float radial_outer = first.get_float_attribute(kRadialOuter, 0.0f);
   if (radial_inner > 0.0f && !(radial_outer > radial_inner * 57.2957795f && radial_outer <= 45.0f))
     throw input_error(where(path), std::string(kRadialOuter) + " is " + std::to_string(radial_outer) +
                                        ", not an angle in degrees between " + kRadialInner + " and 45");
@@ -329,7 +308,6 @@ MipData read_mip_file(const fs::path& path) {
                                          " its headers' " + std::to_string(level0.width) + "x" +
                                          std::to_string(level0.height) + " levels need: a truncated or corrupt file");
   }
-  const std::vector<LobeChannel> lobe_layout = lobe_channels(version);
   MipData mip;
   std::vector<std::vector<ParamTexel>> param_levels;
   std::vector<BrdfLevel> coarse;
@@ -370,7 +348,7 @@ MipData read_mip_file(const fs::path& path) {
     };
     for (const char* c : kParamChannels) need(c);
     for (int k = 0; k < slots; ++k)
-      for (const LobeChannel& c : lobe_layout) {
+      for (const LobeChannel& c : kLobeChannels) {
         const std::string name = "lobe" + std::to_string(k) + "." + c.suffix;
         need(name);
         if (c.role == Role::normal_direction && formats.back() != OIIO::TypeDesc::UINT)
@@ -394,7 +372,7 @@ MipData read_mip_file(const fs::path& path) {
       bl.slots = slots;
       if (radial) bl.correction.resize(texels);
     }
-    const std::size_t lobe_nch = lobe_layout.size();
+    const std::size_t lobe_nch = kLobeChannelCount;
     for (std::size_t t = 0; t < texels; ++t) {
       const std::byte* px = buf.data() + t * layout.stride;
       const auto value = [&](std::size_t c) {
@@ -414,11 +392,11 @@ MipData read_mip_file(const fs::path& path) {
         LobeValues v;
         for (std::size_t c = 0; c < lobe_nch; ++c) {
           const std::size_t ch = 8 + static_cast<std::size_t>(k) * lobe_nch + c;
-          const Role role = lobe_layout[c].role;
+          const Role role = kLobeChannels[c].role;
           if (role == Role::normal_direction) std::memcpy(&v.direction, px + order[ch], 4);
           else v[role] = value(ch);
         }
-        const Lobe l = unpack_lobe(version, v);
+        const Lobe l = unpack_lobe(v);
         if (!(l.weight > 0)) break;
         bl.lobes.push_back(l);
         bl.counts[t] = static_cast<std::uint8_t>(k + 1);

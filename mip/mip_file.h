@@ -38,15 +38,9 @@
 // svbrdf:max_lobes (int, the --lobes the file was built with), svbrdf:slots (int, S_L), and, where any
 // level has radial channels, svbrdf:radial_inner (float, radians: θ of the grid's node 1) and
 // svbrdf:radial_outer (float, degrees: θ of its last node, RadialGrid::kOuterDeg).
-// A file whose version is newer than kMipFileVersion is refused: its layout may mean other things.
-// Older versions still read: version 7 is version 8 with the linear octahedral code (the coordinate
-// is c itself); version 6 is version 7 without svbrdf:radial_outer, its grid's last node
-// at 10° (its ratios read on that grid); version 5 stored a lobe's normal as three floats
-// lobeK.N.X/Y/Z (32 bytes a lobe) and had no radial corrections; version 4's mixtures had no atom (β = 1; its skirt channel
-// held 1 for them); version 3 stored lobeK.alpha2 (α², float) in place of lobeK.alpha and lacks
-// lobeK.skirt (c = 1); version 2 stored α² so too and the shape as lobeK.alpha2_hi (float, 0: not a
-// mixture) and lobeK.ggx (half, μ) and the weight as a float (38 bytes a lobe); version 1 (before the
-// lobe shapes of lobe.h) lacks both shape channels, and its lobes read as plain GGX.
+// This build reads version kMipFileVersion only. A file of any other version is refused with one line
+// that names the file, its version and this build's, and how to rebuild it: another version's
+// channels mean other things, and a current file is one `svbrdf-bake mip` away.
 #include <filesystem>
 
 #include "mip/mip_data.h"
@@ -58,8 +52,8 @@ inline constexpr int kMipFileVersion = 8;
 // Throws svbrdf::Error naming the file when it cannot be written.
 void write_mip_file(const std::filesystem::path& path, const MipData& mip);
 
-// Throws svbrdf::Error naming the file when it is missing, unreadable, not a MIP file, from a newer
-// version, or inconsistent (levels of the wrong size, missing channels).
+// Throws svbrdf::Error naming the file when it is missing, unreadable, not a MIP file, of another
+// version than kMipFileVersion, or inconsistent (levels of the wrong size, missing channels).
 MipData read_mip_file(const std::filesystem::path& path);
 
 }  // namespace svbrdf

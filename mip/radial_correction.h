@@ -19,8 +19,7 @@
 //
 // Nodes: θ = 0, and 11 with u = 1 − cos θ log-spaced from u(θ_in) to u(30°), θ_in the α of the
 // pyramid's sharpest level-0 lobe, within 0.03°–1° (RadialGrid); R is linear in ln u between them
-// (linear in u to the first), and beyond the last it goes to 1 at 60°, linearly in ln u. (MIP files of
-// version 6 had the last node at 10° and R at 1 from 20°.)
+// (linear in u to the first), and beyond the last it goes to 1 at 60°, linearly in ln u.
 //
 // Beyond 10° a texel's correction is gated. There the premise — that the lobes' error is radial — fails
 // where a texel's normals spread along one axis: the tile roof's isotropic lobes under-fill the plane of
@@ -56,7 +55,7 @@ inline constexpr int kFirstCorrectedLevel = 4;
 
 struct RadialGrid {
   static constexpr int kNodes = 12;
-  static constexpr double kOuterDeg = 30.0;       // the last node (MIP files of version 6: 10°)
+  static constexpr double kOuterDeg = 30.0;       // the last node
   static constexpr double kFadePerOuter = 2.0;    // R reaches 1 at this multiple of the last node's θ
   static constexpr double kGateFromDeg = 10.0;    // nodes beyond this are gated by the ratio's azimuthal spread
   float inner = 0.0f;    // θ of node 1, radians (a float: the MIP file's svbrdf:radial_inner)

@@ -45,12 +45,8 @@ double code_of(double p) {
 double octahedral_of(double c) { return c * (kPoleSlope + (1.0 - kPoleSlope) * std::abs(c)); }
 
 // The code's coordinates for octahedral coordinates p, and back.
-glm::dvec2 code_coordinates(const glm::dvec2& p, NormalCode code) {
-  return code == NormalCode::warped ? glm::dvec2(code_of(p.x), code_of(p.y)) : p;
-}
-glm::dvec2 octahedral_coordinates(const glm::dvec2& c, NormalCode code) {
-  return code == NormalCode::warped ? glm::dvec2(octahedral_of(c.x), octahedral_of(c.y)) : c;
-}
+glm::dvec2 code_coordinates(const glm::dvec2& p) { return glm::dvec2(code_of(p.x), code_of(p.y)); }
+glm::dvec2 octahedral_coordinates(const glm::dvec2& c) { return glm::dvec2(octahedral_of(c.x), octahedral_of(c.y)); }
 
 std::uint32_t pack(int qx, int qy) {
   // On the square's edges the fold makes (x, ±1) and (−x, ±1) one direction, (±1, y) and (±1, −y)
@@ -60,16 +56,16 @@ std::uint32_t pack(int qx, int qy) {
   return static_cast<std::uint32_t>(static_cast<std::uint16_t>(static_cast<std::int16_t>(qx))) |
          static_cast<std::uint32_t>(static_cast<std::uint16_t>(static_cast<std::int16_t>(qy))) << 16;
 }
-glm::dvec2 unpack(std::uint32_t code, NormalCode kind) {
+glm::dvec2 unpack(std::uint32_t code) {
   const auto qx = static_cast<std::int16_t>(static_cast<std::uint16_t>(code & 0xffffu));
   const auto qy = static_cast<std::int16_t>(static_cast<std::uint16_t>(code >> 16));
   // −32768 is never written; clamped, it reads as −1 like −32767.
-  return octahedral_coordinates(glm::clamp(glm::dvec2(qx, qy) / kScale, -1.0, 1.0), kind);
+  return octahedral_coordinates(glm::clamp(glm::dvec2(qx, qy) / kScale, -1.0, 1.0));
 }
 
 }  // namespace
 
-StoredNormal store_normal(const glm::vec3& normal, NormalCode code) {
+StoredNormal store_normal(const glm::vec3& normal) {
   const glm::dvec3 n(normal);
   const double len = glm::length(n);
   StoredNormal s;
@@ -85,21 +81,21 @@ StoredNormal store_normal(const glm::vec3& normal, NormalCode code) {
   // the coordinates alone can be 1.5× farther where the map stretches. Compared by cos² = (v·d)²/|v|²
   // of the unnormalized octahedron points (all four are within a cell of d, so v·d > 0).
   const glm::dvec3 d = n / len;
-  const glm::dvec2 p = code_coordinates(to_octahedron(d), code) * kScale;
+  const glm::dvec2 p = code_coordinates(to_octahedron(d)) * kScale;
   const int x0 = static_cast<int>(p.x + 32768.0) - 32768, y0 = static_cast<int>(p.y + 32768.0) - 32768;  // floor
   double best = -1.0;
   for (int dy = 0; dy <= 1; ++dy)
     for (int dx = 0; dx <= 1; ++dx) {
       const int qx = std::clamp(x0 + dx, -32767, 32767), qy = std::clamp(y0 + dy, -32767, 32767);
-      const glm::dvec3 v = octahedron_point(octahedral_coordinates(glm::dvec2(qx, qy) / kScale, code));
+      const glm::dvec3 v = octahedron_point(octahedral_coordinates(glm::dvec2(qx, qy) / kScale));
       const double c = glm::dot(v, d), score = c > 0 ? c * c / glm::dot(v, v) : -1.0;
       if (score > best) best = score, s.direction = pack(qx, qy);
     }
   return s;
 }
 
-glm::vec3 load_normal(const StoredNormal& stored, NormalCode code) {
-  return glm::vec3(from_octahedron(unpack(stored.direction, code)) * (1.0 - double(stored.deficit)));
+glm::vec3 load_normal(const StoredNormal& stored) {
+  return glm::vec3(from_octahedron(unpack(stored.direction)) * (1.0 - double(stored.deficit)));
 }
 
 }  // namespace svbrdf

@@ -1,5 +1,5 @@
 #pragma once
-// A lobe's mean normal as the MIP file stores it (version 8), in 6 bytes where three floats took 12:
+// A lobe's mean normal as the MIP file stores it, in 6 bytes where three floats took 12:
 //   direction  the unit direction, octahedral (Cigolle et al. 2014, "A Survey of Efficient
 //              Representations for Independent Unit Vectors", JCGT 3(2)), warped toward the pole: two
 //              16-bit signed codes q in one 32-bit word, low half x; c = q/32767 ∈ [−1, 1] and the
@@ -9,8 +9,8 @@
 //              of 2^-20 so that encoding a decoded normal gives back the same code: float rounding in
 //              |normal| (≈ 1e-7) stays below half that step.
 // Why the warp: a coarse level's normals gather near the pole, and there a code step matters to the
-// sharpest lobes. The linear code (MIP file versions 6 and 7, NormalCode::linear) has a step of
-// 3.05e-5 rad everywhere. Near the peak of a lobe of α ≈ 0.005 (polished metal), a shift of δ changes
+// sharpest lobes. The linear code (the octahedral coordinate c itself) has a step of 3.05e-5 rad
+// everywhere. Near the peak of a lobe of α ≈ 0.005 (polished metal), a shift of δ changes
 // D by about 4δθ/(α² + θ²): 1 % at θ = 0.2° per step. Texels that share a normal (a flat polish, a
 // height field's repeated slopes) round the same way, so those errors add up instead of averaging
 // out: the polished tray's whole-texture highlight was off by 0.45 % at level 1, a first azimuthal
@@ -32,12 +32,8 @@ struct StoredNormal {
   float deficit = 0.0f;         // 1 − length, a value a half float holds exactly
 };
 
-// The direction's code: warped toward the pole (MIP file version 8 on), or the linear octahedral code
-// of versions 6 and 7.
-enum class NormalCode { warped, linear };
-
-StoredNormal store_normal(const glm::vec3& normal, NormalCode code = NormalCode::warped);
-glm::vec3 load_normal(const StoredNormal& stored, NormalCode code = NormalCode::warped);
+StoredNormal store_normal(const glm::vec3& normal);
+glm::vec3 load_normal(const StoredNormal& stored);
 inline glm::vec3 round_normal(const glm::vec3& normal) { return load_normal(store_normal(normal)); }
 
 }  // namespace svbrdf

@@ -1,5 +1,5 @@
-// The MIP file: a bit-identical round trip, OpenImageIO's tools list it, a newer version and foreign
-// files are refused with a clear message, files of older versions still read.
+// The MIP file: a bit-identical round trip, OpenImageIO's tools list it, files of another version and
+// foreign files are refused with a clear message.
 #include <gtest/gtest.h>
 
 #include <OpenImageIO/imageio.h>
@@ -17,9 +17,9 @@
 #include "base/error.h"
 #include "base/resource_limits.h"
 #include "mip/mip_file.h"
-#include "mip/stored_normal.h"
 #include "textures/material_family.h"
 #include "tests/mip/synthetic_materials.h"
+#include "tests/common/run_command.h"
 #include "tests/common/temp_dir.h"
 
 namespace svbrdf {
@@ -50,8 +50,8 @@ MaterialTexels mixed_material(int w, int h) {
 TEST(MipFile, RoundTripIsBitIdentical) {
   testing::TempDir dir;
   int skirts = 0;  // spread cores whose skirt is not 1: the polished granite has them
-  int atoms = 0;   // roughness mixtures with an atom (version 5): the tray's texels in the mixed material
-  std::size_t corrected = 0;  // texels with a radial correction (version 6)
+  int atoms = 0;   // roughness mixtures with an atom: the tray's texels in the mixed material
+  std::size_t corrected = 0;  // texels with a radial correction
   for (auto [w, h] : {std::pair{16, 16}, std::pair{12, 5}, std::pair{64, 0}}) {
     BrdfBuildOptions o;
     o.reduction.max_lobes = 3;
@@ -137,12 +137,18 @@ std::string read_error(const std::filesystem::path& path) {
   return "";
 }
 
-TEST(MipFile, RefusesNewerVersionsForeignAndMissingFiles) {
+// The one line that refuses a MIP file of another version than this build's.
+std::string other_version_message(const std::filesystem::path& path, int version) {
+  return path.string() + ": MIP file version " + std::to_string(version) + "; this build reads version " +
+         std::to_string(kMipFileVersion) + " only — rebuild it with `svbrdf-bake mip ... --out " + path.string() + "`";
+}
+
+TEST(MipFile, RefusesOtherVersionsForeignAndMissingFiles) {
   testing::TempDir dir;
   write_exr_with_version(dir / "newer.exr", kMipFileVersion + 1);
   std::string msg = read_error(dir / "newer.exr");
   EXPECT_NE(msg.find("newer.exr"), std::string::npos) << msg;
-  EXPECT_NE(msg.find("version " + std::to_string(kMipFileVersion + 1) + " is newer"), std::string::npos) << msg;
+  EXPECT_EQ(msg, other_version_message(dir / "newer.exr", kMipFileVersion + 1));
   write_exr_with_version(dir / "plain.exr", 0);
   msg = read_error(dir / "plain.exr");
   EXPECT_NE(msg.find("not an svbrdf MIP file"), std::string::npos) << msg;
@@ -151,6 +157,48 @@ TEST(MipFile, RefusesNewerVersionsForeignAndMissingFiles) {
   // A MIP file with a level cut away is inconsistent, not silently short.
   write_exr_with_version(dir / "short.exr", kMipFileVersion);
   EXPECT_NE(read_error(dir / "short.exr").find("short.exr"), std::string::npos);
+}
+
+// Sets the svbrdf:mip_version attribute of every part of a MIP file to `version`, in place: in each
+// part's header (OpenEXR's "Technical Introduction": name, type name, size, value, uncompressed) the
+// attribute is "svbrdf:mip_version\0int\0", a 4-byte size of 4 and a 4-byte little-endian value.
+// Returns how many it patched.
+int patch_version(const std::filesystem::path& path, std::int32_t version) {
+  std::string bytes = testing::slurp(path);
+  const std::string field("svbrdf:mip_version\0int\0\4\0\0\0", 27);
+  int patched = 0;
+  for (std::size_t at = bytes.find(field); at != std::string::npos; at = bytes.find(field, at + field.size())) {
+    std::memcpy(bytes.data() + at + field.size(), &version, 4);
+    ++patched;
+  }
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+  return patched;
+}
+
+// A valid MIP file whose version field says one less or one more than this build's is refused, by the
+// library and by the programs (exit 2), with one line naming the file, its version, the version this
+// build reads and the command that rebuilds it; with the field restored it reads again.
+TEST(MipFile, RefusesTheVersionsBeforeAndAfterItsOwnWithTheWayToRebuild) {
+  testing::TempDir dir;
+  const MipData mip = build_mip(synthetic::tray(8));
+  const auto path = dir / "tray.exr";
+  write_mip_file(path, mip);
+  for (const int version : {kMipFileVersion - 1, kMipFileVersion + 1}) {
+    SCOPED_TRACE("version " + std::to_string(version));
+    ASSERT_EQ(patch_version(path, version), mip.levels()) << "every part's header holds the version";
+    const std::string want = other_version_message(path, version);
+    EXPECT_EQ(read_error(path), want);
+    EXPECT_EQ(want.find('\n'), std::string::npos);
+    const testing::CommandResult r = testing::run_command(
+        std::string("'") + SVBRDF_BAKE + "' eval '" + path.string() + "' --level 1 --texel 0 0 --mode brdf", dir.path(),
+        "0 0 1 0 0 1\n");
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_EQ(r.out, "");
+    EXPECT_NE(r.err.find(want), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  ASSERT_EQ(patch_version(path, kMipFileVersion), mip.levels());
+  EXPECT_TRUE(same_bits(read_mip_file(path).brdf.level(1).all_lobes(), mip.brdf.level(1).all_lobes()));
 }
 
 // Calls f(input, level, spec, texels, the level's pixels as floats) for each level of a MIP file.
@@ -186,10 +234,8 @@ void write_levels(const std::filesystem::path& to, const std::vector<OIIO::Image
 }
 
 // Copies a MIP file level by level, in every channel's own format or (all_float) every channel as a
-// float — what `oiiotool -a -d float` makes of it — and without the attribute `drop` (if named), as
-// `version` (if > 0).
-void copy_mip_file(const std::filesystem::path& from, const std::filesystem::path& to, bool all_float, const char* drop,
-                   int version = 0) {
+// float — what `oiiotool -a -d float` makes of it — and without the attribute `drop` (if named).
+void copy_mip_file(const std::filesystem::path& from, const std::filesystem::path& to, bool all_float, const char* drop) {
   std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(from.string());
   ASSERT_TRUE(in);
   std::vector<OIIO::ImageSpec> specs;
@@ -201,7 +247,6 @@ void copy_mip_file(const std::filesystem::path& from, const std::filesystem::pat
     ASSERT_TRUE(in->read_image(level, 0, 0, s.nchannels, format, px.data()));
     if (all_float) s.set_format(OIIO::TypeDesc::FLOAT), s.channelformats.clear();
     if (drop) s.erase_attribute(drop);
-    if (version > 0) s.attribute("svbrdf:mip_version", version);
     specs.push_back(s);
     pixels.push_back(std::move(px));
   }
@@ -231,20 +276,12 @@ TEST(MipFile, RefusesCodesConvertedToFloatAndCorrectionsWithoutTheirGrid) {
             std::string::npos) << msg;
 }
 
-// Version 7 added svbrdf:radial_outer (the grid's last node, 30°); version 6's grid ended at 10° and
-// its files read on that grid. A version-7 file without the attribute is refused.
-TEST(MipFile, ReadsTheRadialGridsOuterNodeAndVersionSixsTenDegrees) {
+// The radial grid's last node is read from svbrdf:radial_outer (30°); a file without it is refused.
+TEST(MipFile, ReadsTheRadialGridsOuterNode) {
   testing::TempDir dir;
   const MipData mip = build_mip(generate_material(MaterialRecipe{"metal-tray", "steel", 32, 24}).texels);
   write_mip_file(dir / "tray.exr", mip);
   EXPECT_EQ(read_mip_file(dir / "tray.exr").brdf.radial_grid().outer_deg, float(RadialGrid::kOuterDeg));
-  copy_mip_file(dir / "tray.exr", dir / "v6.exr", false, "svbrdf:radial_outer", 6);
-  const MipData v6 = read_mip_file(dir / "v6.exr");
-  EXPECT_EQ(v6.brdf.radial_grid().outer_deg, 10.0f);
-  EXPECT_EQ(v6.brdf.radial_grid().inner, mip.brdf.radial_grid().inner);
-  const RadialCorrection* c = v6.brdf.correction(kFirstCorrectedLevel, 0, 0);
-  ASSERT_NE(c, nullptr);
-  EXPECT_EQ(std::memcmp(c, mip.brdf.correction(kFirstCorrectedLevel, 0, 0), sizeof(RadialCorrection)), 0);
   copy_mip_file(dir / "tray.exr", dir / "noouter.exr", false, "svbrdf:radial_outer");
   const std::string msg = read_error(dir / "noouter.exr");
   EXPECT_NE(msg.find("noouter.exr"), std::string::npos) << msg;
@@ -253,8 +290,8 @@ TEST(MipFile, ReadsTheRadialGridsOuterNodeAndVersionSixsTenDegrees) {
 
 // A lobe's normal decoded from its N.dir code and N.deficit as mip_file.h documents them, independently
 // of stored_normal.cpp: signed 16-bit codes q (x low, y high), c = q/32767, the octahedral coordinate
-// p = c·(1/16 + (15/16)|c|) in version 8 and p = c in versions 6 and 7, the lower half folded over the
-// diagonals.
+// p = c·(1/16 + (15/16)|c|) (warped; p = c is the plain octahedral code), the lower half folded over
+// the diagonals.
 glm::dvec3 documented_normal(std::uint32_t code, float deficit, bool warped) {
   const auto coordinate = [&](std::uint16_t bits) {
     const double c = std::clamp(static_cast<std::int16_t>(bits) / 32767.0, -1.0, 1.0);
@@ -266,14 +303,13 @@ glm::dvec3 documented_normal(std::uint32_t code, float deficit, bool warped) {
   return glm::normalize(d) * (1.0 - deficit);
 }
 
-// Version 8 warps the normals' codes toward the pole (stored_normal.h); a version-7 file's codes read on
-// the linear map. The same codes, relabelled as version 7, must read as the linear decoding.
-TEST(MipFile, ReadsNormalCodesAsTheirVersionWroteThem) {
+// The normals' codes read as mip_file.h documents them: warped toward the pole (stored_normal.h). Enough
+// of the tray's lobes are off the pole that the warped and the plain octahedral decodings differ.
+TEST(MipFile, ReadsNormalCodesAsDocumented) {
   testing::TempDir dir;
   const MipData mip = build_mip(generate_material(MaterialRecipe{"metal-tray", "steel", 32, 24}).texels);
   write_mip_file(dir / "tray.exr", mip);
-  copy_mip_file(dir / "tray.exr", dir / "v7.exr", false, nullptr, 7);
-  const MipData v8 = read_mip_file(dir / "tray.exr"), v7 = read_mip_file(dir / "v7.exr");
+  const MipData back = read_mip_file(dir / "tray.exr");
   int compared = 0, differ = 0;
   for_each_level(dir / "tray.exr", [&](OIIO::ImageInput& in, int level, const OIIO::ImageSpec& src, std::size_t texels,
                                        const std::vector<float>& all) {
@@ -289,236 +325,15 @@ TEST(MipFile, ReadsNormalCodesAsTheirVersionWroteThem) {
       const std::uint32_t code = codes[at + static_cast<std::size_t>(dir_channel)];
       const float deficit = all[at + static_cast<std::size_t>(deficit_channel)];
       const int i = static_cast<int>(t % static_cast<std::size_t>(width)), j = static_cast<int>(t / static_cast<std::size_t>(width));
-      const glm::dvec3 n8(v8.brdf.texel(level, i, j)[0].normal), n7(v7.brdf.texel(level, i, j)[0].normal);
-      const glm::dvec3 want8 = documented_normal(code, deficit, true), want7 = documented_normal(code, deficit, false);
-      ASSERT_LT(glm::length(n8 - want8), 2e-7) << "level " << level << " texel " << t;
-      ASSERT_LT(glm::length(n7 - want7), 2e-7) << "level " << level << " texel " << t;
+      const glm::dvec3 n(back.brdf.texel(level, i, j)[0].normal);
+      const glm::dvec3 want = documented_normal(code, deficit, true), plain = documented_normal(code, deficit, false);
+      ASSERT_LT(glm::length(n - want), 2e-7) << "level " << level << " texel " << t;
       ++compared;
-      differ += glm::length(want8 - want7) > 1e-6;
+      differ += glm::length(want - plain) > 1e-6;
     }
   });
   EXPECT_GT(compared, 100);
   EXPECT_GT(differ, 0) << "no lobe's normal is off the pole: the two decodings cannot be told apart here";
-}
-
-// Rewrites a version-6 or -7 MIP file (their lobes are alike) as version 5 wrote it: the lobes' normals as three floats (N.X, N.Y,
-// N.Z) where version 6 has an octahedral code and a length deficit (stored_normal.h), no radial
-// corrections.
-void write_as_version5(const std::filesystem::path& from, const std::filesystem::path& to) {
-  std::vector<OIIO::ImageSpec> specs;
-  std::vector<std::vector<float>> pixels;
-  for_each_level(from, [&](OIIO::ImageInput& in, int level, const OIIO::ImageSpec& src, std::size_t texels,
-                           const std::vector<float>& all) {
-    // The codes, read as what they are (a float holds 24 bits of one).
-    std::vector<std::uint32_t> codes(texels * static_cast<std::size_t>(src.nchannels));
-    ASSERT_TRUE(in.read_image(level, 0, 0, src.nchannels, OIIO::TypeDesc::UINT, codes.data()));
-    OIIO::ImageSpec dst = src;
-    dst.channelnames.clear();
-    dst.channelformats.clear();
-    dst.erase_attribute("svbrdf:radial_inner");
-    dst.erase_attribute("svbrdf:radial_outer");
-    dst.attribute("svbrdf:mip_version", 5);
-    // Each output channel: a source channel, or component `axis` of the normal whose code and deficit
-    // are in channels `from` and `deficit`.
-    struct Out {
-      int from;
-      int deficit = -1;
-      int axis = -1;
-    };
-    std::vector<Out> outs;
-    const auto find_channel = [&](const std::string& want) {
-      for (int k = 0; k < src.nchannels; ++k)
-        if (src.channelnames[static_cast<std::size_t>(k)] == want) return k;
-      return -1;
-    };
-    for (int c = 0; c < src.nchannels; ++c) {
-      const std::string& name = src.channelnames[static_cast<std::size_t>(c)];
-      if (name.rfind("radial.", 0) == 0 || (name.size() > 10 && name.compare(name.size() - 10, 10, ".N.deficit") == 0)) continue;
-      if (name.size() > 6 && name.compare(name.size() - 6, 6, ".N.dir") == 0) {
-        const std::string lobe = name.substr(0, name.size() - 6);
-        ASSERT_EQ(src.channelformat(c), OIIO::TypeDesc::UINT) << name;
-        const int deficit = find_channel(lobe + ".N.deficit");
-        ASSERT_GE(deficit, 0);
-        for (int axis = 0; axis < 3; ++axis) {
-          outs.push_back({c, deficit, axis});
-          dst.channelnames.push_back(lobe + ".N." + "XYZ"[axis]);
-          dst.channelformats.push_back(OIIO::TypeDesc::FLOAT);
-        }
-        continue;
-      }
-      outs.push_back({c});
-      dst.channelnames.push_back(name);
-      dst.channelformats.push_back(src.channelformat(c));
-    }
-    dst.nchannels = static_cast<int>(outs.size());
-    std::vector<float> kept(texels * outs.size());
-    for (std::size_t t = 0; t < texels; ++t)
-      for (std::size_t k = 0; k < outs.size(); ++k) {
-        const std::size_t at = t * static_cast<std::size_t>(src.nchannels);
-        const Out& o = outs[k];
-        kept[t * outs.size() + k] =
-            o.axis < 0 ? all[at + static_cast<std::size_t>(o.from)]
-                       : load_normal(StoredNormal{codes[at + static_cast<std::size_t>(o.from)], all[at + static_cast<std::size_t>(o.deficit)]})[o.axis];
-      }
-    specs.push_back(dst);
-    pixels.push_back(std::move(kept));
-  });
-  write_levels(to, specs, pixels, OIIO::TypeDesc::FLOAT);
-}
-
-// Rewrites a version-5 MIP file as an older version wrote it: version 4 had no atoms (a mixture's shape
-// code was its span, its skirt channel 1), version 3 no skirt channel, version 2 stored a lobe's shape as
-// lobeK.alpha2_hi (float, 0: not a mixture) and lobeK.ggx (half, μ), version 1 had neither. The shape
-// code is decoded here as mip_file.h documents it: > 0 is ln(α² upper end / α²), < −1 is −(1 + that)
-// for a two-point mixture, else −μ. A mixture's atom has no place in the older versions and is dropped
-// (they read it as the band alone, β = 1).
-void write_as_older_version(const std::filesystem::path& from, const std::filesystem::path& to, int version) {
-  std::vector<OIIO::ImageSpec> specs;
-  std::vector<std::vector<float>> pixels;
-  for_each_level(from, [&](OIIO::ImageInput&, int, const OIIO::ImageSpec& src, std::size_t texels,
-                           const std::vector<float>& all) {
-    OIIO::ImageSpec dst = src;
-    dst.channelnames.clear();
-    dst.channelformats.clear();
-    // Each output channel: a source channel, α² from version 4's α, or (for version 2) a shape code's
-    // α² upper end or μ.
-    struct Out {
-      int from;
-      int alpha = -1;    // ≥ 0: the α channel, and `from` is the shape code: write the α² upper end
-      bool ggx = false;  // write μ from the shape code `from`
-      bool square = false;  // write from² (α² from α)
-      bool span = false;    // write the shape code `from` as version 4 did (a mixture's span)
-      int shape = -1;       // ≥ 0: `from` is the skirt channel and this its lobe's shape code (version 4)
-    };
-    // A shape code's mixture span (0: not a mixture).
-    const auto span_of = [](float code) { return code > 0 ? code : code < -1 ? -code - 1 : 0.0f; };
-    std::vector<Out> outs;
-    for (int c = 0; c < src.nchannels; ++c) {
-      const std::string& name = src.channelnames[static_cast<std::size_t>(c)];
-      // The index of a source channel by name (−1: none), and the source channel c kept as it is named.
-      const auto find_channel = [&](const std::string& want) {
-        for (int k = 0; k < src.nchannels; ++k)
-          if (src.channelnames[static_cast<std::size_t>(k)] == want) return k;
-        return -1;
-      };
-      const auto keep = [&](const Out& o) {
-        outs.push_back(o);
-        dst.channelnames.push_back(name);
-        dst.channelformats.push_back(src.channelformat(c));
-      };
-      // The skirt (version 4) is not in older files; version 4 wrote 1 there for mixtures.
-      if (name.size() > 6 && name.compare(name.size() - 6, 6, ".skirt") == 0) {
-        if (version == 4) {
-          Out o{c};
-          o.shape = find_channel(name.substr(0, name.size() - 6) + ".shape");
-          ASSERT_GE(o.shape, 0);
-          keep(o);
-        }
-        continue;
-      }
-      // Older versions store α² as a float where version 4 stores α as a half.
-      if (name.size() > 6 && name.compare(name.size() - 6, 6, ".alpha") == 0 && version < 4) {
-        outs.push_back({c, -1, false, true});
-        dst.channelnames.push_back(name + "2");
-        dst.channelformats.push_back(OIIO::TypeDesc::FLOAT);
-        continue;
-      }
-      if (name.size() > 6 && name.compare(name.size() - 6, 6, ".shape") == 0 && version < 3) {
-        if (version == 2) {
-          const std::string lobe = name.substr(0, name.size() - 6);
-          const int a2 = find_channel(lobe + ".alpha");
-          ASSERT_GE(a2, 0);
-          outs.push_back({c, a2, false});
-          dst.channelnames.push_back(lobe + ".alpha2_hi");
-          dst.channelformats.push_back(OIIO::TypeDesc::FLOAT);
-          outs.push_back({c, -1, true});
-          dst.channelnames.push_back(lobe + ".ggx");
-          dst.channelformats.push_back(OIIO::TypeDesc::HALF);
-        }
-        continue;
-      }
-      if (name.size() > 6 && name.compare(name.size() - 6, 6, ".shape") == 0) {
-        Out o{c};
-        o.span = true;
-        keep(o);
-        continue;
-      }
-      keep(Out{c});
-    }
-    dst.nchannels = static_cast<int>(outs.size());
-    dst.attribute("svbrdf:mip_version", version);
-    std::vector<float> kept(texels * outs.size());
-    for (std::size_t t = 0; t < texels; ++t)
-      for (std::size_t k = 0; k < outs.size(); ++k) {
-        const float* px = all.data() + t * static_cast<std::size_t>(src.nchannels);
-        const float v = px[outs[k].from];
-        float& o = kept[t * outs.size() + k];
-        if (outs[k].alpha >= 0)
-          o = span_of(v) > 0 ? static_cast<float>(double(px[outs[k].alpha] * px[outs[k].alpha]) * std::exp(double(span_of(v)))) : 0.0f;
-        else if (outs[k].square)
-          o = v * v;
-        else if (outs[k].ggx)
-          o = span_of(v) > 0 ? 1.0f : -v;
-        else if (outs[k].span)
-          o = span_of(v) > 0 ? span_of(v) : v;
-        else if (outs[k].shape >= 0)
-          o = span_of(px[outs[k].shape]) > 0 ? 1.0f : v;
-        else
-          o = v;
-      }
-    specs.push_back(dst);
-    pixels.push_back(std::move(kept));
-  });
-  write_levels(to, specs, pixels, OIIO::TypeDesc::FLOAT);
-}
-
-// Version-5 files read with their normals as stored and no radial corrections; version-4, -3 and -2
-// files with the lobe shapes they stored (mixtures without atoms; no skirt before version 4); version-1
-// files (before the lobe shapes of lobe.h) as plain GGX lobes; every other channel as stored.
-TEST(MipFile, ReadsOlderVersions) {
-  testing::TempDir dir;
-  // The fingerprinted tray at 64²: its pyramid holds every lobe shape, mixtures with atoms among them.
-  const MipData mip = build_mip(generate_material(MaterialRecipe{"metal-tray", "steel", 64, 24}).texels);
-  write_mip_file(dir / "v6.exr", mip);
-  write_as_version5(dir / "v6.exr", dir / "v5.exr");
-  int atoms = 0;
-  for (int version : {1, 2, 3, 4, 5}) {
-    std::string name = "v";  // appended, not concatenated: GCC 12 -O3 warns falsely otherwise (PR 105651)
-    name += std::to_string(version);
-    name += ".exr";
-    const auto old = dir / name;
-    if (version < 5) write_as_older_version(dir / "v5.exr", old, version);
-    const MipData back = read_mip_file(old);
-    ASSERT_EQ(back.levels(), mip.levels());
-    for (int level = 1; level < mip.levels(); ++level) EXPECT_EQ(back.brdf.correction(level, 0, 0), nullptr);
-    int shaped = 0;
-    for (int level = 1; level < mip.levels(); ++level) {
-      const std::vector<Lobe> a = mip.brdf.level(level).all_lobes();
-      const std::vector<Lobe> b = back.brdf.level(level).all_lobes();
-      ASSERT_EQ(a.size(), b.size());
-      for (std::size_t k = 0; k < a.size(); ++k) {
-        SCOPED_TRACE("version " + std::to_string(version) + " level " + std::to_string(level) + " lobe " + std::to_string(k));
-        EXPECT_EQ(b[k].weight, a[k].weight);
-        EXPECT_EQ(b[k].alpha2, a[k].alpha2);
-        EXPECT_EQ(b[k].normal, a[k].normal);
-        EXPECT_EQ(b[k].diffuse, a[k].diffuse);
-        const bool mixture = a[k].alpha2_hi > 0;
-        if (version == 1) {
-          EXPECT_EQ(b[k].alpha2_hi, 0.0f);
-          EXPECT_EQ(b[k].ggx, 1.0f);
-        } else {
-          EXPECT_EQ(b[k].alpha2_hi, a[k].alpha2_hi);
-          // Before version 5 a mixture's atom is dropped: the band alone.
-          EXPECT_EQ(b[k].ggx, mixture && version < 5 ? 1.0f : a[k].ggx);
-        }
-        EXPECT_EQ(b[k].skirt, version == 5 || (version == 4 && !mixture) ? a[k].skirt : 1.0f);
-        shaped += mixture || a[k].ggx != 1.0f;
-        atoms += version == 4 && mixture && a[k].ggx < 1.0f;
-      }
-    }
-    EXPECT_GT(shaped, 0) << "the tray's pyramid should hold shaped lobes, or this test shows nothing";
-  }
-  EXPECT_GT(atoms, 0) << "the tray's pyramid should hold mixtures with atoms, or the version-4 case shows little";
 }
 
 }  // namespace
