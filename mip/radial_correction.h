@@ -1,5 +1,6 @@
 #pragma once
-// A coarse texel's radial correction (bench/results/mip.md, eleventh and twelfth sessions).
+// A coarse texel's radial correction (docs/mip-algorithm.md, §5; its measurements in
+// bench/results/mip.md, "The radial correction").
 //
 // The reduction (lobe_reduction.h) fits each merge by moments; its errors are small per merge but
 // compound over the levels, and far away, where a pixel sees a handful of coarse texels, they show as
@@ -8,8 +9,9 @@
 // that profile averages linearly: the union's profile is the area-weighted mean of its children's.
 // So from level kFirstCorrectedLevel on, the build carries the true profile P(θ) = Σ w·F0·⟨D⟩(θ)
 // (⟨D⟩ the azimuthal mean, azimuthal_mean.h; F0 the mean of the lobe's three, since the correction is
-// of reflected light and a metal's clean and oily texels differ in it) up the pyramid exactly — at the first corrected level from its children's lobes,
-// above it as the mean of the children's true profiles — and each texel keeps the ratio
+// of reflected light and a metal's clean and oily texels differ in it) up the pyramid exactly — at the
+// first corrected level from its children's lobes, above it as the mean of the children's true
+// profiles — and each texel keeps the ratio
 //   R(θ) = P_true(θ) / P_own(θ)
 // of the true profile to its own lobes' at kNodes nodes; the specular term of each of its lobes is
 // multiplied by R(θh). The lobes keep everything else: their normals (the texel's anisotropy), colors,
@@ -24,10 +26,9 @@
 // Beyond 10° a texel's correction is gated. There the premise — that the lobes' error is radial — fails
 // where a texel's normals spread along one axis: the tile roof's isotropic lobes under-fill the plane of
 // its slopes and over-fill the rest at the same θ, and a radial ratio below 1 at 22.5° lowered its
-// highlight in that plane further (−8.3 → −9.9 % of the flux at 1024× under the 45° sun; bench/results/
-// mip.md, twelfth session). The build carries the truth's first and second azimuthal harmonics up the
-// pyramid with its profile (they average linearly too; azimuthal_fourier_d has them in closed form)
-// and compares them, relative to the profile, with the lobes' own: where the two azimuthal shapes
+// highlight in that plane further (−8.3 → −9.9 % of the flux at 1024× under the 45° sun). The build
+// carries the truth's first and second azimuthal harmonics up the pyramid with its profile (they
+// average linearly too; azimuthal_fourier_d has them in closed form) and compares them, relative to the profile, with the lobes' own: where the two azimuthal shapes
 // differ, by 2 Σₙ |tₙ − oₙ| ≥ 15 % (the ratio's first-order variation over φ), no radial correction is
 // right for every azimuth and the node keeps R = 1; below 5 % all of R; linearly between (correction_gate).
 // The gate only closes outward. On the roof it closes at the first gated node, which keeps the roof
@@ -40,7 +41,7 @@
 // mean of their normals, and which lobes merge is decided where the cost cannot see such distances.
 // On the polished tray (α ≈ 0.005) the whole-texture highlight at level 7 was 1–1.6 % too bright on
 // one side and too dark on the other at 0.1–0.3° (a shift of about 1.5e-5 rad), 76 % of its error
-// over the ±2.5° a far mirror view sees (bench/results/mip.md, fourteenth session). A tilt δ of all
+// over the ±2.5° a far mirror view sees (bench/results/mip.md, "The stored normal"). A tilt δ of all
 // the texel's lobes, fitted to those harmonics, moves that centre back; the ratio is then taken
 // against the tilted lobes. It costs no bytes (the normals hold it), but it needs the normals' code
 // to resolve steps of 1e-6 rad near the pole (stored_normal.h).

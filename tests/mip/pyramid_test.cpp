@@ -1,5 +1,6 @@
 // The parameter and BRDF pyramids: exact means, the coverage of other sizes, the union at level 1,
-// and the issue's figures on the textures module's procedural presets (textures/material_family.h).
+// and the bars of docs/mip-algorithm.md (§8) on the textures module's procedural presets
+// (textures/material_family.h).
 #include <gtest/gtest.h>
 
 #include <array>
@@ -109,7 +110,7 @@ struct PresetCase {
 };
 std::ostream& operator<<(std::ostream& os, const PresetCase& c) { return os << c.preset << ":" << c.variant; }
 
-// The issue's assertions for one preset bake (its recipe's default seed unless given).
+// The bars of docs/mip-algorithm.md (§8) for one preset bake (its recipe's default seed unless given).
 void check_preset(const PresetCase& pc, int size, std::uint64_t seed = MaterialRecipe{}.seed) {
   MaterialRecipe r;
   r.preset = pc.preset;
@@ -192,7 +193,7 @@ void check_albedo(const PresetCase& pc, int size) {
 
 class Presets : public ::testing::TestWithParam<PresetCase> {};
 
-TEST_P(Presets, BrdfMeetsTheIssueFigures) { check_preset(GetParam(), 256); }
+TEST_P(Presets, BrdfMeetsTheBars) { check_preset(GetParam(), 256); }
 TEST_P(Presets, DirectionalAlbedoWithinOnePercent) { check_albedo(GetParam(), 64); }
 
 INSTANTIATE_TEST_SUITE_P(DefaultVariants, Presets,
@@ -210,7 +211,7 @@ namespace {
 // albedo at 128².
 class LongPresets : public ::testing::TestWithParam<PresetCase> {};
 
-TEST_P(LongPresets, BrdfMeetsTheIssueFigures) {
+TEST_P(LongPresets, BrdfMeetsTheBars) {
   if (!std::getenv("SVBRDF_LONG")) GTEST_SKIP() << "set SVBRDF_LONG=1 (ctest -L long)";
   check_preset(GetParam(), 256);
 }
@@ -219,13 +220,13 @@ TEST_P(LongPresets, DirectionalAlbedoWithinOnePercent) {
   check_albedo(GetParam(), 128);
 }
 
-// The honed granites with other seeds (issue 5's figures hold for every texture, not one). Disabled:
+// The honed granites with other seeds (the bars should hold for every texture, not one). Disabled:
 // e_mean exceeds 0.05 for about a third of the seeds at 256² — pink 0.087, 0.095, 0.069 (seeds 4, 8,
 // 12), gray 0.058, 0.074, 0.054, 0.072 (4, 8, 9, 12) — at the grazing mirror pairs, where a merged
 // lobe's one normal cannot stand for members of different sharpness tilted toward and away from
-// the light (bench/results/mip.md, "2026-11-23, fourth session"). Run it with
+// the light (bench/results/mip.md, "Presets"). Run it with
 // --gtest_also_run_disabled_tests.
-TEST(OtherSeeds, DISABLED_HonedGraniteMeetsTheIssueFigures) {
+TEST(OtherSeeds, DISABLED_HonedGraniteMeetsTheBars) {
   for (std::uint64_t seed = 2; seed <= 12; ++seed)
     for (const char* variant : {"gray", "pink"}) check_preset(PresetCase{"granite", variant}, 256, seed);
 }

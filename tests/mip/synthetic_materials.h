@@ -1,6 +1,6 @@
 #pragma once
-// Small synthetic level-0 materials for the MIP tests, each a hard case of the issue in miniature and
-// each defined by formulas (not by the code under test):
+// Small synthetic level-0 materials for the MIP tests, each a hard case of the BRDF pyramid in
+// miniature and each defined by formulas (not by the code under test):
 //   bimodal       — the spec's worked example: a flat metal, 80 % α = 0.05 and 20 % α = 0.4 texels;
 //   tray          — metal-tray-like: polished steel (α ≈ 0.05–0.1) with rough fingerprint whorls;
 //   painted_wall  — a white dielectric paint, roughness 0.7, on bumps from a height field;
