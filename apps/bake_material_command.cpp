@@ -13,7 +13,7 @@
 #include "apps/bake_commands.h"
 #include "textures/color.h"
 #include "textures/material_family.h"
-#include "textures/texture_set.h"
+#include "scenes/texture_set.h"
 
 namespace svbrdf {
 

@@ -11,7 +11,7 @@
 #include "textures/material_family.h"
 #include "textures/material_loader.h"
 #include "textures/sampler.h"
-#include "textures/texture_set.h"
+#include "scenes/texture_set.h"
 
 namespace svbrdf {
 namespace {

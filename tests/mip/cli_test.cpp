@@ -16,7 +16,7 @@
 #include "tests/common/run_command.h"
 #include "textures/image.h"
 #include "textures/material_loader.h"
-#include "textures/texture_set.h"
+#include "scenes/texture_set.h"
 #include "textures/normal_map.h"
 
 namespace svbrdf {

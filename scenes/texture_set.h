@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <string>
 
+#include "gltf/writer.h"
 #include "textures/material_family.h"
 
 namespace svbrdf {
@@ -26,7 +27,8 @@ TextureSetFiles write_texture_set(const ProceduralMaterial& material, const std:
 TextureSetFiles bake_material(const MaterialRecipe& recipe, const std::filesystem::path& dir,
                               const ColorConfig& color = ColorConfig::builtin(), const ProgressFn& progress = {});
 
-// The glTF JSON of the quad, image URIs relative to the .gltf (the file names of `files`).
-std::string material_quad_gltf(const ProceduralMaterial& material, const TextureSetFiles& files);
+// The glTF of the quad (the one glTF writer, gltf/writer.h), image URIs relative to the .gltf (the
+// file names of `files`).
+GltfWriter material_quad_gltf(const ProceduralMaterial& material, const TextureSetFiles& files);
 
 }  // namespace svbrdf

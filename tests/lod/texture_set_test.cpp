@@ -1,6 +1,6 @@
 // Baked texture sets: byte-identical per seed, read back as the generator's texels, a quad of the
 // preset's physical size, and valid glTF by the Khronos validator.
-#include "textures/texture_set.h"
+#include "scenes/texture_set.h"
 
 #include <gtest/gtest.h>
 
@@ -10,6 +10,7 @@
 #include <iterator>
 
 #include "base/error.h"
+#include "base/json.h"
 #include "tests/common/temp_dir.h"
 #include "textures/material_loader.h"
 
@@ -71,13 +72,19 @@ TEST(TextureSet, BakedFilesLoadAsTheGeneratedTexels) {
 
 TEST(TextureSet, QuadHasThePresetsPhysicalSize) {
   const ProceduralMaterial m = generate_material(MaterialRecipe{"metal-tray", "silver", 64, 1, 0.0});
-  const std::string json = material_quad_gltf(m, TextureSetFiles{"t.gltf", "b.png", "mr.png", "n.png"});
+  const Json doc = material_quad_gltf(m, TextureSetFiles{"t.gltf", "b.png", "mr.png", "n.png"}).document("t.bin");
   // 64 texels × 0.08 mm = 5.12 mm: corners at ±2.56 mm = ±0.00256 m.
-  EXPECT_NE(json.find("\"max\": [0.00256,0.00256,0]"), std::string::npos) << json;
-  EXPECT_NE(json.find("\"min\": [-0.00256,-0.00256,0]"), std::string::npos);
-  EXPECT_NE(json.find("\"uri\": \"b.png\""), std::string::npos);
-  EXPECT_NE(json.find("\"side_mm\": 5.12"), std::string::npos);
-  EXPECT_NE(json.find("\"variant\": \"silver\""), std::string::npos);
+  const int position = doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"].get<int>();
+  const Json& accessor = doc["accessors"][std::size_t(position)];
+  for (int c = 0; c < 2; ++c) {
+    EXPECT_NEAR(accessor["max"][std::size_t(c)].get<double>(), 0.00256, 1e-9) << doc.dump();
+    EXPECT_NEAR(accessor["min"][std::size_t(c)].get<double>(), -0.00256, 1e-9);
+  }
+  EXPECT_EQ(accessor["max"][2].get<double>(), 0.0);
+  EXPECT_EQ(doc["images"][0]["uri"], "b.png");
+  const Json& extras = doc["materials"][0]["extras"]["svbrdf"];
+  EXPECT_NEAR(extras["side_mm"].get<double>(), 5.12, 1e-12);
+  EXPECT_EQ(extras["variant"], "silver");
 }
 
 TEST(TextureSet, BadInputWritesNothing) {
