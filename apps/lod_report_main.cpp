@@ -6,15 +6,13 @@
 
 #include <climits>
 #include <cstdio>
-#include <exception>
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "apps/run_program.h"
 #include "base/cli_checks.h"
-#include "base/error.h"
 #include "base/interrupt.h"
-#include "base/message_line.h"
 #include "lod/comparison.h"
 #include "lod/report.h"
 #include "scenes/lod_scenes.h"
@@ -66,12 +64,7 @@ int main(int argc, char** argv) {
   app.add_option("--filter", filters, "filters to compare (default: param toksvig vmf brdf)");
   app.add_option("--ocio-config", ocio, "OpenColorIO config for the report's PNGs (default: $OCIO, else the built-in one)");
   app.add_flag("-q,--quiet", quiet, "no progress lines");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return svbrdf::cli::parse_failure(app, e, "svbrdf-lod-report");
-  }
-  try {
+  return svbrdf::run_program("svbrdf-lod-report", app, argc, argv, [&] {
     const svbrdf::ColorConfig color =
         svbrdf::ColorConfig::resolve(ocio.empty() ? std::nullopt : std::optional<fs::path>(ocio));
     const fs::path manifest_path = manifest.empty() ? default_manifest(argv[0]) : fs::path(manifest);
@@ -92,11 +85,5 @@ int main(int argc, char** argv) {
     const fs::path index = svbrdf::write_lod_report(results, m, out, info, color);
     if (!quiet) std::fprintf(stderr, "svbrdf-lod-report: wrote %s (%.0f s)\n", index.c_str(), results.seconds);
     return 0;
-  } catch (const svbrdf::Error& e) {
-    std::fprintf(stderr, "svbrdf-lod-report: %s\n", svbrdf::message_line(e.what()).c_str());
-    return e.exit_code();
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "svbrdf-lod-report: internal error: %s\n", svbrdf::message_line(e.what()).c_str());
-    return 1;
-  }
+  });
 }
