@@ -1,5 +1,5 @@
 // `svbrdf-bake material PRESET [--variant V] [--size N] [--seed S] [--mm-per-texel X]
-// [--ocio-config FILE] --out DIR`: a procedural material's glTF texture set (textures/texture_set.h).
+// [--ocio-config FILE] --out DIR`: a procedural material's glTF texture set (scenes/texture_set.h).
 #include <CLI/CLI.hpp>
 
 #include <chrono>

@@ -2,7 +2,7 @@
 // A glTF scene as the renderer holds it (DESIGN.md, "Data through the house", step 1): triangle
 // meshes with their vertex attributes already decoded and checked, instances of them with their
 // world transforms, materials, textures and their images, cameras and punctual lights, all in world
-// space. Built by load_gltf (render/gltf_loader.h); nothing in it refers back to tinygltf.
+// space. Built by load_gltf (gltf/scene_reader.h); nothing in it refers back to tinygltf.
 #include <cstdint>
 #include <filesystem>
 #include <string>
