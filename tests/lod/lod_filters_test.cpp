@@ -4,7 +4,7 @@
 // 1/√spp of its pixel, so at 256 spp k × d₁ reads MIP level log₂ k − 4: the tests go to 4096×, the
 // first distance that reads the coarsest level (coarsest_level_distance). The noise floor is the
 // relative MSE between two ground-truth renders (--filter level0) that differ only in their seed;
-// filters render with a third seed (scenes/lod_comparison.h).
+// filters render with a third seed (lod/comparison.h).
 //
 // A filter the renderer does not offer makes these tests skip with a message naming it: they test
 // the MIP filters, and a level0 stand-in would prove nothing.
