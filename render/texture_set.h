@@ -2,15 +2,15 @@
 // The scene's textures ready for lookups at shading time, through the textures module: color images
 // (base color, emissive, specular color) converted sRGB → scene-linear once by its OpenColorIO
 // config, data images kept raw; lookups by its sampler (textures/sampler.h) with the glTF sampler's
-// wrap modes and the slot's KHR_texture_transform. The `level0` filter of issue 6 is the nearest
-// texel at the exact uv. Allocation-free and thread-safe after construction.
+// wrap modes and the slot's KHR_texture_transform. The `level0` texture filter is the nearest texel
+// at the exact uv. Allocation-free and thread-safe after construction.
 //
 // The fast path: most glTF textures are 8-bit PNG or JPEG, whose decoded floats take 256 values per
 // channel. Such an image is also kept as 8-bit codes (4 bytes a texel instead of 16) with a table per
 // channel from code to the float the image holds — and to the float its linearized copy holds,
 // checked texel by texel while the table is made, so lookups return exactly what textures/sampler.h's
-// nearest lookup of the float images returns, from a quarter of the memory traffic. Wrap repeat on a
-// power-of-two side is a mask.
+// nearest lookup of the float images returns, from a quarter of the memory traffic: both read their
+// texel through the sampler's nearest_texel_index. Wrap repeat on a power-of-two side is a mask.
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -21,21 +21,9 @@
 
 #include "gltf/scene.h"
 #include "textures/color.h"
+#include "textures/sampler.h"
 
 namespace svbrdf {
-
-// The texel index along one axis of n texels that coordinate t (texture space, after any transform)
-// falls in under a wrap mode, exactly as textures/sampler.h's nearest lookup reads it (far-out and
-// non-finite coordinates brought near first). `mask` = n − 1 when the mode is repeat and n a power
-// of two (a fast path), else −1.
-inline int nearest_texel_index(float t, int n, WrapMode mode, int mask = -1) {
-  float x = t * static_cast<float>(n);
-  if (mask >= 0 && std::fabs(x) < 16777216.0f) return static_cast<int>(std::floor(x)) & mask;
-  if (!std::isfinite(x)) x = 0.0f;
-  else if (mode == WrapMode::clamp_to_edge) x = std::min(std::max(x, -1.0f), static_cast<float>(n) + 1.0f);
-  else if (std::fabs(x) > 16777216.0f) x = std::fmod(x, static_cast<float>(2 * n));
-  return wrap_texel(static_cast<int>(std::floor(x)), n, mode);
-}
 
 class TextureSet {
  public:

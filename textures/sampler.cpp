@@ -39,23 +39,6 @@ int gltf_code(WrapMode mode) {
   return 10497;
 }
 
-int wrap_texel(int i, int n, WrapMode mode) {
-  switch (mode) {
-    case WrapMode::repeat: {
-      const int r = i % n;
-      return r < 0 ? r + n : r;
-    }
-    case WrapMode::clamp_to_edge: return i < 0 ? 0 : (i >= n ? n - 1 : i);
-    case WrapMode::mirrored_repeat: {
-      const int period = 2 * n;
-      int r = i % period;
-      if (r < 0) r += period;
-      return r < n ? r : period - 1 - r;
-    }
-  }
-  return 0;
-}
-
 glm::vec4 texel(const Image& image, int i, int j) {
   const float* p = image.pixels.data() + (std::size_t(j) * image.width + i) * image.channels;
   switch (image.channels) {
@@ -68,21 +51,10 @@ glm::vec4 texel(const Image& image, int i, int j) {
 
 glm::vec4 sample(const Image& image, const Sampler& sampler, glm::vec2 uv) {
   const int w = image.width, h = image.height;
-  // Texel space: x = u·w, texel i covers [i, i+1). Far-out coordinates are brought near the
-  // texture first so that huge or non-finite uvs cannot overflow the int conversion: repeat and
-  // mirrored repeat are periodic in 2n texels, clamp-to-edge is constant past the edges.
-  const auto to_texel_space = [](float t, int n, WrapMode mode) {
-    const float x = t * float(n);
-    if (!std::isfinite(x)) return 0.0f;
-    if (mode == WrapMode::clamp_to_edge) return std::clamp(x, -1.0f, float(n) + 1.0f);
-    return std::fabs(x) > float(1 << 24) ? std::fmod(x, float(2 * n)) : x;
-  };
-  const float x = to_texel_space(uv.x, w, sampler.wrap_s), y = to_texel_space(uv.y, h, sampler.wrap_t);
-  if (sampler.filter == FilterMode::nearest) {
-    const int i = wrap_texel(int(std::floor(x)), w, sampler.wrap_s);
-    const int j = wrap_texel(int(std::floor(y)), h, sampler.wrap_t);
-    return texel(image, i, j);
-  }
+  if (sampler.filter == FilterMode::nearest)
+    return texel(image, nearest_texel_index(uv.x, w, sampler.wrap_s),
+                 nearest_texel_index(uv.y, h, sampler.wrap_t));
+  const float x = texel_coordinate(uv.x, w, sampler.wrap_s), y = texel_coordinate(uv.y, h, sampler.wrap_t);
   // Bilinear: the four texels whose centers (i + 0.5) surround (x, y).
   const float fx = x - 0.5f, fy = y - 0.5f;
   const float x0 = std::floor(fx), y0 = std::floor(fy);

@@ -3,6 +3,7 @@
 // KHR_texture_transform. Texture space: uv (0, 0) is the image's top-left corner, u grows to the
 // right (columns i), v downward (rows j); texel (i, j) covers [i, i+1)/width × [j, j+1)/height, so
 // its center is ((i + 0.5)/width, (j + 0.5)/height). Lookups allocate nothing.
+#include <algorithm>
 #include <cmath>
 
 #include <glm/glm.hpp>
@@ -29,9 +30,66 @@ FilterMode filter_mode_from_gltf(int code, const std::string& where);  // mag or
 // The glTF code of a wrap mode (for writers).
 int gltf_code(WrapMode mode);
 
+// The wrap modes are honoured here and nowhere else: the sampler below, the renderer's level0 texel
+// fetches (nearest_texel_index) and the MIP lookups (wrap_texel with repeat, after fold_into_texture)
+// all read texel indices through these functions.
+
 // The texel index an integer texel coordinate i (any integer) reads along an axis of n texels.
-// Mirrored repeat follows OpenGL 4.6 §8.14.2: the pattern 0..n-1, n-1..0 with period 2n.
-int wrap_texel(int i, int n, WrapMode mode);
+// Mirrored repeat follows OpenGL 4.6 §8.14.2: the pattern 0..n-1, n-1..0 with period 2n. Inline:
+// the MIP lookups call it several times per hit.
+inline int wrap_texel(int i, int n, WrapMode mode) {
+  if (static_cast<unsigned>(i) < static_cast<unsigned>(n)) return i;  // inside: no division (the common case)
+  switch (mode) {
+    case WrapMode::repeat: {
+      const int r = i % n;
+      return r < 0 ? r + n : r;
+    }
+    case WrapMode::clamp_to_edge: return i < 0 ? 0 : n - 1;
+    case WrapMode::mirrored_repeat: {
+      const int period = 2 * n;
+      int r = i % period;
+      if (r < 0) r += period;
+      return r < n ? r : period - 1 - r;
+    }
+  }
+  return 0;
+}
+
+// Texel space along an axis of n texels: x = t·n, texel i covering [i, i+1). Far-out coordinates are
+// brought near the texture first, so that huge or non-finite ones cannot overflow an int conversion:
+// repeat and mirrored repeat are periodic in 2n texels, clamp-to-edge is constant past the edges, and
+// a non-finite coordinate reads as 0.
+inline float texel_coordinate(float t, int n, WrapMode mode) {
+  const float x = t * static_cast<float>(n);
+  if (!std::isfinite(x)) return 0.0f;
+  if (mode == WrapMode::clamp_to_edge) return std::min(std::max(x, -1.0f), static_cast<float>(n) + 1.0f);
+  return std::fabs(x) > 16777216.0f ? std::fmod(x, static_cast<float>(2 * n)) : x;
+}
+
+// The texel index along one axis of n texels that coordinate t (texture space, after any transform)
+// falls in: the nearest lookup's texel. `mask` = n − 1 when the mode is repeat and n a power of two
+// (a fast path: the same index for |t·n| < 2^24, without a division), else −1.
+inline int nearest_texel_index(float t, int n, WrapMode mode, int mask = -1) {
+  const float x = t * static_cast<float>(n);
+  if (mask >= 0 && std::fabs(x) < 16777216.0f) return static_cast<int>(std::floor(x)) & mask;
+  return wrap_texel(static_cast<int>(std::floor(texel_coordinate(t, n, mode))), n, mode);
+}
+
+// A texture coordinate made ready for a filter that only wraps with repeat, as the MIP lookups do:
+// clamp-to-edge clamps it, mirrored repeat folds it into [0, 1] and clamps, to the centres of the
+// first and last texels, so that the level-0 bilinear taps are exactly the sampler's. This is an
+// approximation at coarser levels: there a tap within half the filter's width of such an edge may
+// still come from the opposite edge, where the sampler would clamp or mirror. Repeat, and a
+// non-finite t (which the lookups handle), pass unchanged.
+inline float fold_into_texture(float t, int n, WrapMode mode) {
+  if (mode == WrapMode::repeat || !std::isfinite(t)) return t;
+  if (mode == WrapMode::mirrored_repeat) {
+    const float r = t - 2.0f * std::floor(0.5f * t);
+    t = r <= 1.0f ? r : 2.0f - r;
+  }
+  const float h = 0.5f / static_cast<float>(n);
+  return std::clamp(t, h, 1.0f - h);
+}
 
 // Per-texel access for the MIP builds and the families: (i, j) must be inside the image. Gray
 // reads as R = G = B, gray+alpha as (g, g, g, a); a missing alpha reads 1; channels past 4 are ignored.
