@@ -112,18 +112,23 @@ struct EvalOptions {
 };
 
 void run_eval(const EvalOptions& o) {
-  const std::optional<MipMode> mode = parse_mode(o.mode);
-  if (!mode) throw input_error("--mode", "unknown mode '" + o.mode + "' (exact, param, toksvig, vmf, brdf)");
+  // A mode is the reference `exact` or a filter that stores coarse texels (level0 stores none).
+  const std::optional<TextureFilter> filter = parse_filter(o.mode);
+  if (filter ? *filter == TextureFilter::level0 : o.mode != "exact")
+    throw input_error("--mode", "unknown mode '" + o.mode + "' (exact, param, toksvig, vmf, brdf)");
   resource_limits().max_texels = o.max_texels;  // before the MIP file is read
   const MipData mip = read_mip_file(o.file);
   check_texel(mip, o.level, o.texel[0], o.texel[1]);
+  const ExactReference reference(mip.level0);
   std::string line;
   long n = 0;
   while (std::getline(std::cin, line)) {
     ++n;
     glm::vec3 wi, wo;
     if (!parse_direction_line(line, n, wi, wo)) continue;
-    const glm::dvec3 f = mode_eval(mip, *mode, o.level, o.texel[0], o.texel[1], glm::dvec3(wi), glm::dvec3(wo));
+    const int i = o.texel[0], j = o.texel[1];
+    const glm::dvec3 f = filter ? texel_eval(mip, *filter, o.level, i, j, glm::dvec3(wi), glm::dvec3(wo))
+                                : reference.eval(o.level, i, j, glm::dvec3(wi), glm::dvec3(wo));
     std::printf("%.9g %.9g %.9g\n", f.r, f.g, f.b);
   }
 }

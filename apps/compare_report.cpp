@@ -30,7 +30,7 @@ std::string comparison_table(const std::vector<LevelComparison>& levels, int sub
     for (const ModeLevelStats& m : l.modes) {
       const std::string size = std::to_string(l.extent.width) + "x" + std::to_string(l.extent.height);
       const std::string texels = l.subset ? std::to_string(l.measured) + " random" : "all " + std::to_string(l.measured);
-      const std::string_view mode = mode_name(m.mode);
+      const std::string_view mode = filter_name(m.mode);
       s += format("%-5d %-11s %-15s %-8.*s %10.4f %10.4f %10.4f %10.4f %8d\n", l.level, size.c_str(), texels.c_str(),
                   int(mode.size()), mode.data(), m.erel_mean, m.erel_max, m.elog_mean, m.emean, m.bytes_per_texel);
     }
@@ -50,7 +50,7 @@ std::string comparison_json(const std::vector<LevelComparison>& levels, int subs
                     {"e_log", six_digits(m.elog_mean)},
                     {"e_mean", six_digits(m.emean)},
                     {"bytes_per_texel", m.bytes_per_texel}};
-      modes[std::string(mode_name(m.mode))] = std::move(stats);
+      modes[std::string(filter_name(m.mode))] = std::move(stats);
     }
     rows.push_back({{"level", l.level},
                     {"width", l.extent.width},

@@ -21,6 +21,7 @@
 #include "base/message_line.h"
 #include "base/resource_limits.h"
 #include "gltf/scene_reader.h"
+#include "mip/texture_filter.h"
 #include "render/output.h"
 #include "render/progress.h"
 #include "render/render_setup.h"

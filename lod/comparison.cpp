@@ -10,8 +10,8 @@
 #include "base/error.h"
 #include "render/camera.h"
 #include "gltf/scene_reader.h"
+#include "mip/texture_filter.h"
 #include "render/lights.h"
-#include "render/material_mips.h"
 #include "render/render_setup.h"
 #include "render/renderer.h"
 

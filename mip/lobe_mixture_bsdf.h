@@ -1,7 +1,7 @@
 #pragma once
-// A texel's mixture of lobes (lobe.h) as a Bsdf the integrator can evaluate and sample: what the
-// BRDF pyramid's lookup returns (mip_lookup.h). Directions are in the geometric tangent frame (z =
-// the surface's interpolated normal, before any normal map): the lobes carry their own normals.
+// A texel's mixture of lobes (lobe.h) as a Bsdf the integrator can evaluate and sample: what the MIP
+// lookups fill (mip.h). Directions are in the geometric tangent frame (z = the surface's
+// interpolated normal, before any normal map): the lobes carry their own normals.
 //
 // A value type: it copies the texel's lobes (at most kMaxLobes) and their shapes in, so it allocates
 // nothing, outlives the lookup freely and is safe to use from any thread.
@@ -45,6 +45,13 @@ class LobeMixtureBsdf final : public Bsdf {
 
   int size() const { return count_; }
   const Lobe& lobe(int k) const { return slot(k).lobe; }
+  // The weighted sum of the lobes' normals, unnormalized (zero when there is no lobe): the shading
+  // normal the mixture stands for, once normalized (the normal AOV).
+  glm::vec3 mean_normal() const {
+    glm::vec3 n(0.0f);
+    for (int k = 0; k < count_; ++k) n += slot(k).lobe.weight * slot(k).lobe.normal;
+    return n;
+  }
 
   Rgb eval(const glm::vec3& wi, const glm::vec3& wo) const override;
   BsdfSample sample(const glm::vec3& wo, const SampleU& u) const override;

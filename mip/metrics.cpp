@@ -66,7 +66,7 @@ double texel_area(Extent e0, int level, int i, int j) {
 }
 
 // The area-weighted mean F of a whole level under a mode (not exact).
-BrdfTable level_mean(const MipData& mip, MipMode mode, int level) {
+BrdfTable level_mean(const MipData& mip, TextureFilter mode, int level) {
   const Extent e = mip.extent(level), e0 = mip.extent(0);
   const double total = static_cast<double>(e0.width) * e0.height;
   BrdfTable sum = tbb::parallel_deterministic_reduce(
@@ -76,13 +76,10 @@ BrdfTable level_mean(const MipData& mip, MipMode mode, int level) {
         for (int t = r.begin(); t < r.end(); ++t) {
           const int i = t % e.width, j = t / e.width;
           const double w = texel_area(e0, level, i, j) / total;
-          if (mode == MipMode::brdf) {
+          if (mode == TextureFilter::brdf) {
             accumulate_brdf_texel(mip, level, i, j, w, acc);
           } else {
-            const ParamBaseline b = mode == MipMode::toksvig ? ParamBaseline::toksvig
-                                    : mode == MipMode::vmf   ? ParamBaseline::vmf
-                                                             : ParamBaseline::param;
-            accumulate_lobe_float(param_lobe(mip.param.texel(level, i, j), b), w, acc);
+            accumulate_lobe_float(param_lobe(mip.param.texel(level, i, j), mode), w, acc);
           }
         }
         return acc;
@@ -104,6 +101,8 @@ std::vector<LevelComparison> compare_levels(const MipData& mip, const CompareOpt
   if (first < 0 || last >= n || first > last)
     throw input_error("--levels", std::to_string(first) + ".." + std::to_string(last) +
                                       " is not a range of the file's levels 0.." + std::to_string(n - 1));
+  for (TextureFilter mode : o.modes)
+    if (mode == TextureFilter::level0) throw input_error("level0", "stores no coarse texel to compare");
   const Extent e0 = mip.extent(0);
   const ExactReference exact(mip.level0);
   auto count = [&](int level) { return mip.extent(level).width * mip.extent(level).height; };
@@ -152,14 +151,14 @@ std::vector<LevelComparison> compare_levels(const MipData& mip, const CompareOpt
       ref[k] = level >= full ? full_tables[static_cast<std::size_t>(level)][static_cast<std::size_t>(t)]
                              : exact.table(level, t % lc.extent.width, t / lc.extent.width);
     });
-    for (MipMode mode : o.modes) {
+    for (TextureFilter mode : o.modes) {
       ModeLevelStats s;
       s.mode = mode;
-      s.bytes_per_texel = mode_bytes_per_texel(mip, mode, level);
+      s.bytes_per_texel = bytes_per_texel(mip, mode, level);
       std::vector<double> er(texels.size()), el(texels.size());
       tbb::parallel_for(std::size_t(0), texels.size(), [&](std::size_t k) {
         const int t = texels[k];
-        const BrdfTable approx = mode == MipMode::exact ? ref[k] : mode_table(mip, mode, level, t % lc.extent.width, t / lc.extent.width);
+        const BrdfTable approx = texel_table(mip, mode, level, t % lc.extent.width, t / lc.extent.width);
         er[k] = e_rel(approx, ref[k]);
         el[k] = e_log(approx, ref[k]);
       });
@@ -170,12 +169,7 @@ std::vector<LevelComparison> compare_levels(const MipData& mip, const CompareOpt
       }
       s.erel_mean /= static_cast<double>(texels.size());
       s.elog_mean /= static_cast<double>(texels.size());
-      if (mode == MipMode::exact) {
-        // The exact level mean is the texture mean (up to rounding), by construction.
-        s.emean = 0;
-      } else {
-        s.emean = e_rel(level_mean(mip, mode, level), texture_mean);
-      }
+      s.emean = e_rel(level_mean(mip, mode, level), texture_mean);
       lc.modes.push_back(s);
     }
     out.push_back(std::move(lc));

@@ -25,8 +25,10 @@ namespace svbrdf {
 double e_rel(const BrdfTable& approx, const BrdfTable& exact);
 double e_log(const BrdfTable& approx, const BrdfTable& exact);
 
+// One mode's figures at a level: the spec's word for a way to answer for a coarse texel; here a
+// filter that stores texels (param, toksvig, vmf, brdf), measured against `exact`.
 struct ModeLevelStats {
-  MipMode mode = MipMode::param;
+  TextureFilter mode = TextureFilter::param;
   double erel_mean = 0, erel_max = 0, elog_mean = 0, emean = 0;
   int bytes_per_texel = 0;
 };
@@ -44,10 +46,11 @@ struct CompareOptions {
   int last_level = -1;  // -1: the last level
   int subset = 256;
   std::uint64_t seed = 1;
-  std::vector<MipMode> modes{MipMode::param, MipMode::toksvig, MipMode::vmf, MipMode::brdf};
+  std::vector<TextureFilter> modes{TextureFilter::param, TextureFilter::toksvig, TextureFilter::vmf,
+                                   TextureFilter::brdf};
 };
 
-// Throws svbrdf::Error (bad input) when the level range is outside the pyramid.
+// Throws svbrdf::Error (bad input) when the level range is outside the pyramid or a mode is level0.
 std::vector<LevelComparison> compare_levels(const MipData& mip, const CompareOptions& options);
 
 // The texels a level measures: all of them, or `subset` of them at random (fixed seed), sorted.

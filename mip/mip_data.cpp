@@ -6,7 +6,6 @@
 
 #include "base/error.h"
 #include "mip/direction_grid.h"
-#include "mip/exact_reference.h"
 
 namespace svbrdf {
 
@@ -21,23 +20,6 @@ MipData build_mip(MaterialTexels level0, const BrdfBuildOptions& options, std::v
   return d;
 }
 
-std::string_view mode_name(MipMode m) {
-  switch (m) {
-    case MipMode::exact: return "exact";
-    case MipMode::param: return "param";
-    case MipMode::toksvig: return "toksvig";
-    case MipMode::vmf: return "vmf";
-    case MipMode::brdf: return "brdf";
-  }
-  return "?";
-}
-
-std::optional<MipMode> parse_mode(std::string_view name) {
-  for (MipMode m : {MipMode::exact, MipMode::param, MipMode::toksvig, MipMode::vmf, MipMode::brdf})
-    if (name == mode_name(m)) return m;
-  return std::nullopt;
-}
-
 void check_texel(const MipData& mip, int level, int i, int j) {
   if (level < 0 || level >= mip.levels())
     throw input_error("--level", "level " + std::to_string(level) + " is out of range (the file has levels 0.." +
@@ -48,12 +30,6 @@ void check_texel(const MipData& mip, int level, int i, int j) {
                                      std::to_string(level) + " is " + std::to_string(e.width) + "x" +
                                      std::to_string(e.height) + ")");
 }
-
-namespace {
-ParamBaseline baseline_of(MipMode m) {
-  return m == MipMode::toksvig ? ParamBaseline::toksvig : m == MipMode::vmf ? ParamBaseline::vmf : ParamBaseline::param;
-}
-}  // namespace
 
 void accumulate_brdf_texel(const MipData& mip, int level, int i, int j, double weight, std::span<glm::dvec3> acc) {
   const RadialCorrection* c = mip.brdf.correction(level, i, j);
@@ -70,11 +46,10 @@ void accumulate_brdf_texel(const MipData& mip, int level, int i, int j, double w
   for (const Lobe& l : brdf_texel(mip, level, i, j, scratch)) accumulate_lobe_float(l, weight, acc, scales);
 }
 
-glm::dvec3 mode_eval(const MipData& mip, MipMode mode, int level, int i, int j, const glm::dvec3& wi,
-                     const glm::dvec3& wo) {
-  if (mode == MipMode::exact) return ExactReference(mip.level0).eval(level, i, j, wi, wo);
+glm::dvec3 texel_eval(const MipData& mip, TextureFilter filter, int level, int i, int j, const glm::dvec3& wi,
+                      const glm::dvec3& wo) {
   const PairTerms<float> p = pair_terms<float>(glm::vec3(wi), glm::vec3(wo));
-  if (mode == MipMode::brdf) {
+  if (filter == TextureFilter::brdf) {
     glm::dvec3 sum(0);
     Lobe scratch;
     const RadialCorrection* c = mip.brdf.correction(level, i, j);
@@ -82,30 +57,22 @@ glm::dvec3 mode_eval(const MipData& mip, MipMode mode, int level, int i, int j, 
     for (const Lobe& l : brdf_texel(mip, level, i, j, scratch)) sum += glm::dvec3(lobe_eval<float>(l, lobe_shape<float>(l), p, k));
     return sum;
   }
-  return glm::dvec3(lobe_eval<float>(param_lobe(mip.param.texel(level, i, j), baseline_of(mode)), p));
+  return glm::dvec3(lobe_eval<float>(param_lobe(mip.param.texel(level, i, j), filter), p));
 }
 
-BrdfTable mode_table(const MipData& mip, MipMode mode, int level, int i, int j) {
-  if (mode == MipMode::exact) return ExactReference(mip.level0).table(level, i, j);
+BrdfTable texel_table(const MipData& mip, TextureFilter filter, int level, int i, int j) {
   BrdfTable t = make_table();
-  if (mode == MipMode::brdf) {
+  if (filter == TextureFilter::brdf) {
     accumulate_brdf_texel(mip, level, i, j, 1.0, t);
   } else {
-    accumulate_lobe_float(param_lobe(mip.param.texel(level, i, j), baseline_of(mode)), 1.0, t);
+    accumulate_lobe_float(param_lobe(mip.param.texel(level, i, j), filter), 1.0, t);
   }
   return t;
 }
 
-int mode_bytes_per_texel(const MipData& mip, MipMode mode, int level) {
-  switch (mode) {
-    case MipMode::brdf: return level == 0 ? ParamPyramid::kBytesPerTexel : mip.brdf.bytes_per_texel(level);
-    case MipMode::exact: {
-      const Extent e0 = mip.extent(0), e = mip.extent(level);
-      return static_cast<int>(static_cast<long long>(ParamPyramid::kBytesPerTexel) * e0.width * e0.height /
-                              (static_cast<long long>(e.width) * e.height));
-    }
-    default: return ParamPyramid::kBytesPerTexel;
-  }
+int bytes_per_texel(const MipData& mip, TextureFilter filter, int level) {
+  if (filter == TextureFilter::brdf && level > 0) return mip.brdf.bytes_per_texel(level);
+  return ParamPyramid::kBytesPerTexel;
 }
 
 }  // namespace svbrdf

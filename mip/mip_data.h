@@ -1,10 +1,8 @@
 #pragma once
 // Everything a MIP file holds for one material: the level-0 parameters (so `exact` can be computed),
 // the parameter pyramid (`param` and the engine baselines) and the BRDF pyramid (`brdf`), and the
-// ways ../shared/spec/brdf-mip.md names to answer for a texel.
-#include <optional>
+// ways ../shared/spec/brdf-mip.md names to answer for a texel (svbrdf-bake eval and compare).
 #include <span>
-#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -13,6 +11,7 @@
 #include "mip/direction_grid.h"
 #include "mip/exact_reference.h"
 #include "mip/param_pyramid.h"
+#include "mip/texture_filter.h"
 #include "textures/material_texels.h"
 
 namespace svbrdf {
@@ -40,27 +39,26 @@ inline std::span<const Lobe> brdf_texel(const MipData& mip, int level, int i, in
 MipData build_mip(MaterialTexels level0, const BrdfBuildOptions& options = {},
                   std::vector<BrdfLevelStats>* stats = nullptr, double* brdf_seconds = nullptr);
 
-// The ways to answer for a texel: the reference, the parameter pyramid and its engine baselines,
-// the BRDF pyramid.
-enum class MipMode { exact, param, toksvig, vmf, brdf };
-std::string_view mode_name(MipMode m);
-std::optional<MipMode> parse_mode(std::string_view name);
-
 // Throws svbrdf::Error (bad input) naming the level or texel when it is out of range.
 void check_texel(const MipData& mip, int level, int i, int j);
 
-// F of texel (i, j) of `level` under a mode, directions in the geometric tangent frame. `exact` is
-// double precision; the others evaluate their lobes in float, as the renderer does.
-glm::dvec3 mode_eval(const MipData& mip, MipMode mode, int level, int i, int j, const glm::dvec3& wi,
-                     const glm::dvec3& wo);
+// The spec's ways to answer for a coarse texel are the reference `exact` (ExactReference over
+// mip.level0, exact_reference.h) and the filters that store texels: param, toksvig, vmf (the
+// parameter pyramid under the filter's α widening) and brdf (the BRDF pyramid). The functions below
+// answer for the filters; `filter` must not be level0, which stores no coarse texel.
+
+// F of texel (i, j) of `level` under a filter, directions in the geometric tangent frame, its lobes
+// evaluated in float as the renderer evaluates them.
+glm::dvec3 texel_eval(const MipData& mip, TextureFilter filter, int level, int i, int j, const glm::dvec3& wi,
+                      const glm::dvec3& wo);
 // The same over the metric's 4225 pairs.
-BrdfTable mode_table(const MipData& mip, MipMode mode, int level, int i, int j);
+BrdfTable texel_table(const MipData& mip, TextureFilter filter, int level, int i, int j);
 
 // acc += weight · the BRDF pyramid's texel (level, i, j) over the direction grid's pairs, in float as
 // the renderer evaluates it, with its radial correction (radial_correction.h).
 void accumulate_brdf_texel(const MipData& mip, int level, int i, int j, double weight, std::span<glm::dvec3> acc);
 
-// Bytes per texel a mode stores at a level (exact: the level-0 parameters it reads, per covered texel).
-int mode_bytes_per_texel(const MipData& mip, MipMode mode, int level);
+// Bytes per texel a filter stores at a level.
+int bytes_per_texel(const MipData& mip, TextureFilter filter, int level);
 
 }  // namespace svbrdf

@@ -4,16 +4,11 @@
 #include <cmath>
 
 #include "base/series_log.h"
+#include "textures/sampler.h"
 
 namespace svbrdf {
 
 namespace {
-
-int wrap(int i, int n) {
-  if (static_cast<unsigned>(i) < static_cast<unsigned>(n)) return i;  // inside: no division (the common case)
-  const int r = i % n;
-  return r < 0 ? r + n : r;
-}
 
 // floor for |x| < 2^31 without a libm call (the release build targets SSE2, which has no rounding
 // instruction; these run several times per lookup).
@@ -74,7 +69,8 @@ glm::vec2 probe_uv(const FilterShape& s, int p) {
   return s.uv + ((static_cast<float>(p) + 0.5f) * kInverse[s.probes] - 0.5f) * s.major_uv;
 }
 
-// Bilinear weights of one level at uv (wrap: repeat): columns x0, x1 with fx, rows y0, y1 with fy.
+// Bilinear weights of one level at uv, wrapping with repeat (mip.h folds the other modes first):
+// columns x0, x1 with fx, rows y0, y1 with fy.
 struct Bilinear {
   int x0, x1, y0, y1;
   float fx, fy;
@@ -90,12 +86,13 @@ struct Bilinear {
   // Integer texel coordinates; far from the texture (|x| ≥ 2^24) reduce modulo the size in float first.
   auto texel = [](float v, int n) {
     if (!std::isfinite(v)) return 0;  // a uv of ±∞ or NaN has no texel; read the first
-    return wrap(std::abs(v) < 16777216.0f ? static_cast<int>(v) : static_cast<int>(std::fmod(v, static_cast<float>(n))), n);
+    const float near = std::abs(v) < 16777216.0f ? v : std::fmod(v, static_cast<float>(n));
+    return wrap_texel(static_cast<int>(near), n, WrapMode::repeat);
   };
   b.x0 = texel(fx0, e.width);
   b.y0 = texel(fy0, e.height);
-  b.x1 = b.x0 + 1 == e.width ? 0 : b.x0 + 1;
-  b.y1 = b.y0 + 1 == e.height ? 0 : b.y0 + 1;
+  b.x1 = wrap_texel(b.x0 + 1, e.width, WrapMode::repeat);
+  b.y1 = wrap_texel(b.y0 + 1, e.height, WrapMode::repeat);
   return b;
 }
 
@@ -134,6 +131,10 @@ FilterTaps filter_taps(Extent level0, int levels, const Footprint& f, int max_pr
     if (s.t > 0) add_bilinear(out, level_extent(level0, s.level + 1), s.level + 1, at, w * s.t);
   }
   return out;
+}
+
+float filter_level(Extent level0, int levels, const Footprint& f, int max_probes) {
+  return filter_shape(level0, levels, f, max_probes).lambda;
 }
 
 FilterTap select_tap(Extent level0, int levels, const Footprint& f, float u, int max_probes) {
@@ -189,8 +190,9 @@ ParamTexel filter_params(const ParamPyramid& pyramid, const Footprint& footprint
   return sum;
 }
 
-Lobe lookup_param(const ParamPyramid& pyramid, const Footprint& footprint, ParamBaseline baseline, int max_probes) {
-  return param_lobe(filter_params(pyramid, footprint, max_probes), baseline);
+Lobe lookup_param(const ParamPyramid& pyramid, const Footprint& footprint, TextureFilter filter,
+                  int max_probes) {
+  return param_lobe(filter_params(pyramid, footprint, max_probes), filter);
 }
 
 }  // namespace svbrdf

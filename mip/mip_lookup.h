@@ -1,12 +1,14 @@
 #pragma once
-// Lookups for the renderer: from a texture coordinate and its footprint (the derivatives of uv
-// along the pixel's two screen axes, from ray differentials) to a BSDF.
+// The MIP lookups under the renderer's facade (mip.h): from a texture coordinate and its footprint
+// (texture_filter.h) to the taps of the filter, to one texel of the BRDF pyramid or to filtered
+// parameters.
 //
 // The filter: trilinear MIP mapping, anisotropic with up to `max_probes` probes along the
 // footprint's major axis (the GPU scheme: the level comes from the minor axis, or from major /
 // max_probes when the footprint is more elongated than that). Each probe is bilinear on two
-// adjacent levels; wrap mode repeat (glTF's default); texel centres at (i + 0.5)/width as glTF
-// samples. At most 8 probes × 2 levels × 4 texels = 64 taps, their weights summing to 1.
+// adjacent levels; wrap mode repeat (glTF's default; textures/sampler.h wrap_texel, and
+// fold_into_texture for the other modes); texel centres at (i + 0.5)/width as glTF samples. At most
+// 8 probes × 2 levels × 4 texels = 64 taps, their weights summing to 1.
 //
 //  (1) lookup_brdf — filtering after shading (Pharr et al. 2024, "Filtering After Shading with
 //      Stochastic Texture Filtering"): one tap is chosen with probability equal to its weight and
@@ -24,14 +26,9 @@
 #include "mip/lobe_mixture_bsdf.h"
 #include "mip/mip_data.h"
 #include "mip/param_pyramid.h"
+#include "mip/texture_filter.h"
 
 namespace svbrdf {
-
-struct Footprint {
-  glm::vec2 uv{0.0f};
-  glm::vec2 duv_dx{0.0f};  // d(uv)/d(screen x)
-  glm::vec2 duv_dy{0.0f};  // d(uv)/d(screen y)
-};
 
 inline constexpr int kMaxProbes = 8;
 
@@ -51,6 +48,8 @@ struct FilterTaps {
 
 // The filter's taps over a pyramid of `levels` levels on a level-0 image of `level0` texels.
 FilterTaps filter_taps(Extent level0, int levels, const Footprint& footprint, int max_probes = kMaxProbes);
+// Their continuous level λ alone (FilterTaps::level), which depends on the footprint's axes only.
+float filter_level(Extent level0, int levels, const Footprint& footprint, int max_probes = kMaxProbes);
 
 // The tap whose cumulative weight interval contains u ∈ [0, 1).
 FilterTap select_tap(const FilterTaps& taps, float u);
@@ -63,7 +62,7 @@ LobeMixtureBsdf lookup_brdf(const MipData& mip, const Footprint& footprint, floa
 
 // (2) The trilinear-filtered parameters as one lobe (wrap it in LobeMixtureBsdf to shade).
 ParamTexel filter_params(const ParamPyramid& pyramid, const Footprint& footprint, int max_probes = kMaxProbes);
-Lobe lookup_param(const ParamPyramid& pyramid, const Footprint& footprint, ParamBaseline baseline = ParamBaseline::param,
-                  int max_probes = kMaxProbes);
+Lobe lookup_param(const ParamPyramid& pyramid, const Footprint& footprint,
+                  TextureFilter filter = TextureFilter::param, int max_probes = kMaxProbes);
 
 }  // namespace svbrdf

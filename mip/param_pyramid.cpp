@@ -11,24 +11,15 @@
 
 namespace svbrdf {
 
-std::string_view baseline_name(ParamBaseline b) {
-  switch (b) {
-    case ParamBaseline::param: return "param";
-    case ParamBaseline::toksvig: return "toksvig";
-    case ParamBaseline::vmf: return "vmf";
-  }
-  return "?";
-}
-
-Lobe param_lobe(const ParamTexel& t, ParamBaseline baseline) {
+Lobe param_lobe(const ParamTexel& t, TextureFilter filter) {
   const float r = std::min(1.0f, glm::length(t.normal));
   const glm::vec3 n = r > 0 ? t.normal / glm::length(t.normal) : glm::vec3(0, 0, 1);
   Lobe l = lobe_from_texel(t.base_color, t.metallic, t.roughness, n);
   // r == 1 (flat) widens nothing; r → 0 (normals cancel) widens to the roughest lobe.
   float widen = 0.0f;
-  if (baseline == ParamBaseline::toksvig) {
+  if (filter == TextureFilter::toksvig) {
     widen = r > 0 ? 2.0f * (1.0f - r) / r : 1.0f;
-  } else if (baseline == ParamBaseline::vmf) {
+  } else if (filter == TextureFilter::vmf) {
     const float kappa = r < 1.0f ? (3.0f * r - r * r * r) / (1.0f - r * r) : INFINITY;
     widen = kappa > 0 ? 2.0f / kappa : 1.0f;
   }
@@ -73,17 +64,37 @@ std::vector<ParamTexel> level_from_below(Extent level0, int level, const std::ve
 }  // namespace
 
 ParamPyramid ParamPyramid::build(const MaterialTexels& m) {
+  ParamPyramid p = level0_only(m);
+  p.build_coarse_levels();
+  return p;
+}
+
+ParamPyramid ParamPyramid::level0_only(const MaterialTexels& m) {
   ParamPyramid p;
   p.level0_ = {m.width, m.height};
-  const int n = level_count(p.level0_);
-  if (n == 0) return p;
+  if (level_count(p.level0_) == 0) return p;
   std::vector<ParamTexel> base(m.size());
   for (std::size_t k = 0; k < m.size(); ++k)
     base[k] = {m.base_color[k], m.metallic[k], m.roughness[k], m.normal[k]};
   p.levels_.push_back(std::move(base));
-  for (int level = 1; level < n; ++level)
-    p.levels_.push_back(level_from_below(p.level0_, level, p.levels_.back()));
   return p;
+}
+
+void ParamPyramid::build_coarse_levels() {
+  for (int level = levels(); level > 0 && level < level_count(level0_); ++level)
+    levels_.push_back(level_from_below(level0_, level, levels_.back()));
+}
+
+MaterialTexels ParamPyramid::level0_texels() const {
+  MaterialTexels m(level0_.width, level0_.height);
+  if (levels_.empty()) return m;
+  const std::vector<ParamTexel>& base = levels_.front();
+  for (std::size_t k = 0; k < base.size(); ++k) {
+    const ParamTexel& t = base[k];
+    m.base_color[k] = t.base_color, m.metallic[k] = t.metallic;
+    m.roughness[k] = t.roughness, m.normal[k] = t.normal;
+  }
+  return m;
 }
 
 ParamPyramid ParamPyramid::from_levels(Extent level0, std::vector<std::vector<ParamTexel>> levels) {

@@ -13,13 +13,13 @@
 //   `vmf` — the von Mises–Fisher fit that Filament ships: κ = (3r − r³)/(1 − r²) (Banerjee et al.
 //     2005), α² += 2/κ.
 #include <span>
-#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "mip/lobe.h"
 #include "mip/pyramid_shape.h"
+#include "mip/texture_filter.h"
 #include "textures/material_texels.h"
 
 namespace svbrdf {
@@ -31,19 +31,23 @@ struct ParamTexel {
   glm::vec3 normal{0, 0, 1};   // mean of unit normals, unnormalized (length ≤ 1)
 };
 
-enum class ParamBaseline { param, toksvig, vmf };
-// "param", "toksvig", "vmf".
-std::string_view baseline_name(ParamBaseline b);
-
-// The single lobe a parameter texel stands for under a baseline: f_eff of one glTF texel with the
-// mean parameters and normal = normalize(mean normal) (weight 1, unit normal), α widened for the
-// engine baselines.
-Lobe param_lobe(const ParamTexel& t, ParamBaseline baseline);
+// The single lobe a parameter texel stands for under a filter that reads this pyramid (param,
+// toksvig, vmf; texture_filter.h): f_eff of one glTF texel with the mean parameters and normal =
+// normalize(mean normal) (weight 1, unit normal), α widened for the engine baselines. Any other
+// filter reads as param (no widening).
+Lobe param_lobe(const ParamTexel& t, TextureFilter filter);
 
 class ParamPyramid {
  public:
   ParamPyramid() = default;
   static ParamPyramid build(const MaterialTexels& level0);
+  // Level 0 alone: the texels' parameters, one texel in one half cache line, which is all the level0
+  // filter reads. build_coarse_levels() completes the pyramid later.
+  static ParamPyramid level0_only(const MaterialTexels& level0);
+  void build_coarse_levels();
+  bool complete() const { return levels() == level_count(level0_); }
+  // Level 0 as MaterialTexels (the form the BRDF build reads): the same floats.
+  MaterialTexels level0_texels() const;
   // From stored levels (the MIP file); throws svbrdf::Error when the shapes do not form a pyramid.
   static ParamPyramid from_levels(Extent level0, std::vector<std::vector<ParamTexel>> levels);
 

@@ -5,7 +5,6 @@
 #include <optional>
 
 #include "appearance/shading.h"
-#include "mip/lobe_mixture_bsdf.h"
 #include "render/surface.h"
 #include "render/surface_bsdf.h"
 
@@ -38,13 +37,12 @@ float texture_level(const RenderWorld& w, const SurfacePoint& sp, const glm::vec
   const Extent e{size.x, size.y};
   const Footprint f = footprint(sp, r.uv_set(), dpdx, dpdy);
   const TextureTransform& t = r.transform;
-  return filter_taps(e, level_count(e), {t.apply(f.uv), t.apply_linear(f.duv_dx), t.apply_linear(f.duv_dy)}).level;
+  return mip_level(e, {t.apply(f.uv), t.apply_linear(f.duv_dx), t.apply_linear(f.duv_dy)});
 }
 
 // The shading normal a mixture stands for, for the normal AOV: the weighted mean of its lobes'.
 glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
-  glm::vec3 n(0.0f);
-  for (int k = 0; k < b.size(); ++k) n += b.lobe(k).weight * b.lobe(k).normal;
+  const glm::vec3 n = b.mean_normal();
   const float len = glm::length(n);
   return len > 0.0f ? frame.to_world(n / len) : frame.n;
 }
@@ -114,10 +112,10 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
     // environment's shadow ray below is traced while they arrive (a texel of a large texture is a
     // cache miss, most of a lookup's cost).
     Footprint fp;
-    MaterialMip::Choice choice;
+    MipTexture::Choice choice;
     if (mip) {
       fp = mip->to_texture(footprint(sp, mip->uv_set(), dpdx, dpdy));
-      choice = mip->choose(s.filter, fp, Rgb(sp.color), u_select);
+      choice = mip->texture().choose(s.filter, fp, Rgb(sp.color), u_select);
       prefetch_emission(sp, *w.textures);
     }
 
@@ -149,15 +147,13 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
     if (mip) {
       frame = geometric_frame(sp);
       emission = emission_at(sp, *w.textures);
-      Lobe scratch;
-      lobe_bsdf.assign(mip->lobes_at(choice, scratch));
-      lobe_bsdf.set_correction(mip->correction_at(choice), &mip->brdf().radial_grid());
+      mip->texture().lookup(choice, lobe_bsdf);
       bsdf = &lobe_bsdf;
       if (depth == 0 && s.aovs) {
         out.albedo = base_color_at(sp, *w.textures);
         out.normal = mean_normal(lobe_bsdf, frame);
       }
-      if (aov_footprint) out.mip_level = mip->level(fp);
+      if (aov_footprint) out.mip_level = mip->texture().level(fp);
     } else {
       apply_normal_map(sp, *w.textures);
       const ShadingParams sh = shading_params(sp, *w.textures);

@@ -42,7 +42,7 @@ struct IntegratorSettings {
   int max_depth = 16;   // scattering events; 0 renders emission and the environment only
   int rr_depth = 3;     // Russian roulette from this depth on
   LightSampling light_sampling = LightSampling::mis;
-  // Texture filtering (material_mips.h): brdf, the BRDF-averaged MIP, is svbrdf-render's default.
+  // Texture filtering (mip/texture_filter.h): brdf, the BRDF-averaged MIP, is svbrdf-render's default.
   TextureFilter filter = TextureFilter::brdf;
   // Compute the first hit's texture footprint for the MIP-level AOV. The MIP filters compute
   // footprints at every hit whatever this says; with neither, camera rays skip their differentials.
@@ -61,7 +61,7 @@ struct PathSample {
   Rgb albedo{0.0f};
   glm::vec3 normal{0.0f};
   float depth = 0.0f;      // distance to the first hit (0 when the ray escapes)
-  float mip_level = 0.0f;  // the MIP level λ the filters read at the first hit (MaterialMip::level)
+  float mip_level = 0.0f;  // the MIP level λ the filters read at the first hit (MipTexture::level)
   std::uint32_t rays = 0;  // rays traced (closest-hit and shadow)
 };
 

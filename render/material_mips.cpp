@@ -11,29 +11,6 @@ namespace svbrdf {
 
 namespace {
 
-ParamBaseline baseline_of(TextureFilter f) {
-  switch (f) {
-    case TextureFilter::toksvig: return ParamBaseline::toksvig;
-    case TextureFilter::vmf: return ParamBaseline::vmf;
-    default: return ParamBaseline::param;
-  }
-}
-
-bool uses_param(TextureFilter f) {
-  return f == TextureFilter::param || f == TextureFilter::toksvig || f == TextureFilter::vmf;
-}
-
-// A coordinate brought into the texture for the repeat-wrapping MIP filter (see the header).
-float into_texture(float t, int n, WrapMode mode) {
-  if (mode == WrapMode::repeat || !std::isfinite(t)) return t;
-  if (mode == WrapMode::mirrored_repeat) {
-    const float r = t - 2.0f * std::floor(0.5f * t);
-    t = r <= 1.0f ? r : 2.0f - r;
-  }
-  const float h = 0.5f / static_cast<float>(n);
-  return std::clamp(t, h, 1.0f - h);
-}
-
 bool same_transform(const TextureTransform& a, const TextureTransform& b) {
   return a.offset == b.offset && a.scale == b.scale && a.rotation() == b.rotation();
 }
@@ -84,65 +61,6 @@ std::string unsupported(const MaterialDesc& m) {
 Footprint MaterialMip::to_texture(const Footprint& f) const {
   const TextureTransform& t = grid_.transform;
   return {t.apply(f.uv), t.apply_linear(f.duv_dx), t.apply_linear(f.duv_dy)};
-}
-
-Footprint MaterialMip::wrapped(const Footprint& f) const {
-  Footprint w = f;
-  w.uv.x = into_texture(f.uv.x, extent_.width, sampler_.wrap_s);
-  w.uv.y = into_texture(f.uv.y, extent_.height, sampler_.wrap_t);
-  return w;
-}
-
-glm::ivec2 MaterialMip::nearest_texel(glm::vec2 uv) const {
-  return {nearest_texel_index(uv.x, extent_.width, sampler_.wrap_s), nearest_texel_index(uv.y, extent_.height, sampler_.wrap_t)};
-}
-
-MaterialTexels MaterialMip::texels() const {
-  MaterialTexels m(extent_.width, extent_.height);
-  for (std::size_t k = 0; k < level0_.size(); ++k) {
-    const Texel& t = level0_[k];
-    m.base_color[k] = t.base_color, m.metallic[k] = t.metallic, m.normal[k] = t.normal, m.roughness[k] = t.roughness;
-  }
-  return m;
-}
-
-float MaterialMip::level(const Footprint& f) const { return filter_taps(extent_, level_count(extent_), wrapped(f)).level; }
-
-MaterialMip::Choice MaterialMip::choose(TextureFilter filter, const Footprint& f, const Rgb& tint, float u) const {
-  Choice c{filter, f, tint, {}};
-  if (filter == TextureFilter::brdf && tint == Rgb(1.0f)) {
-    c.tap = select_tap(brdf_.level0(), brdf_.levels(), wrapped(f), u);  // O(1), mip_lookup.h
-    if (c.tap.level >= 1) brdf_.prefetch(c.tap.level, c.tap.i, c.tap.j);
-    else __builtin_prefetch(&texel(c.tap.i, c.tap.j));
-  } else if (uses_param(filter)) {
-    c.tap.level = -1;
-  } else {
-    // level0, and brdf on a tinted hit: the nearest texel.
-    const glm::ivec2 p = nearest_texel(f.uv);
-    c.tap = {0, p.x, p.y, 1.0f};
-    __builtin_prefetch(&texel(p.x, p.y));
-  }
-  return c;
-}
-
-std::span<const Lobe> MaterialMip::lobes_at(const Choice& c, Lobe& scratch) const {
-  if (c.tap.level < 0) {
-    ParamTexel t = filter_params(param_, wrapped(c.footprint));
-    t.base_color *= c.tint;
-    scratch = param_lobe(t, baseline_of(c.filter));
-    return {&scratch, 1};
-  }
-  if (c.tap.level >= 1) return brdf_.texel(c.tap.level, c.tap.i, c.tap.j);
-  // Level 0 (the pyramid does not hold it twice): the texel's f_eff. With tint 1 the product is
-  // exact, so this is level0_lobe of the texel, the BRDF pyramid's level-0 lobe bit for bit.
-  const Texel& t = texel(c.tap.i, c.tap.j);
-  scratch = lobe_from_texel(t.base_color * c.tint, t.metallic, t.roughness, t.normal);
-  return {&scratch, 1};
-}
-
-std::span<const Lobe> MaterialMip::lobes(TextureFilter filter, const Footprint& f, const Rgb& tint, float u,
-                                         Lobe& scratch) const {
-  return lobes_at(choose(filter, f, tint, u), scratch);
 }
 
 SceneMips::SceneMips(const Scene& scene, const TextureSet& textures)
@@ -218,85 +136,43 @@ int SceneMips::active_count() const {
 
 void SceneMips::prepare(TextureFilter filter) {
   const std::lock_guard<std::mutex> lock(mutex_);
-  const bool param = uses_param(filter), brdf = filter == TextureFilter::brdf;
   std::vector<std::size_t> todo;
-  for (std::size_t i = 0; i < mips_.size(); ++i) {
-    const MaterialMip& m = mips_[i];
-    if (!m.has_texels_ || (param && !m.has_param_) || (brdf && !m.has_brdf_)) todo.push_back(i);
-  }
+  for (std::size_t i = 0; i < mips_.size(); ++i)
+    if (!mips_[i].texture_ || !mips_[i].texture_->prepared(filter)) todo.push_back(i);
   // Materials in parallel; each build is parallel over rows inside (oneTBB nests).
   tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t t) {
     const std::size_t i = todo[t];
     MaterialMip& mip = mips_[i];
+    if (mip.texture_) {
+      mip.texture_->prepare(filter);
+      return;
+    }
     const MaterialDesc& m = scene_.materials[source_[i]];
-    MaterialTexels texels;  // level 0 for the builds, dropped afterwards
-    if (!mip.has_texels_) {
-      // The images as TextureSet holds them (base color already scene-linear: decoded once),
-      // smaller ones replicated onto the grid.
-      std::vector<Image> replicas;
-      replicas.reserve(3);
-      auto image_for = [&](const TextureRef& r, bool color) -> const Image* {
-        if (!r.present()) return nullptr;
-        const Image& im = textures_.image(r, color);
-        if (im.width == mip.extent_.width && im.height == mip.extent_.height) return &im;
-        replicas.push_back(replicate(im, mip.extent_));
-        return &replicas.back();
-      };
-      MaterialImages in;
-      in.base_color = image_for(m.base_color_texture, true);
-      in.base_color_is_linear = m.base_color_texture.present() && textures_.linearized(m.base_color_texture);
-      in.base_color_name = m.where + ".pbrMetallicRoughness.baseColorTexture";
-      in.base_color_factor = glm::vec4(m.base_color, m.base_alpha);
-      in.metallic_roughness = image_for(m.metallic_roughness_texture, false);
-      in.metallic_roughness_name = m.where + ".pbrMetallicRoughness.metallicRoughnessTexture";
-      in.metallic_factor = m.metallic;
-      in.roughness_factor = m.roughness;
-      in.normal = image_for(m.normal_texture, false);
-      in.normal_name = m.where + ".normalTexture";
-      in.normal_scale = m.normal_texture.scale;
-      texels = decode_material_texels(in);
-      mip.level0_.resize(texels.size());
-      for (std::size_t k = 0; k < texels.size(); ++k)
-        mip.level0_[k] = {texels.base_color[k], texels.metallic[k], texels.normal[k], texels.roughness[k]};
-      mip.has_texels_ = true;
-    } else if ((param && !mip.has_param_) || (brdf && !mip.has_brdf_)) {
-      texels = mip.texels();
-    }
-    if (param && !mip.has_param_) {
-      mip.param_ = ParamPyramid::build(texels);
-      mip.has_param_ = true;
-    }
-    if (brdf && !mip.has_brdf_) {
-      mip.brdf_ = BrdfPyramid::build(texels);
-      mip.has_brdf_ = true;
-    }
+    // The images as TextureSet holds them (base color already scene-linear: decoded once), smaller
+    // ones replicated onto the grid.
+    std::vector<Image> replicas;
+    replicas.reserve(3);
+    auto image_for = [&](const TextureRef& r, bool color) -> const Image* {
+      if (!r.present()) return nullptr;
+      const Image& im = textures_.image(r, color);
+      if (im.width == mip.extent_.width && im.height == mip.extent_.height) return &im;
+      replicas.push_back(replicate(im, mip.extent_));
+      return &replicas.back();
+    };
+    MaterialImages in;
+    in.base_color = image_for(m.base_color_texture, true);
+    in.base_color_is_linear = m.base_color_texture.present() && textures_.linearized(m.base_color_texture);
+    in.base_color_name = m.where + ".pbrMetallicRoughness.baseColorTexture";
+    in.base_color_factor = glm::vec4(m.base_color, m.base_alpha);
+    in.metallic_roughness = image_for(m.metallic_roughness_texture, false);
+    in.metallic_roughness_name = m.where + ".pbrMetallicRoughness.metallicRoughnessTexture";
+    in.metallic_factor = m.metallic;
+    in.roughness_factor = m.roughness;
+    in.normal = image_for(m.normal_texture, false);
+    in.normal_name = m.where + ".normalTexture";
+    in.normal_scale = m.normal_texture.scale;
+    mip.texture_.emplace(decode_material_texels(in), mip.sampler_.wrap_s, mip.sampler_.wrap_t, filter);
   }, tbb::simple_partitioner());
-}
-
-std::string_view filter_name(TextureFilter f) {
-  switch (f) {
-    case TextureFilter::level0: return "level0";
-    case TextureFilter::param: return baseline_name(ParamBaseline::param);
-    case TextureFilter::toksvig: return baseline_name(ParamBaseline::toksvig);
-    case TextureFilter::vmf: return baseline_name(ParamBaseline::vmf);
-    case TextureFilter::brdf: return "brdf";
-  }
-  return "?";
-}
-
-std::vector<std::string> filter_names() {
-  std::vector<std::string> names;
-  for (TextureFilter f : {TextureFilter::level0, TextureFilter::param, TextureFilter::toksvig, TextureFilter::vmf,
-                          TextureFilter::brdf})
-    names.emplace_back(filter_name(f));
-  return names;
-}
-
-std::optional<TextureFilter> parse_filter(std::string_view name) {
-  for (TextureFilter f : {TextureFilter::level0, TextureFilter::param, TextureFilter::toksvig, TextureFilter::vmf,
-                          TextureFilter::brdf})
-    if (filter_name(f) == name) return f;
-  return std::nullopt;
 }
 
 }  // namespace svbrdf

@@ -4,7 +4,7 @@
 #include <glm/glm.hpp>
 
 #include "appearance/frame.h"
-#include "mip/mip_lookup.h"
+#include "mip/texture_filter.h"
 #include "render/camera.h"
 #include "render/embree_scene.h"
 
@@ -58,8 +58,8 @@ Rgb base_color_at(const SurfacePoint& sp, const TextureSet& textures);
 // mirrors a tangent-space normal exactly as apply_normal_map does. Call before apply_normal_map.
 Frame geometric_frame(const SurfacePoint& sp);
 
-// The texture footprint of TEXCOORD_`uv_set` at the hit (the mip module's Footprint: uv and its
-// derivatives per pixel step), from the position derivatives by least squares on ∂p/∂u, ∂p/∂v
+// The texture footprint of TEXCOORD_`uv_set` at the hit (mip/texture_filter.h's Footprint: uv and
+// its derivatives per pixel step), from the position derivatives by least squares on ∂p/∂u, ∂p/∂v
 // (pbrt-v4 §10.1.1). Zero derivatives where the set is absent or degenerate.
 Footprint footprint(const SurfacePoint& sp, int uv_set, const glm::vec3& dpdx, const glm::vec3& dpdy);
 

@@ -23,6 +23,7 @@
 #include <tbb/task_arena.h>
 
 #include "gltf/scene_reader.h"
+#include "mip/texture_filter.h"
 #include "render/ray_log.h"
 #include "render/render_setup.h"
 #include "render/renderer.h"

@@ -1,6 +1,6 @@
 // svbrdf-bake mip | eval | compare end to end: the file it builds, compare's table against the
-// library's numbers, eval against mode_eval, and bad input (one line naming the file or argument,
-// exit 2, no output file left behind).
+// library's numbers, eval against texel_eval and the exact reference, and bad input (one line naming
+// the file or argument, exit 2, no output file left behind).
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -108,7 +108,8 @@ TEST(BakeCli, MipFromAGltfMaterialEqualsMipFromItsImages) {
   EXPECT_NE(c.err.find("--material"), std::string::npos) << c.err;
 }
 
-// compare prints the library's numbers (compare_levels, formatted %.4f); eval prints mode_eval (%.9g).
+// compare prints the library's numbers (compare_levels, formatted %.4f); eval prints texel_eval, or
+// the exact reference for `--mode exact` (%.9g).
 TEST(BakeCli, CompareAndEvalPrintTheLibrarysNumbers) {
   testing::TempDir dir;
   const auto file = dir / "tray.exr";
@@ -136,7 +137,7 @@ TEST(BakeCli, CompareAndEvalPrintTheLibrarysNumbers) {
                 10)
           << line;
       EXPECT_EQ(level, l.level);
-      EXPECT_EQ(std::string(mode), std::string(mode_name(m.mode)));
+      EXPECT_EQ(std::string(mode), std::string(filter_name(m.mode)));
       EXPECT_NEAR(erel, m.erel_mean, 5.1e-5);
       EXPECT_NEAR(erel_max, m.erel_max, 5.1e-5);
       EXPECT_NEAR(elog, m.elog_mean, 5.1e-5);
@@ -152,15 +153,18 @@ TEST(BakeCli, CompareAndEvalPrintTheLibrarysNumbers) {
   const MipData mip = read_mip_file(file);
   const std::string pairs =
       "# a comment, then a blank line\n\n0 0 1 0 0 1\n0.5 0 0.8660254 -0.5 0 0.8660254\n0.6 0.0 0.8 0.0 -0.6 0.8\n";
-  for (MipMode mode : {MipMode::exact, MipMode::param, MipMode::toksvig, MipMode::vmf, MipMode::brdf}) {
-    const BakeRun e = bake(dir, "eval " + q(file) + " --level 3 --texel 1 2 --mode " + std::string(mode_name(mode)), pairs);
+  const ExactReference exact(mip.level0);
+  for (const std::string mode : {"exact", "param", "toksvig", "vmf", "brdf"}) {
+    const BakeRun e = bake(dir, "eval " + q(file) + " --level 3 --texel 1 2 --mode " + mode, pairs);
     ASSERT_EQ(e.status, 0) << e.err;
     std::istringstream ein(e.out);
     for (const auto& [wi, wo] : {std::pair{glm::dvec3(0, 0, 1), glm::dvec3(0, 0, 1)},
                                  std::pair{glm::dvec3(0.5, 0, 0.8660254), glm::dvec3(-0.5, 0, 0.8660254)},
                                  std::pair{glm::dvec3(0.6, 0, 0.8), glm::dvec3(0, -0.6, 0.8)}}) {
       // eval renormalizes its input directions (in float), as svbrdf-brdf does.
-      const glm::dvec3 want = mode_eval(mip, mode, 3, 1, 2, glm::dvec3(glm::normalize(glm::vec3(wi))), glm::dvec3(glm::normalize(glm::vec3(wo))));
+      const glm::dvec3 nwi(glm::normalize(glm::vec3(wi))), nwo(glm::normalize(glm::vec3(wo)));
+      const glm::dvec3 want =
+          mode == "exact" ? exact.eval(3, 1, 2, nwi, nwo) : texel_eval(mip, *parse_filter(mode), 3, 1, 2, nwi, nwo);
       double r0, g0, b0;
       ASSERT_TRUE(ein >> r0 >> g0 >> b0) << e.out;
       EXPECT_NEAR(r0, want.r, 1e-8 * want.r + 1e-12);
@@ -190,6 +194,7 @@ TEST(BakeCli, BadInputIsOneLineAndExitTwo) {
       {"eval " + q(file) + " --level 9 --texel 0 0 --mode brdf", "--level"},
       {"eval " + q(file) + " --level 1 --texel 4 0 --mode brdf", "--texel"},
       {"eval " + q(file) + " --level 1 --texel 0 0 --mode shiny", "--mode"},
+      {"eval " + q(file) + " --level 1 --texel 0 0 --mode level0", "--mode"},  // stores no coarse texel
       {"eval " + q(dir / "nope.exr") + " --level 1 --texel 0 0 --mode brdf", "nope.exr"},
       {"compare " + q(file) + " --levels 2..9", "--levels"},
       {"compare " + q(s.base_color), "bc.png"},

@@ -180,7 +180,7 @@ TEST(LookupParam, TrilinearMeansOfTheParameters) {
   EXPECT_NEAR(glm::length(l.normal), 1.0f, 1e-6f);  // normalized once, for shading
   // Toksvig widens α from the shortened mean normal: α'² = α² + 2(1 − r)/r.
   const float r = 1.0f / std::sqrt(1.25f);
-  const Lobe tk = lookup_param(p, {{0.5f, 0.5f}, {1e-4f, 0}, {0, 1e-4f}}, ParamBaseline::toksvig);
+  const Lobe tk = lookup_param(p, {{0.5f, 0.5f}, {1e-4f, 0}, {0, 1e-4f}}, TextureFilter::toksvig);
   EXPECT_NEAR(tk.alpha2, std::pow(0.4f * 0.4f, 2.0f) + 2 * (1 - r) / r, 1e-5f);
 }
 

@@ -121,7 +121,7 @@ TEST(Metrics, WorkedExampleOfTheSpec) {
 TEST(Compare, BimodalTextureTwoSlotsAreExact) {
   const MipData mip = build_mip(synthetic::bimodal(32));
   CompareOptions o;
-  o.modes = {MipMode::param, MipMode::brdf};
+  o.modes = {TextureFilter::param, TextureFilter::brdf};
   const auto rows = compare_levels(mip, o);
   ASSERT_EQ(rows.size(), 5u);
   for (const LevelComparison& r : rows) {

@@ -74,7 +74,8 @@ TEST(BrdfPyramid, Level1IsTheExactUnion) {
   const MipData mip = build_mip(m, o);
   const ExactReference exact(mip.level0);
   for (int j = 0; j < 4; ++j)
-    for (int i = 0; i < 4; ++i) EXPECT_LT(e_rel(mode_table(mip, MipMode::brdf, 1, i, j), exact.table(1, i, j)), 2e-3);
+    for (int i = 0; i < 4; ++i)
+      EXPECT_LT(e_rel(texel_table(mip, TextureFilter::brdf, 1, i, j), exact.table(1, i, j)), 2e-3);
 }
 
 // The exact reference of a coarse texel is the mean of its children's (coverage-weighted), also for
@@ -119,7 +120,7 @@ void check_preset(const PresetCase& pc, int size, std::uint64_t seed = MaterialR
   r.seed = seed;
   const MipData mip = build_mip(generate_material(r).texels);
   CompareOptions o;
-  o.modes = {MipMode::param, MipMode::brdf};
+  o.modes = {TextureFilter::param, TextureFilter::brdf};
   const auto rows = compare_levels(mip, o);
   const std::string name = pc.preset;
   // Glossy texels with varying normals: granite's mica (spec, "Glints").

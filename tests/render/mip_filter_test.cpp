@@ -1,4 +1,4 @@
-// The MIP texture filters in the renderer (issue 6, "Texture filtering"; render/material_mips.h),
+// The MIP texture filters in the renderer (mip/mip.h through render/material_mips.h),
 // checked against closed forms of ../shared/spec/brdf-mip.md: a textured quad seen by an
 // orthographic camera under a directional light E from wi, black environment, has pixel value
 //   E · wi.z · F(wi, wo),
@@ -332,9 +332,9 @@ TEST(MipFilters, Level0AndBrdfAgreeExactlyAtLevel0) {
   for (int j = 0; j < 16; ++j)
     for (int i = 0; i < 16; ++i) {
       const Footprint centre{{(i + 0.5f) / 16, (j + 0.5f) / 16}, {0, 0}, {0, 0}};
-      const auto l0 = mip->lobes(TextureFilter::level0, centre, Rgb(1), 0.0f, s0);
+      const auto l0 = mip->texture().lobes(TextureFilter::level0, centre, Rgb(1), 0.0f, s0);
       for (float u : {0.0f, 0.5f, 0.999f})
-        EXPECT_TRUE(same_lobes(mip->lobes(TextureFilter::brdf, centre, Rgb(1), u, s1), l0)) << i << "," << j;
+        EXPECT_TRUE(same_lobes(mip->texture().lobes(TextureFilter::brdf, centre, Rgb(1), u, s1), l0)) << i << "," << j;
       // And it is f_eff of that texel, as the closed form has it.
       const TexelSpec& t = choices[pick[std::size_t(j) * 16 + i]];
       const LobeMixtureBsdf b(l0);
@@ -344,13 +344,13 @@ TEST(MipFilters, Level0AndBrdfAgreeExactlyAtLevel0) {
     }
   for (int n = 0; n < 200; ++n) {
     const Footprint f{{rng.next_float(), rng.next_float()}, {0.01f, 0}, {0, 0.01f}};  // magnified: level 0
-    const auto got = mip->lobes(TextureFilter::brdf, f, Rgb(1), rng.next_float(), s1);
+    const auto got = mip->texture().lobes(TextureFilter::brdf, f, Rgb(1), rng.next_float(), s1);
     bool found = false;
     for (int dj = -1; dj <= 1 && !found; ++dj)
       for (int di = -1; di <= 1 && !found; ++di) {
         const int i = int(std::floor(f.uv.x * 16)) + di, j = int(std::floor(f.uv.y * 16)) + dj;
         const Footprint c{{(i + 0.5f) / 16, (j + 0.5f) / 16}, {0, 0}, {0, 0}};
-        found = same_lobes(got, mip->lobes(TextureFilter::level0, c, Rgb(1), 0.0f, s0));
+        found = same_lobes(got, mip->texture().lobes(TextureFilter::level0, c, Rgb(1), 0.0f, s0));
       }
     EXPECT_TRUE(found) << "uv " << f.uv.x << "," << f.uv.y;
   }
@@ -366,13 +366,13 @@ TEST(MipFilters, VertexColorTint) {
   const Rgb tint(0.5f, 1.0f, 0.25f);
   const Footprint f{{0.5f / 16, 0.5f / 16}, {0.2f, 0}, {0, 0.2f}};
   Lobe s0, s1;
-  const Lobe l0 = mip->lobes(TextureFilter::level0, f, tint, 0.3f, s0)[0];
-  EXPECT_TRUE(same_lobes(mip->lobes(TextureFilter::brdf, f, tint, 0.3f, s1), {&l0, 1}));
+  const Lobe l0 = mip->texture().lobes(TextureFilter::level0, f, tint, 0.3f, s0)[0];
+  EXPECT_TRUE(same_lobes(mip->texture().lobes(TextureFilter::brdf, f, tint, 0.3f, s1), {&l0, 1}));
   // Texel A is a dielectric: ρ = c·tint, F0 = 0.04.
   const Rgb c = linear(kA.srgb);
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(l0.diffuse[k], c[k] * tint[k], 1e-6f);
-  const Lobe pl = mip->lobes(TextureFilter::param, f, tint, 0.0f, s0)[0];
-  const Lobe pw = mip->lobes(TextureFilter::param, f, Rgb(1), 0.0f, s1)[0];
+  const Lobe pl = mip->texture().lobes(TextureFilter::param, f, tint, 0.0f, s0)[0];
+  const Lobe pw = mip->texture().lobes(TextureFilter::param, f, Rgb(1), 0.0f, s1)[0];
   EXPECT_NEAR(pl.diffuse.x, 0.5f * pw.diffuse.x, 1e-6f);
   EXPECT_NEAR(pl.diffuse.z, 0.25f * pw.diffuse.z, 1e-6f);
 }
@@ -391,14 +391,15 @@ TEST(MipFilters, TextureGridRules) {
     p.mips->prepare(TextureFilter::level0);
     const MaterialMip* mip = p.mips->find(0);
     ASSERT_NE(mip, nullptr);
-    EXPECT_EQ(mip->extent(), (Extent{8, 8}));
+    EXPECT_EQ(mip->texture().extent(), (Extent{8, 8}));
+    const MaterialTexels level0 = mip->texture().level0_texels();
     Rng rng(3, 3);
     for (int n = 0; n < 100; ++n) {
       const glm::vec2 uv(rng.next_float() * 3 - 1, rng.next_float() * 3 - 1);
-      const glm::ivec2 t = mip->nearest_texel(uv);
+      const glm::ivec2 t = mip->texture().nearest_texel(uv);
       const float want = ColorConfig::builtin().srgb_texture_to_linear(
           0.1f + 0.1f * float(int(std::floor((uv.x - std::floor(uv.x)) * 2)) + 2 * int(std::floor((uv.y - std::floor(uv.y)) * 4))));
-      EXPECT_FLOAT_EQ(mip->texel(t.x, t.y).base_color.x, want) << uv.x << "," << uv.y;
+      EXPECT_FLOAT_EQ(level0.base_color[level0.index(t.x, t.y)].x, want) << uv.x << "," << uv.y;
     }
   }
   auto warned = [](Scene s, const std::string& why) {

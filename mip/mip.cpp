@@ -1,0 +1,112 @@
+#include "mip/mip.h"
+
+#include "mip/brdf_pyramid.h"
+#include "mip/mip_lookup.h"
+#include "mip/param_pyramid.h"
+
+namespace svbrdf {
+
+struct MipTexture::Pyramids {
+  ParamPyramid param;  // level 0 from the start, the coarse levels once a parameter filter is prepared
+  BrdfPyramid brdf;
+  bool has_brdf = false;
+
+  const ParamTexel& level0(int i, int j) const { return param.texel(0, i, j); }
+  void build(TextureFilter filter, const MaterialTexels& level0) {
+    if (reads_param_pyramid(filter) && !param.complete()) param.build_coarse_levels();
+    if (filter == TextureFilter::brdf && !has_brdf) {
+      brdf = BrdfPyramid::build(level0);
+      has_brdf = true;
+    }
+  }
+};
+
+MipTexture::MipTexture(MipTexture&&) noexcept = default;
+MipTexture& MipTexture::operator=(MipTexture&&) noexcept = default;
+MipTexture::~MipTexture() = default;
+
+MipTexture::MipTexture(const MaterialTexels& level0, WrapMode wrap_s, WrapMode wrap_t, TextureFilter filter)
+    : extent_{level0.width, level0.height},
+      wrap_s_(wrap_s),
+      wrap_t_(wrap_t),
+      pyramids_(std::make_unique<Pyramids>()) {
+  pyramids_->param = ParamPyramid::level0_only(level0);
+  pyramids_->build(filter, level0);
+}
+
+void MipTexture::prepare(TextureFilter filter) {
+  if (prepared(filter)) return;
+  // The BRDF build reads MaterialTexels: level 0 remade from its one stored copy (the same floats).
+  pyramids_->build(filter,
+                   filter == TextureFilter::brdf ? pyramids_->param.level0_texels() : MaterialTexels{});
+}
+
+bool MipTexture::prepared(TextureFilter filter) const {
+  if (reads_param_pyramid(filter)) return pyramids_->param.complete();
+  return filter != TextureFilter::brdf || pyramids_->has_brdf;
+}
+
+Footprint MipTexture::folded(const Footprint& f) const {
+  Footprint w = f;
+  w.uv.x = fold_into_texture(f.uv.x, extent_.width, wrap_s_);
+  w.uv.y = fold_into_texture(f.uv.y, extent_.height, wrap_t_);
+  return w;
+}
+
+glm::ivec2 MipTexture::nearest_texel(glm::vec2 uv) const {
+  return {nearest_texel_index(uv.x, extent_.width, wrap_s_),
+          nearest_texel_index(uv.y, extent_.height, wrap_t_)};
+}
+
+MaterialTexels MipTexture::level0_texels() const { return pyramids_->param.level0_texels(); }
+
+float MipTexture::level(const Footprint& f) const { return mip_level(extent_, f); }
+
+float mip_level(Extent level0, const Footprint& f) { return filter_level(level0, level_count(level0), f); }
+
+MipTexture::Choice MipTexture::choose(TextureFilter filter, const Footprint& f, const Rgb& tint,
+                                      float u) const {
+  Choice c{filter, f, tint};
+  const Pyramids& p = *pyramids_;
+  if (filter == TextureFilter::brdf && tint == Rgb(1.0f)) {
+    const FilterTap t = select_tap(p.brdf.level0(), p.brdf.levels(), folded(f), u);  // O(1), mip_lookup.h
+    c.level = t.level, c.i = t.i, c.j = t.j;
+    if (c.level >= 1)
+      p.brdf.prefetch(c.level, c.i, c.j);
+    else
+      __builtin_prefetch(&p.level0(c.i, c.j));
+  } else if (reads_param_pyramid(filter)) {
+    c.level = -1;
+  } else {
+    // level0, and brdf on a tinted hit: the nearest texel.
+    const glm::ivec2 t = nearest_texel(f.uv);
+    c.level = 0, c.i = t.x, c.j = t.y;
+    __builtin_prefetch(&p.level0(c.i, c.j));
+  }
+  return c;
+}
+
+std::span<const Lobe> MipTexture::lobes(const Choice& c, Lobe& scratch) const {
+  const Pyramids& p = *pyramids_;
+  if (c.level < 0) {
+    ParamTexel t = filter_params(p.param, folded(c.footprint));
+    t.base_color *= c.tint;
+    scratch = param_lobe(t, c.filter);
+    return {&scratch, 1};
+  }
+  if (c.level >= 1) return p.brdf.texel(c.level, c.i, c.j);
+  // Level 0 (the BRDF pyramid does not hold it twice): the texel's f_eff. With tint 1 the product is
+  // exact, so this is level0_lobe of the texel, the BRDF pyramid's level-0 lobe bit for bit.
+  const ParamTexel& t = p.level0(c.i, c.j);
+  scratch = lobe_from_texel(t.base_color * c.tint, t.metallic, t.roughness, t.normal);
+  return {&scratch, 1};
+}
+
+void MipTexture::lookup(const Choice& c, LobeMixtureBsdf& out) const {
+  Lobe scratch;
+  out.assign(lobes(c, scratch));
+  const BrdfPyramid& brdf = pyramids_->brdf;
+  out.set_correction(c.level >= 1 ? brdf.correction(c.level, c.i, c.j) : nullptr, &brdf.radial_grid());
+}
+
+}  // namespace svbrdf

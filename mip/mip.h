@@ -1,0 +1,108 @@
+#pragma once
+// The BRDF-averaging MIP map as a renderer uses it (../shared/spec/brdf-mip.md): one texture's
+// level-0 texels and the pyramids built from them, behind one lookup from a texture filter
+// (texture_filter.h), a footprint in texture space and a selection number to what the renderer
+// shades: a LobeMixtureBsdf in the geometric tangent frame (z = the interpolated normal before any
+// normal map, x = the tangent, y = the glTF bitangent), its lobes carrying the normal-mapped normals.
+// A renderer includes this header of mip/ (texture_filter.h alone where it needs only the filters'
+// names or Footprint); lobe_mixture_bsdf.h, what it shades, comes with it.
+//
+// The filters:
+//   level0  — the nearest level-0 texel at the exact uv (the sampler's wrap modes), f_eff of that
+//             texel as brdf-mip.md writes it: one lobe, lobe_from_texel of its parameters. This is
+//             bit for bit the BRDF pyramid's level-0 lobe of that texel (exact_reference.h
+//             level0_lobe), so level0 and brdf agree exactly wherever brdf selects a level-0 texel.
+//   param, toksvig, vmf — trilinear (anisotropic) filtering of the parameter pyramid, one lobe
+//             (mip_lookup.h filter_params; param_lobe with the filter's α widening).
+//   brdf    — one texel among the filter's taps, chosen with probability equal to its weight by the
+//             selection number u (Pharr et al. 2024): that texel's lobes and radial correction.
+//
+// A tint (glTF's COLOR_0) multiplies base color: exactly under level0 and the parameter filters. A
+// BRDF texel's lobes hold ρ and F0 already mixed with metallic, from which a tinted base color cannot
+// be recovered, so brdf answers a tinted lookup as level0 does.
+//
+// Wrap modes: the filters wrap with repeat; clamp-to-edge and mirrored repeat are folded into the
+// texture first (textures/sampler.h fold_into_texture), which is exact for level 0's bilinear taps and
+// approximate near such an edge at coarser levels. level0 follows the sampler exactly.
+//
+// Storage: level 0 is held once, a texel's parameters in one half cache line (the parameter pyramid's
+// level 0), for level0's lookups and brdf's level-0 taps, which the BRDF pyramid does not hold; the
+// parameter pyramid's coarse levels and the BRDF pyramid are built for the filters that read them.
+// Lookups allocate nothing and only read, so any number of threads may call them for a prepared filter.
+#include <memory>
+#include <span>
+
+#include <glm/glm.hpp>
+
+#include "mip/lobe_mixture_bsdf.h"
+#include "mip/pyramid_shape.h"
+#include "mip/texture_filter.h"
+#include "textures/material_texels.h"
+#include "textures/sampler.h"
+
+namespace svbrdf {
+
+class MipTexture {
+ public:
+  // Level 0 from `level0`, read with the wrap modes along u (s) and v (t), and what `filter` reads
+  // built from the same texels.
+  MipTexture(const MaterialTexels& level0, WrapMode wrap_s, WrapMode wrap_t,
+             TextureFilter filter = TextureFilter::level0);
+  MipTexture(MipTexture&&) noexcept;
+  MipTexture& operator=(MipTexture&&) noexcept;
+  ~MipTexture();
+
+  // Builds what `filter` reads and is not built yet (the parameter pyramid's coarse levels for param,
+  // toksvig and vmf, the BRDF pyramid for brdf), from level 0. Not thread-safe: no lookup may run
+  // meanwhile.
+  void prepare(TextureFilter filter);
+  bool prepared(TextureFilter filter) const;
+
+  Extent extent() const { return extent_; }
+
+  // A lookup in two steps, so that a caller can do other work while the texel's memory arrives (the
+  // fetch into a large texture is most of a lookup's cost): choose() picks the texel — brdf's
+  // stochastic tap, or level0's nearest texel — and asks for its memory; lookup() reads it.
+  // `footprint` is in texture space, `tint` is COLOR_0's rgb, u ∈ [0, 1) the selection number.
+  struct Choice {
+    TextureFilter filter = TextureFilter::level0;
+    Footprint footprint{};
+    Rgb tint{1.0f};
+    int level = 0;  // the texel chosen; −1: the parameter filters' trilinear taps, read by lookup()
+    int i = 0, j = 0;
+  };
+  Choice choose(TextureFilter filter, const Footprint& footprint, const Rgb& tint, float u) const;
+  // Makes `out` the chosen texel's mixture (and radial correction).
+  void lookup(const Choice& choice, LobeMixtureBsdf& out) const;
+  void lookup(TextureFilter filter, const Footprint& footprint, const Rgb& tint, float u,
+              LobeMixtureBsdf& out) const {
+    lookup(choose(filter, footprint, tint, u), out);
+  }
+  // The chosen texel's lobes: a view into the BRDF pyramid, or `scratch` holding one lobe.
+  std::span<const Lobe> lobes(const Choice& choice, Lobe& scratch) const;
+  std::span<const Lobe> lobes(TextureFilter filter, const Footprint& footprint, const Rgb& tint, float u,
+                              Lobe& scratch) const {
+    return lobes(choose(filter, footprint, tint, u), scratch);
+  }
+
+  // The continuous MIP level λ the filters read at a texture-space footprint.
+  float level(const Footprint& footprint) const;
+  // The level-0 texel (column, row) nearest to a texture-space uv under the wrap modes.
+  glm::ivec2 nearest_texel(glm::vec2 uv) const;
+  // Level 0 as MaterialTexels (a copy).
+  MaterialTexels level0_texels() const;
+
+ private:
+  struct Pyramids;  // mip.cpp: the parameter pyramid (level 0 always) and the BRDF pyramid
+  Footprint folded(const Footprint& f) const;
+
+  Extent extent_{};
+  WrapMode wrap_s_ = WrapMode::repeat, wrap_t_ = WrapMode::repeat;
+  std::unique_ptr<Pyramids> pyramids_;
+};
+
+// The continuous MIP level λ the filters read at a texture-space footprint on a level-0 image of
+// `level0` texels (for a texture without MIP data: the level a filter would read there).
+float mip_level(Extent level0, const Footprint& footprint);
+
+}  // namespace svbrdf
