@@ -1,5 +1,5 @@
 #pragma once
-// The distance-LOD comparison of issue 7: for every case of the LOD manifest (scenes/lod_scenes.h),
+// The distance-LOD comparison: for every case of the LOD manifest (scenes/lod_scenes.h),
 // view, light and distance, render the texture filters under test and the ground truth, and measure
 // them (scenes/lod_metrics.h).
 //

@@ -1,7 +1,7 @@
 // The glTF sample models render: no error, every pixel finite and non-negative, something visible.
 // The fast suite renders a few small models small (SVBRDF_SAMPLE_RES², SVBRDF_SAMPLE_SPP); the
 // `long` suite (SVBRDF_ALL_SAMPLES) renders every model at 256² and 16 samples per pixel with the
-// default filter, as issue 6's "Done when" asks.
+// default filter, the one a user gets.
 #include <gtest/gtest.h>
 
 #include <cmath>
