@@ -14,6 +14,7 @@
 #include <tuple>
 #include <utility>
 
+#include "apps/run_program.h"
 #include "base/checked_number.h"
 #include "base/cli_checks.h"
 #include "base/error.h"
@@ -139,13 +140,7 @@ int main(int argc, char** argv) {
   app.add_flag("--float", use_float, "write 32-bit float EXR (default half)");
   app.add_flag("--aov", aovs, "also write albedo, normal, depth and MIP-level EXRs beside the output");
   app.add_flag("-q,--quiet", quiet, "no progress output");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return svbrdf::cli::parse_failure(app, e, "svbrdf-render");
-  }
-
-  try {
+  return svbrdf::run_program("svbrdf-render", app, argc, argv, [&] {
     // Before any input is read: every image, MIP level and the frame are held to it.
     svbrdf::resource_limits().max_texels = max_texels;
     threads = svbrdf::cli::capped_threads(threads, "svbrdf-render");
@@ -223,11 +218,5 @@ int main(int argc, char** argv) {
       return 128 + sig;
     }
     return 0;
-  } catch (const svbrdf::Error& e) {
-    std::fprintf(stderr, "svbrdf-render: %s\n", svbrdf::message_line(e.what()).c_str());
-    return e.exit_code();
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "svbrdf-render: internal error: %s\n", svbrdf::message_line(e.what()).c_str());
-    return 1;
-  }
+  });
 }
