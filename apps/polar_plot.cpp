@@ -9,11 +9,7 @@
 namespace svbrdf {
 namespace {
 
-std::string g(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g", x);
-  return buf;
-}
+std::string g(double x) { return plot_number(x); }
 
 }  // namespace
 

@@ -9,6 +9,12 @@
 #include "base/markup_escape.h"
 
 namespace svbrdf {
+
+std::string plot_number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", x);
+  return buf;
+}
 namespace {
 
 std::string num(double x) {

@@ -9,6 +9,9 @@
 
 namespace svbrdf {
 
+// A number as a plot's label writes it: four significant digits.
+std::string plot_number(double x);
+
 class Svg {
  public:
   Svg(double width, double height);
