@@ -6,7 +6,7 @@
 
 #include "appearance/shading.h"
 #include "render/surface.h"
-#include "render/surface_bsdf.h"
+#include "appearance/gltf_surface_bsdf.h"
 
 namespace svbrdf {
 

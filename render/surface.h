@@ -4,6 +4,7 @@
 #include <glm/glm.hpp>
 
 #include "appearance/frame.h"
+#include "appearance/gltf_surface_bsdf.h"
 #include "mip/texture_filter.h"
 #include "render/camera.h"
 #include "render/embree_scene.h"
@@ -22,21 +23,6 @@ struct SurfacePoint {
   bool front = true;               // the ray hit the front face
   const GeometryData* geom = nullptr;
   const MaterialDesc* material = nullptr;
-};
-
-// The material's parameters at one point, textures applied (glTF §3.9: factors multiply textures;
-// COLOR_0 multiplies base color).
-struct ShadingParams {
-  Rgb base_color{1.0f};  // linear
-  float metallic = 0.0f;
-  float roughness = 1.0f;  // perceptual
-  Rgb emission{0.0f};      // radiance
-  float ior = 1.5f;
-  float specular = 1.0f;
-  Rgb specular_color{1.0f};
-  float transmission = 0.0f;
-  float diffuse_roughness = 0.0f;
-  bool unlit = false;
 };
 
 SurfacePoint make_surface_point(const EmbreeScene& bvh, const RayHit& hit, const glm::vec3& ray_dir);

@@ -8,7 +8,7 @@
 
 #include "gltf_test_files.h"
 #include "appearance/gltf.h"
-#include "render/surface_bsdf.h"
+#include "appearance/gltf_surface_bsdf.h"
 #include "render_test_scenes.h"
 #include "textures/image.h"
 

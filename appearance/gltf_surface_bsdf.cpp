@@ -1,4 +1,4 @@
-#include "render/surface_bsdf.h"
+#include "appearance/gltf_surface_bsdf.h"
 
 #include <algorithm>
 #include <cmath>

@@ -13,9 +13,23 @@
 // straight through (wi = −wo) with magnitude (1 − metallic)·transmission·(1 − specular·max(fr))·
 // base_color, fr at h = n; a rough transmissive surface is treated as smooth (documented limit).
 #include "appearance/bsdf.h"
-#include "render/surface.h"
 
 namespace svbrdf {
+
+// The material's parameters at one point, textures applied (glTF §3.9: factors multiply textures;
+// COLOR_0 multiplies base color).
+struct ShadingParams {
+  Rgb base_color{1.0f};  // linear
+  float metallic = 0.0f;
+  float roughness = 1.0f;  // perceptual
+  Rgb emission{0.0f};      // radiance
+  float ior = 1.5f;
+  float specular = 1.0f;
+  Rgb specular_color{1.0f};
+  float transmission = 0.0f;
+  float diffuse_roughness = 0.0f;
+  bool unlit = false;
+};
 
 class SurfaceBsdf final : public Bsdf {
  public:
