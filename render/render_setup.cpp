@@ -94,7 +94,7 @@ PreparedScene::PreparedScene(Scene scene, const SceneSetup& setup, const ColorCo
   }
 
   if (setup.env.empty()) {
-    // Issue 6: without --env, a scene with no lights gets a uniform white environment of radiance 1.
+    // Without --env, a scene with no lights gets a uniform white environment of radiance 1.
     world_.environment = Environment::uniform(world_.lights.empty() ? Rgb(1.0f) : Rgb(0.0f));
   } else if (const auto c = parse_color(setup.env)) {
     if (!(c->x >= 0.0f && c->y >= 0.0f && c->z >= 0.0f))

@@ -1,4 +1,4 @@
-// Issue 6's renderer benchmark: rays per second of the whole renderer on a textured scene
+// The renderer benchmark: rays per second of the whole renderer on a textured scene
 // (DamagedHelmet at 640×360, 64 spp) against raw Embree on the same rays in the same run, at 1 and 2
 // threads, under --filter level0 and brdf (the default); time per frame, setup and MIP build times,
 // and peak memory. The raw side replays the renderer's own rays — recorded

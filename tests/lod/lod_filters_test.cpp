@@ -1,4 +1,4 @@
-// Issue 7's assertions on the BRDF-averaged MIP maps, rendered: the LOD scenes (scenes/lod.json)
+// The BRDF-averaged MIP maps' claims, rendered: the LOD scenes (scenes/lod.json)
 // at every distance ≥ 16× and every light, in the default size (48×48 pixels, 256 samples per pixel
 // for every render; `svbrdf-lod-report --full` renders the same at 4096). Each camera sample filters
 // 1/√spp of its pixel, so at 256 spp k × d₁ reads MIP level log₂ k − 4: the tests go to 4096×, the
@@ -70,7 +70,7 @@ std::string where(const LodShot& s) {
   return s.case_name + " / " + s.view + " / " + s.light + " at " + std::to_string(int(s.multiple)) + "x";
 }
 
-// Issue 7's test of a filter at a shot: relative MSE against the first ground truth at most
+// The test of a filter at a shot: relative MSE against the first ground truth at most
 // `factor` × the noise floor, and flux bias at most 1 % — beyond what the ground truth's own noise
 // makes of a flux bias measured against it (3 × √2·σ, σ the relative standard deviation of one
 // ground truth's flux estimated from the two ground truths, lod_metrics.h flux_noise). At 256
