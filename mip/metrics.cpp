@@ -11,6 +11,7 @@
 
 #include "appearance/frame.h"
 #include "appearance/rng.h"
+#include "base/math.h"
 #include "base/error.h"
 #include "mip/exact_reference.h"
 
@@ -178,7 +179,6 @@ std::vector<LevelComparison> compare_levels(const MipData& mip, const CompareOpt
 }
 
 glm::dvec3 directional_albedo(std::span<const Lobe> lobes, const glm::dvec3& wi, int strata) {
-  constexpr double kPi = 3.14159265358979323846;
   glm::dvec3 total(0);
   for (const Lobe& l : lobes) {
     if (!(l.weight > 0)) continue;
@@ -189,7 +189,7 @@ glm::dvec3 directional_albedo(std::span<const Lobe> lobes, const glm::dvec3& wi,
     const double a2 = shape.alpha2;
     // Densities over wo: cosine about the geometric normal, and wo = reflect(wi) about h ~ D(h)·(n·h),
     // D the lobe's own (lobe.h).
-    auto pdf_cos = [&](const glm::dvec3& wo) { return wo.z > 0 ? wo.z / kPi : 0.0; };
+    auto pdf_cos = [&](const glm::dvec3& wo) { return wo.z > 0 ? wo.z / kPiD : 0.0; };
     auto pdf_spec = [&](const glm::dvec3& wo) {
       const glm::dvec3 h = glm::normalize(wi + wo);
       const double ch = glm::dot(n, h), oh = glm::dot(wo, h);
@@ -205,7 +205,7 @@ glm::dvec3 directional_albedo(std::span<const Lobe> lobes, const glm::dvec3& wi,
         const double u1 = ((k % strata) + rng.next_double()) / strata, u2 = ((k / strata) + rng.next_double()) / strata;
         glm::dvec3 wo;
         if (technique == 0) {
-          const double r = std::sqrt(u1), phi = 2 * kPi * u2;
+          const double r = std::sqrt(u1), phi = 2 * kPiD * u2;
           wo = glm::dvec3(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1 - u1)));
         } else {
           // t = tan²θh with density D(h)·cosθh: GGX t = α²·u/(1 − u) (Walter et al. 2007, eq. 35/36),
@@ -227,7 +227,7 @@ glm::dvec3 directional_albedo(std::span<const Lobe> lobes, const glm::dvec3& wi,
           } else {
             tan2 = a2 * u1 / std::max(1e-300, 1 - u1);
           }
-          const double ch = 1 / std::sqrt(1 + tan2), sh = std::sqrt(std::max(0.0, 1 - ch * ch)), phi = 2 * kPi * u2;
+          const double ch = 1 / std::sqrt(1 + tan2), sh = std::sqrt(std::max(0.0, 1 - ch * ch)), phi = 2 * kPiD * u2;
           const glm::dvec3 h = sh * std::cos(phi) * s + sh * std::sin(phi) * t + ch * n;
           wo = 2 * glm::dot(wi, h) * h - wi;
         }
