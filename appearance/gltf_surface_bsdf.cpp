@@ -56,9 +56,7 @@ Rgb SurfaceBsdf::eval(const glm::vec3& wi, const glm::vec3& wo) const {
   const float w = schlick_weight(std::abs(glm::dot(wo, h)));
   const Rgb fr = f0_ + (Rgb(1.0f) - f0_) * w;
   const Rgb base = (1.0f - p_.transmission) * diffuse_f(wi, wo);
-  const Rgb dielectric = (1.0f - p_.specular * max_channel(fr)) * base + p_.specular * fr * s;
-  const Rgb metal = s * (p_.base_color + (Rgb(1.0f) - p_.base_color) * w);
-  return glm::mix(dielectric, metal, p_.metallic);
+  return gltf_layers(p_.base_color, p_.metallic, base, fr, p_.specular, s, w);
 }
 
 Rgb SurfaceBsdf::transmission_magnitude(float cos_o) const {
