@@ -55,16 +55,13 @@ class Loader {
 
   void read_model() {
     doc_ = gltf::read_document(path_);
-    model_ = std::move(doc_.model);
   }
 
   // Images, textures and materials: the reader the MIP build shares (gltf/material_reader.h). Every
   // image is decoded, one at a time (decode_image's note on OpenImageIO).
   void read_appearance() {
-    doc_.model = std::move(model_);
     gltf::Materials m = gltf::read_materials(doc_);
     for (std::size_t i = 0; i < m.images.size(); ++i) gltf::decode_image(doc_, m, i);
-    model_ = std::move(doc_.model);
     doc_.images.clear();
     scene_.images = std::move(m.images);
     scene_.textures = std::move(m.textures);
@@ -408,7 +405,7 @@ class Loader {
 
   std::filesystem::path path_;
   gltf::Document doc_;
-  tinygltf::Model model_;
+  tinygltf::Model& model_ = doc_.model;  // the document's, read by every step
   Scene scene_;
   std::vector<LightDesc> light_templates_;
   std::size_t degenerate_triangles_ = 0;
