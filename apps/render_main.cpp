@@ -97,7 +97,8 @@ int main(int argc, char** argv) {
   svbrdf::set_interrupt_mode(svbrdf::InterruptMode::exit_now, " before the render began; nothing written");
 
   CLI::App app{"svbrdf-render: path-trace a textured glTF 2.0 scene"};
-  std::string scene_file, out = "", png, res, camera, env, sun, filter = "brdf", light_sampling = "mis", ocio;
+  std::string scene_file, out = "", png, res, camera, env, sun, filter = "brdf", light_sampling = "mis", ocio,
+      light_units = "photometric";
   int spp = 64, threads = 0, max_depth = 16;
   std::uint64_t seed = 0, max_texels = svbrdf::resource_limits().max_texels;
   double time_limit = 0.0;
@@ -123,6 +124,10 @@ int main(int argc, char** argv) {
   app.add_option("--env", env, "environment: r,g,b radiance or an equirectangular HDR/EXR file "
                                "(default: white 1 when the scene has no lights, none when it has)");
   app.add_option("--sun", sun, "add a directional light: elevation,azimuth[,irradiance] (degrees, W/m^2)");
+  app.add_option("--light-units", light_units,
+                 "how the file's KHR_lights_punctual intensities are read: photometric (the specification's lux and "
+                 "candela, divided by 683 lm/W) | radiometric (W/m^2 and W/sr as written)")
+      ->check(CLI::IsMember({"photometric", "radiometric"}));
   const std::vector<std::string> filters = svbrdf::filter_names();
   std::string filter_help = "texture filter:";
   for (const std::string& f : filters) filter_help += (f == filters.front() ? " " : " | ") + f;
@@ -171,7 +176,9 @@ int main(int argc, char** argv) {
 
     const svbrdf::ColorConfig color =
         svbrdf::ColorConfig::resolve(ocio.empty() ? std::nullopt : std::optional<fs::path>(ocio));
-    svbrdf::Scene scene = svbrdf::load_gltf(scene_path);
+    svbrdf::LoadOptions load;
+    load.light_units = light_units == "radiometric" ? svbrdf::LightUnits::radiometric : svbrdf::LightUnits::photometric;
+    svbrdf::Scene scene = svbrdf::load_gltf(scene_path, load);
     for (const std::string& w : scene.warnings)
       std::fprintf(stderr, "svbrdf-render: warning: %s\n", svbrdf::message_line(w).c_str());
     const svbrdf::PreparedScene prepared(std::move(scene), setup, color);

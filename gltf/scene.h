@@ -69,9 +69,10 @@ struct CameraDesc {
   int node = -1;
 };
 
-// KHR_lights_punctual, in world space. Units are radiometric: a directional
-// light's intensity is the irradiance it delivers to a surface facing it, a point or spot light's
-// its radiant intensity.
+// KHR_lights_punctual, in world space, in the renderer's radiometric units: a directional light's
+// `intensity` is the irradiance (W/m²) it delivers to a surface facing it, a point or spot light's its
+// radiant intensity (W/sr). The file's photometric values (lux, candela) are converted on reading
+// (gltf/scene_reader.h).
 struct LightDesc {
   enum class Type { directional, point, spot };
   std::string name;

@@ -29,7 +29,9 @@ using gltf::finite_all;
 
 class Loader {
  public:
-  explicit Loader(const std::filesystem::path& path) : path_(path) { scene_.file = path; }
+  Loader(const std::filesystem::path& path, const LoadOptions& options) : path_(path), options_(options) {
+    scene_.file = path;
+  }
 
   Scene run() {
     read_model();
@@ -217,7 +219,8 @@ class Loader {
         if (l.color.size() != 3) fail(w + ".color", "must be three numbers");
         for (int c = 0; c < 3; ++c) d.color[c] = checked(l.color[std::size_t(c)], 0, 1e30, w + ".color");
       }
-      d.intensity = checked(l.intensity, 0, 1e30, w + ".intensity");
+      const double intensity = checked(l.intensity, 0, 1e30, w + ".intensity");
+      d.intensity = float(options_.light_units == LightUnits::photometric ? intensity / kLumensPerWatt : intensity);
       d.range = checked(l.range, 0, 1e30, w + ".range");
       if (d.type == LightDesc::Type::spot) {
         d.outer_cone = checked(l.spot.outerConeAngle, 1e-6, 0.5 * kPiD, w + ".spot.outerConeAngle");
@@ -404,6 +407,7 @@ class Loader {
   }
 
   std::filesystem::path path_;
+  LoadOptions options_;
   gltf::Document doc_;
   tinygltf::Model& model_ = doc_.model;  // the document's, read by every step
   Scene scene_;
@@ -415,6 +419,6 @@ class Loader {
 
 }  // namespace
 
-Scene load_gltf(const std::filesystem::path& path) { return Loader(path).run(); }
+Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options) { return Loader(path, options).run(); }
 
 }  // namespace svbrdf

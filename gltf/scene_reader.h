@@ -20,6 +20,20 @@
 
 namespace svbrdf {
 
-Scene load_gltf(const std::filesystem::path& path);
+// Luminous efficacy used to turn KHR_lights_punctual's photometric intensities into radiometric ones:
+// 683 lm/W, the peak of the photopic curve (CIE; the definition of the candela at 540 THz). Blender's
+// exporter and importer divide and multiply by the same constant, so a Blender round trip is exact.
+inline constexpr double kLumensPerWatt = 683.0;
+
+// How a file's light intensities are read. KHR_lights_punctual defines them photometrically: a
+// directional light in lux (lm/m²), a point or spot light in candela (lm/sr); they become W/m² and
+// W/sr by dividing by kLumensPerWatt. `radiometric` is for files that wrote W/m² and W/sr instead.
+enum class LightUnits { photometric, radiometric };
+
+struct LoadOptions {
+  LightUnits light_units = LightUnits::photometric;
+};
+
+Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options = {});
 
 }  // namespace svbrdf

@@ -6,6 +6,7 @@
 
 #include "base/atomic_file.h"
 #include "base/error.h"
+#include "gltf/scene_reader.h"
 #include "textures/image.h"
 
 namespace svbrdf {
@@ -146,7 +147,7 @@ int GltfWriter::add_camera(const std::string& name, double yfov, double aspect, 
 int GltfWriter::add_directional_light(const std::string& name, const glm::dvec3& color, double irradiance,
                                       const glm::dvec3& direction) {
   lights_.push_back({{"name", name}, {"type", "directional"}, {"color", Json::array({color.r, color.g, color.b})},
-                     {"intensity", irradiance}});
+                     {"intensity", irradiance * kLumensPerWatt}});  // lux, as KHR_lights_punctual defines it
   Json node = {{"name", name}};
   Placement p;
   p.rotation = look_rotation(direction, std::abs(glm::normalize(direction).y) > 0.99 ? glm::dvec3(0, 0, -1) : glm::dvec3(0, 1, 0));

@@ -62,7 +62,8 @@ class GltfWriter {
   int add_camera(const std::string& name, double yfov, double aspect, double znear, double zfar, const Placement& where,
                  Json extras = nullptr);
   // A KHR_lights_punctual directional light of `irradiance` W/m² on a surface facing it (the
-  // renderer's units) shining along `direction` (the way the light travels).
+  // renderer's units; written in lux, irradiance × kLumensPerWatt, as the extension defines it)
+  // shining along `direction` (the way the light travels).
   int add_directional_light(const std::string& name, const glm::dvec3& color, double irradiance,
                             const glm::dvec3& direction);
   // The scene's extras (e.g. the sky the renderer should use).

@@ -486,7 +486,11 @@ TEST(GltfLoader, LightsAndCameras) {
   ASSERT_EQ(s.lights.size(), 1u);
   const LightDesc& l = s.lights[0];
   EXPECT_EQ(l.type, LightDesc::Type::spot);
-  EXPECT_FLOAT_EQ(l.intensity, 7.0f);
+  // 7 cd as the extension defines it: 7/683 W/sr; with --light-units radiometric, 7 W/sr.
+  EXPECT_FLOAT_EQ(l.intensity, float(7.0 / 683.0));
+  LoadOptions radiometric;
+  radiometric.light_units = LightUnits::radiometric;
+  EXPECT_FLOAT_EQ(load_gltf(dir.path() / "l.gltf", radiometric).lights[0].intensity, 7.0f);
   EXPECT_FLOAT_EQ(l.range, 20.0f);
   EXPECT_NEAR(l.position.y, 3.0f, 1e-6);
   // −90° about x turns the light's local −Z into −Y: it shines down.
