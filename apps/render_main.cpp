@@ -102,7 +102,7 @@ int main(int argc, char** argv) {
   int spp = 64, threads = 0, max_depth = 16;
   std::uint64_t seed = 0, max_texels = svbrdf::resource_limits().max_texels;
   double time_limit = 0.0;
-  float exposure = 0.0f, footprint_scale = 0.0f;
+  float exposure = 0.0f, footprint_scale = 0.0f, clamp = 0.0f;
   bool use_float = false, quiet = false, aovs = false;
   app.add_option("scene", scene_file, "glTF file (.gltf or .glb); none renders the project's showcase scene");
   app.add_option("-o,--out", out, "output OpenEXR file (linear radiance); default out/<scene>.exr");
@@ -139,12 +139,16 @@ int main(int argc, char** argv) {
       ->check(svbrdf::cli::number_in(0.0, kMaxFootprintScale, true, false));
   app.add_option("--light-sampling", light_sampling, "environment sampling: mis | nee | bsdf")
       ->check(CLI::IsMember({"mis", "nee", "bsdf"}));
+  app.add_option("--clamp", clamp,
+                 "cap on the radiance one indirect light sample brings back, per channel (0: off, the default; "
+                 "removes fireflies at the cost of bias)")
+      ->check(svbrdf::cli::non_negative);
   app.add_option("--exposure", exposure, "exposure in stops for the PNG, in [-64, 64] (the EXR is never scaled)")
       ->check(svbrdf::cli::number_in(-kMaxExposure, kMaxExposure));
   app.add_option("--ocio-config", ocio, "OpenColorIO config for texture decoding and the PNG (default: $OCIO, else the built-in one)");
   app.add_flag("--float", use_float, "write 32-bit float EXR (default half)");
   app.add_flag("--aov", aovs, "also write albedo, normal, depth and MIP-level EXRs beside the output");
-  app.add_flag("-q,--quiet", quiet, "no progress output");
+  app.add_flag("-q,--quiet", quiet, "no progress output or notes (warnings and errors are still printed)");
   return svbrdf::run_program("svbrdf-render", app, argc, argv, [&] {
     // Before any input is read: every image, MIP level and the frame are held to it.
     svbrdf::resource_limits().max_texels = max_texels;
@@ -182,6 +186,12 @@ int main(int argc, char** argv) {
     for (const std::string& w : scene.warnings)
       std::fprintf(stderr, "svbrdf-render: warning: %s\n", svbrdf::message_line(w).c_str());
     const svbrdf::PreparedScene prepared(std::move(scene), setup, color);
+    // glTF carries no environment: whichever one lights the render is said, once (a note, not a
+    // warning: --quiet silences it with the progress).
+    if (!quiet && !prepared.environment_note().empty())
+      std::fprintf(stderr, "svbrdf-render: environment: %s\n", svbrdf::message_line(prepared.environment_note()).c_str());
+    for (const std::string& w : prepared.warnings())
+      std::fprintf(stderr, "svbrdf-render: warning: %s\n", svbrdf::message_line(w).c_str());
     for (const std::string& w : prepared.mip_warnings(texture_filter))
       std::fprintf(stderr, "svbrdf-render: warning: %s\n", svbrdf::message_line(w).c_str());
     const std::uint64_t pixels = std::uint64_t(prepared.camera().width()) * std::uint64_t(prepared.camera().height());
@@ -198,7 +208,8 @@ int main(int argc, char** argv) {
     options.integrator.max_depth = max_depth;
     options.integrator.filter = texture_filter;
     options.integrator.footprints = aovs;  // the MIP-level AOV; the MIP filters compute their own
-    options.integrator.footprint_scale = footprint_scale;  // 0: resolved to 1/√spp by render()
+    options.integrator.footprint_scale = footprint_scale;
+    options.integrator.clamp = clamp;  // 0: resolved to 1/√spp by render()
     options.aovs = aovs;
     options.integrator.light_sampling = light_sampling == "nee"    ? svbrdf::LightSampling::nee
                                         : light_sampling == "bsdf" ? svbrdf::LightSampling::bsdf

@@ -69,6 +69,17 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
     return w.bvh->occluded(o, d, 0.0f, tmax, sd);
   };
 
+  // Adds a contribution that lights the path's vertex `bounce` (0: the first hit, whose light is
+  // direct); --clamp caps the indirect ones, scaling the colour as a whole so a firefly keeps its hue.
+  auto add = [&](Rgb c, int bounce) {
+    if (s.clamp > 0.0f && bounce >= 1) {
+      const float m = max_channel(c);
+      if (m > s.clamp) c *= s.clamp / m;
+    }
+    out.radiance += c;
+  };
+  const Emitters* emitters = w.emitters && !w.emitters->empty() ? w.emitters : nullptr;
+
   LobeMixtureBsdf lobe_bsdf;  // the hit's mixture under a MIP filter, reassigned at every hit
   RayHit hit = first_hit;
   for (int depth = 0;; ++depth) {
@@ -85,7 +96,7 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
           float env_pdf = 0.0f;
           const Rgb env = w.environment.radiance(ray.dir, mis_weighted ? &env_pdf : nullptr);
           const float weight = mis_weighted ? power_heuristic(last_pdf, env_pdf) : 1.0f;
-          if (weight > 0.0f) out.radiance += beta * env * weight;
+          if (weight > 0.0f) add(beta * env * weight, depth - 1);
         }
       }
       break;
@@ -123,6 +134,14 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
     // position and geometric normal only, not the BSDF (the contribution is added below, once the
     // BSDF is known). Nothing is drawn where the path ends at this hit.
     const bool scatters = depth < s.max_depth && (mip || !sp.material->unlit);
+    // A point on an emissive triangle, its shadow ray traced once the BSDF says the point matters.
+    // Drawn whenever the scene has emitters, whatever the strategy, so the random sequence's layout
+    // is the same under all three.
+    EmitterSample emitter_sample;
+    if (scatters && emitters) {
+      const glm::vec3 u(u1(), u1(), u1());
+      if (s.light_sampling != LightSampling::bsdf) emitter_sample = emitters->sample(sp.p, u);
+    }
     glm::vec3 env_dir(0.0f);
     float env_pdf = 0.0f;
     Rgb env_radiance(0.0f);
@@ -164,14 +183,25 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
       }
       if (sh.unlit) {
         // KHR_materials_unlit: the base color is the radiance leaving toward the viewer; nothing scatters.
-        out.radiance += beta * sh.base_color;
+        add(beta * sh.base_color, depth - 1);
         break;
       }
       emission = sh.emission;
       bsdf = &surface_bsdf.emplace(sh);
       frame = sp.shading;
     }
-    out.radiance += beta * emission;
+    // A single-sided surface emits from its front face only (glTF 2.0 §3.9.6). Emission found by a
+    // BSDF-sampled ray is weighted against the emitters' own sampling of the same point.
+    if (!sp.front && !sp.material->double_sided) emission = Rgb(0.0f);
+    if (max_channel(emission) > 0.0f) {
+      float weight = 1.0f;
+      if (depth > 0 && !last_impulse && emitters) {
+        const float light_pdf = s.light_sampling == LightSampling::bsdf ? 0.0f : emitters->pdf(hit, ray.dir);
+        // A triangle emitter sampling never draws is found by BSDF sampling alone: full weight.
+        if (light_pdf > 0.0f) weight = s.light_sampling == LightSampling::mis ? power_heuristic(last_pdf, light_pdf) : 0.0f;
+      }
+      if (weight > 0.0f) add(beta * emission * weight, depth - 1);
+    }
     if (depth >= s.max_depth) break;
 
     const glm::vec3 wo = frame.to_local(-ray.dir);
@@ -185,7 +215,22 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
       if (max_channel(f) <= 0.0f) continue;
       const glm::vec3 o = offset_origin(sp.p, sp.ng, a.wi, w.scene_extent);
       const float tmax = std::isinf(a.distance) ? kInfinity : glm::length(light.position - o) * (1.0f - 1e-5f);
-      if (!occluded(o, a.wi, tmax)) out.radiance += beta * f * a.irradiance * wi.z;
+      if (!occluded(o, a.wi, tmax)) add(beta * f * a.irradiance * wi.z, depth);
+    }
+    // Next-event estimation: the point drawn on an emissive triangle.
+    if (emitter_sample.pdf > 0.0f && max_channel(emitter_sample.radiance) > 0.0f &&
+        glm::dot(emitter_sample.wi, sp.ng) > 0.0f) {
+      const glm::vec3 wi = frame.to_local(emitter_sample.wi);
+      const Rgb f = bsdf->eval(wi, wo);
+      if (max_channel(f) > 0.0f) {
+        const glm::vec3 o = offset_origin(sp.p, sp.ng, emitter_sample.wi, w.scene_extent);
+        // Stop short of the emitter's own surface: the segment ends a relative hair before the point.
+        if (!occluded(o, emitter_sample.wi, emitter_sample.distance * (1.0f - 1e-4f))) {
+          const float weight =
+              s.light_sampling == LightSampling::mis ? power_heuristic(emitter_sample.pdf, bsdf->pdf(wi, wo)) : 1.0f;
+          add(beta * f * emitter_sample.radiance * (wi.z * weight / emitter_sample.pdf), depth);
+        }
+      }
     }
     // Next-event estimation: the environment, whose shadow ray was traced above.
     if (env_visible) {
@@ -193,7 +238,7 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
       const Rgb f = bsdf->eval(wi, wo);
       if (max_channel(f) > 0.0f) {
         const float weight = s.light_sampling == LightSampling::mis ? power_heuristic(env_pdf, bsdf->pdf(wi, wo)) : 1.0f;
-        out.radiance += beta * f * env_radiance * (wi.z * weight / env_pdf);
+        add(beta * f * env_radiance * (wi.z * weight / env_pdf), depth);
       }
     }
 

@@ -1,8 +1,8 @@
 #pragma once
 // Unidirectional path tracing (Kajiya 1986; CGPP ch. 32; pbrt-v4 §13.4) with next-event estimation
-// to the punctual lights and the environment, multiple importance sampling with the power heuristic
-// (Veach & Guibas 1995) between environment sampling and BSDF sampling, Russian roulette and a
-// maximum depth. One call traces one camera sample; everything random comes from the Rng passed in,
+// to the punctual lights, the emissive triangles and the environment, multiple importance sampling
+// with the power heuristic (Veach & Guibas 1995) between light sampling and BSDF sampling for the
+// lights with area, Russian roulette and a maximum depth. One call traces one camera sample; everything random comes from the Rng passed in,
 // so a pixel's value never depends on which thread traced it.
 #include <cstdint>
 #include <vector>
@@ -10,6 +10,7 @@
 #include "appearance/rng.h"
 #include "render/camera.h"
 #include "render/embree_scene.h"
+#include "render/emitters.h"
 #include "render/lights.h"
 #include "render/material_mips.h"
 #include "render/ray_log.h"
@@ -17,10 +18,12 @@
 
 namespace svbrdf {
 
+// How the lights with area (the environment and emissive triangles) are found; punctual lights
+// are delta lights, always sampled.
 enum class LightSampling {
-  mis,   // environment by both strategies, weighted by the power heuristic
-  nee,   // environment by light sampling only
-  bsdf,  // environment by BSDF sampling only
+  mis,   // by both strategies, weighted by the power heuristic
+  nee,   // by light sampling only
+  bsdf,  // by BSDF sampling only
 };
 
 // Everything a path reads, built once per render.
@@ -33,6 +36,7 @@ struct RenderWorld {
   // Null: every material is shaded with level0 lookups.
   SceneMips* mips = nullptr;
   std::vector<LightDesc> lights;  // punctual lights, world space
+  const Emitters* emitters = nullptr;  // emissive triangles sampled as lights; null: none
   Environment environment = Environment::uniform(Rgb(0.0f));
   float scene_extent = 1.0f;      // bounding-box diagonal, for ray offsets
   RayLog* ray_log = nullptr;      // when set, every traced ray is recorded (benchmarks)
@@ -53,6 +57,9 @@ struct IntegratorSettings {
   // jittered samples needs each sample to filter only about 1/√n of it. render() sets 1/√spp when
   // this is 0 (resolve_footprint_scale); trace_path reads 0 as 1.
   float footprint_scale = 0.0f;
+  // The most radiance a path may carry back from one of its indirect light samples (after the
+  // first bounce), per channel; 0: no clamp. A biased cap on fireflies, off unless asked for.
+  float clamp = 0.0f;
 };
 
 // One camera sample's results: radiance and the first hit's auxiliary values.

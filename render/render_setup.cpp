@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include "base/error.h"
@@ -61,6 +62,7 @@ PreparedScene::PreparedScene(Scene scene, const SceneSetup& setup, const ColorCo
   mips_ = std::make_unique<SceneMips>(scene_, *textures_);
   if (setup.filter) mips_->prepare(*setup.filter);
   bvh_ = std::make_unique<EmbreeScene>(device_, scene_, *textures_);
+  emitters_ = std::make_unique<Emitters>(scene_, *bvh_, *textures_);
 
   const int ci = pick_camera(scene_, setup.camera);
   const CameraDesc desc = ci >= 0 ? scene_.cameras[std::size_t(ci)] : Camera::framing(bvh_->bounds_min(), bvh_->bounds_max());
@@ -76,6 +78,20 @@ PreparedScene::PreparedScene(Scene scene, const SceneSetup& setup, const ColorCo
     width = std::max(1, int(std::lround(height * aspect)));
   }
   check_image_size(std::uint64_t(width), std::uint64_t(height), Film::kBytesPerPixel, "the frame");
+  if (ci >= 0 && setup.width > 0 && setup.height > 0) {
+    const float file_aspect = desc.type == CameraDesc::Type::orthographic ? desc.xmag / desc.ymag : desc.aspect_ratio;
+    const float frame_aspect = float(width) / float(height);
+    if (file_aspect > 0.0f && std::abs(frame_aspect / file_aspect - 1.0f) > 1e-3f) {
+      auto number = [](double x) {
+        char b[32];
+        std::snprintf(b, sizeof b, "%.4g", x);
+        return std::string(b);
+      };
+      warnings_.push_back("the frame's aspect ratio " + number(frame_aspect) + " (" + std::to_string(width) + "x" +
+                          std::to_string(height) + ") is not camera '" + desc.name + "''s " + number(file_aspect) +
+                          ": its vertical field of view is kept and the horizontal one follows the frame");
+    }
+  }
   camera_ = std::make_unique<Camera>(desc, width, height);
 
   world_.scene = &scene_;
@@ -84,6 +100,7 @@ PreparedScene::PreparedScene(Scene scene, const SceneSetup& setup, const ColorCo
   world_.bvh = bvh_.get();
   world_.camera = camera_.get();
   world_.lights = scene_.lights;
+  world_.emitters = emitters_.get();
   world_.scene_extent = bvh_->empty() ? 1.0f : glm::length(bvh_->bounds_max() - bvh_->bounds_min());
 
   if (!setup.sun.empty()) {
@@ -94,14 +111,22 @@ PreparedScene::PreparedScene(Scene scene, const SceneSetup& setup, const ColorCo
   }
 
   if (setup.env.empty()) {
-    // Without --env, a scene with no lights gets a uniform white environment of radiance 1.
-    world_.environment = Environment::uniform(world_.lights.empty() ? Rgb(1.0f) : Rgb(0.0f));
+    // Without --env, a scene with nothing that emits gets a uniform white environment of radiance 1,
+    // so it can be seen at all; one lit by its own lights or emissive surfaces gets none (glTF
+    // carries no environment: a room lit by panels must not render as daylight).
+    const bool lit = !world_.lights.empty() || !emitters_->empty();
+    world_.environment = Environment::uniform(lit ? Rgb(0.0f) : Rgb(1.0f));
+    if (!lit)
+      environment_note_ = "a uniform white environment of radiance 1 (the scene has neither lights nor emissive "
+                          "surfaces; --env sets another)";
   } else if (const auto c = parse_color(setup.env)) {
     if (!(c->x >= 0.0f && c->y >= 0.0f && c->z >= 0.0f))
       throw input_error("--env " + setup.env, "a radiance cannot be negative");
     world_.environment = Environment::uniform(*c);
+    if (!world_.environment.black()) environment_note_ = "a uniform environment of radiance " + setup.env;
   } else {
     world_.environment = Environment::from_image(read_image(setup.env), setup.env);
+    environment_note_ = "the equirectangular environment " + setup.env;
   }
 }
 

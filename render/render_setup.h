@@ -8,6 +8,7 @@
 #include "render/camera.h"
 #include "render/embree_device.h"
 #include "render/embree_scene.h"
+#include "render/emitters.h"
 #include "render/integrator.h"
 #include "render/material_mips.h"
 #include "gltf/scene.h"
@@ -19,8 +20,9 @@ namespace svbrdf {
 struct SceneSetup {
   std::string camera;  // index or name; empty: the scene's first camera, else a framing camera
   int width = 0, height = 0;  // 0: from the camera's aspect ratio at 360 rows, else 640×360
-  // "--env": empty for the default (white radiance 1 when the scene has no lights, none when it
-  // has); "r,g,b" or "v" for a uniform radiance; anything else names an equirectangular image.
+  // "--env": empty for the default (white radiance 1 when the scene has neither punctual lights nor
+  // emissive surfaces, none otherwise); "r,g,b" or "v" for a uniform radiance; anything else names
+  // an equirectangular image.
   std::string env;
   // "--sun elevation,azimuth[,irradiance]" in degrees and W/m²; empty for none.
   std::string sun;
@@ -36,6 +38,14 @@ class PreparedScene {
   const Scene& scene() const { return scene_; }
   const Camera& camera() const { return *camera_; }
   const EmbreeScene& bvh() const { return *bvh_; }
+  // The environment the render uses, in words, when it is not the file's own (glTF carries none, so
+  // whenever it is not black): e.g. "a uniform white environment of radiance 1 (the scene has no
+  // lights; --env sets another)". Empty when the environment is black.
+  const std::string& environment_note() const { return environment_note_; }
+  const Emitters& emitters() const { return *emitters_; }
+  // What the set-up changed from the file's intent, one line each: a --res whose aspect ratio is not
+  // the camera's (the vertical field of view is kept, the horizontal one follows the frame).
+  const std::vector<std::string>& warnings() const { return warnings_; }
   // What a render under `filter` should warn about the MIP data, one line each (material_mips.h).
   std::vector<std::string> mip_warnings(TextureFilter filter) const { return mips_->warnings(filter); }
 
@@ -46,7 +56,10 @@ class PreparedScene {
   std::unique_ptr<SceneMips> mips_;
   std::unique_ptr<EmbreeScene> bvh_;
   std::unique_ptr<Camera> camera_;
+  std::unique_ptr<Emitters> emitters_;
   RenderWorld world_;
+  std::string environment_note_;
+  std::vector<std::string> warnings_;
 };
 
 // "r,g,b" or "v" as a color; nullopt when the text is not numbers.

@@ -133,10 +133,11 @@ ShadingParams shading_params(const SurfacePoint& sp, const TextureSet& textures)
   return sh;
 }
 
-Rgb emission_at(const SurfacePoint& sp, const TextureSet& textures) {
-  const MaterialDesc& m = *sp.material;
+Rgb emission_at(const SurfacePoint& sp, const TextureSet& textures) { return emission_at(*sp.material, sp.uv, textures); }
+
+Rgb emission_at(const MaterialDesc& m, const glm::vec2 uv[2], const TextureSet& textures) {
   Rgb e = m.emissive * m.emissive_strength;
-  if (reads_emission_texture(m)) e *= Rgb(textures.lookup(m.emissive_texture, sp.uv[m.emissive_texture.uv_set()], true));
+  if (reads_emission_texture(m)) e *= Rgb(textures.lookup(m.emissive_texture, uv[m.emissive_texture.uv_set()], true));
   return e;
 }
 

@@ -34,6 +34,8 @@ ShadingParams shading_params(const SurfacePoint& sp, const TextureSet& textures)
 // The parts of shading_params that the MIP filters do not cover: emission, and the base color (for
 // the albedo AOV), both at level0.
 Rgb emission_at(const SurfacePoint& sp, const TextureSet& textures);
+// The same at texture coordinates uv[0], uv[1] of a material (emitters.h samples points this way).
+Rgb emission_at(const MaterialDesc& m, const glm::vec2 uv[2], const TextureSet& textures);
 // Prefetches the texel emission_at will read, if it reads one.
 void prefetch_emission(const SurfacePoint& sp, const TextureSet& textures);
 Rgb base_color_at(const SurfacePoint& sp, const TextureSet& textures);
