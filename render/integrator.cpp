@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 
+#include "appearance/microfacet_normal_mapping.h"
 #include "appearance/shading.h"
 #include "render/surface.h"
 #include "appearance/gltf_surface_bsdf.h"
@@ -160,6 +161,7 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
     // filter's lobes in the geometric tangent frame (the lobes carry the normal-mapped normals);
     // any other by SurfaceBsdf in the normal-mapped shading frame.
     std::optional<SurfaceBsdf> surface_bsdf;
+    std::optional<MicrofacetNormalMapping> normal_mapped;
     const Bsdf* bsdf = nullptr;
     Frame frame;
     Rgb emission(0.0f);
@@ -174,6 +176,10 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
       }
       if (aov_footprint) out.mip_level = mip->texture().level(fp);
     } else {
+      // A normal map tilts the shading normal off the surface's own; the microfacet-based normal
+      // mapping of Schüssler et al. (2017) shades the tilt as a microsurface whose mean normal is the
+      // surface's, in the surface's frame (appearance/microfacet_normal_mapping.h).
+      const Frame surface_frame = geometric_frame(sp);
       apply_normal_map(sp, *w.textures);
       const ShadingParams sh = shading_params(sp, *w.textures);
       if (depth == 0) {
@@ -189,6 +195,11 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
       emission = sh.emission;
       bsdf = &surface_bsdf.emplace(sh);
       frame = sp.shading;
+      const glm::vec3 wp = surface_frame.to_local(sp.shading.n);
+      if (wp.z < 1.0f - 1e-6f) {
+        bsdf = &normal_mapped.emplace(*bsdf, wp);
+        frame = surface_frame;
+      }
     }
     // A single-sided surface emits from its front face only (glTF 2.0 §3.9.6). Emission found by a
     // BSDF-sampled ray is weighted against the emitters' own sampling of the same point.
