@@ -182,7 +182,11 @@ int main(int argc, char** argv) {
         svbrdf::ColorConfig::resolve(ocio.empty() ? std::nullopt : std::optional<fs::path>(ocio));
     svbrdf::LoadOptions load;
     load.light_units = light_units == "radiometric" ? svbrdf::LightUnits::radiometric : svbrdf::LightUnits::photometric;
+    svbrdf::SetupProgress setup_progress("svbrdf-render", quiet);
+    setup.progress = &setup_progress;
+    setup_progress.begin("reading " + scene_path.filename().string() + " and decoding its images");
     svbrdf::Scene scene = svbrdf::load_gltf(scene_path, load);
+    setup_progress.end();
     for (const std::string& w : scene.warnings)
       std::fprintf(stderr, "svbrdf-render: warning: %s\n", svbrdf::message_line(w).c_str());
     const svbrdf::PreparedScene prepared(std::move(scene), setup, color);
@@ -208,13 +212,14 @@ int main(int argc, char** argv) {
     options.integrator.max_depth = max_depth;
     options.integrator.filter = texture_filter;
     options.integrator.footprints = aovs;  // the MIP-level AOV; the MIP filters compute their own
-    options.integrator.footprint_scale = footprint_scale;
-    options.integrator.clamp = clamp;  // 0: resolved to 1/√spp by render()
+    options.integrator.footprint_scale = footprint_scale;  // 0: resolved to 1/√spp by render()
+    options.integrator.clamp = clamp;
     options.aovs = aovs;
     options.integrator.light_sampling = light_sampling == "nee"    ? svbrdf::LightSampling::nee
                                         : light_sampling == "bsdf" ? svbrdf::LightSampling::bsdf
                                                                    : svbrdf::LightSampling::mis;
     options.cancel = &svbrdf::interrupt_requested();
+    setup_progress.end();
     svbrdf::ProgressPrinter printer(quiet);
     options.progress = [&](const svbrdf::ProgressInfo& p) { printer.update(p); };
     // The first signal stops the render, which then writes what accumulated; a second one exits at

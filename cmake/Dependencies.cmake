@@ -8,6 +8,7 @@ find_package(embree 3 CONFIG REQUIRED)
 find_package(TinyGLTF CONFIG REQUIRED)
 find_package(CLI11 CONFIG REQUIRED)
 find_package(nlohmann_json 3 CONFIG REQUIRED)
+find_package(Threads REQUIRED)
 
 # Pitfall 1: OpenImageIO's exported target names /usr/include/opencv4 even where OpenCV is absent;
 # drop include directories that do not exist so the generate step cannot fail on them.

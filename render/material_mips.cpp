@@ -134,17 +134,23 @@ int SceneMips::active_count() const {
   return static_cast<int>(std::count_if(slot_.begin(), slot_.end(), [](int s) { return s >= 0; }));
 }
 
-void SceneMips::prepare(TextureFilter filter) {
+void SceneMips::prepare(TextureFilter filter, SetupProgress* progress) {
   const std::lock_guard<std::mutex> lock(mutex_);
   std::vector<std::size_t> todo;
   for (std::size_t i = 0; i < mips_.size(); ++i)
     if (!mips_[i].texture_ || !mips_[i].texture_->prepared(filter)) todo.push_back(i);
+  if (todo.empty()) return;
+  const std::string activity = filter == TextureFilter::level0
+                                   ? "decoding the materials' texels"
+                                   : "building the " + std::string(filter_name(filter)) + " MIP maps of the materials";
+  const SetupProgress::Stage stage(progress, activity, todo.size());
   // Materials in parallel; each build is parallel over rows inside (oneTBB nests).
   tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t t) {
     const std::size_t i = todo[t];
     MaterialMip& mip = mips_[i];
     if (mip.texture_) {
       mip.texture_->prepare(filter);
+      if (progress) progress->step();
       return;
     }
     const MaterialDesc& m = scene_.materials[source_[i]];
@@ -172,6 +178,7 @@ void SceneMips::prepare(TextureFilter filter) {
     in.normal_name = m.where + ".normalTexture";
     in.normal_scale = m.normal_texture.scale;
     mip.texture_.emplace(decode_material_texels(in), mip.sampler_.wrap_s, mip.sampler_.wrap_t, filter);
+    if (progress) progress->step();
   }, tbb::simple_partitioner());
 }
 

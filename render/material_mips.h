@@ -31,6 +31,7 @@
 #include "mip/mip.h"
 #include "gltf/scene.h"
 #include "render/texture_set.h"
+#include "base/setup_progress.h"
 
 namespace svbrdf {
 
@@ -60,10 +61,10 @@ class SceneMips {
   SceneMips(const SceneMips&) = delete;
   SceneMips& operator=(const SceneMips&) = delete;
 
-  // Builds what `filter` needs for every active material (nothing for level0 beyond the texels).
-  // Thread-safe and idempotent; throws svbrdf::Error (bad input) naming the image when one cannot
-  // be decoded into texels.
-  void prepare(TextureFilter filter);
+  // Builds what `filter` needs for every active material (nothing for level0 beyond the texels),
+  // a step of `progress` (a stage of its own) per material. Thread-safe and idempotent; throws
+  // svbrdf::Error (bad input) naming the image when one cannot be decoded into texels.
+  void prepare(TextureFilter filter, SetupProgress* progress = nullptr);
 
   // The MIP data of material `index` (MeshPrimitive::material; −1 is glTF's default material) when
   // it takes part, else null.

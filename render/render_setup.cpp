@@ -58,11 +58,20 @@ std::optional<Rgb> parse_color(const std::string& text) {
 }
 
 PreparedScene::PreparedScene(Scene scene, const SceneSetup& setup, const ColorConfig& color) : scene_(std::move(scene)) {
-  textures_ = std::make_unique<TextureSet>(scene_, color);
-  mips_ = std::make_unique<SceneMips>(scene_, *textures_);
-  if (setup.filter) mips_->prepare(*setup.filter);
-  bvh_ = std::make_unique<EmbreeScene>(device_, scene_, *textures_);
-  emitters_ = std::make_unique<Emitters>(scene_, *bvh_, *textures_);
+  {
+    const SetupProgress::Stage stage(setup.progress, "preparing " + std::to_string(scene_.textures.size()) + " textures");
+    textures_ = std::make_unique<TextureSet>(scene_, color);
+    mips_ = std::make_unique<SceneMips>(scene_, *textures_);
+  }
+  if (setup.filter) mips_->prepare(*setup.filter, setup.progress);
+  {
+    const SetupProgress::Stage stage(setup.progress, "building the BVH");
+    bvh_ = std::make_unique<EmbreeScene>(device_, scene_, *textures_);
+  }
+  {
+    const SetupProgress::Stage stage(setup.progress, "finding the emissive triangles");
+    emitters_ = std::make_unique<Emitters>(scene_, *bvh_, *textures_);
+  }
 
   const int ci = pick_camera(scene_, setup.camera);
   const CameraDesc desc = ci >= 0 ? scene_.cameras[std::size_t(ci)] : Camera::framing(bvh_->bounds_min(), bvh_->bounds_max());
@@ -119,6 +128,9 @@ PreparedScene::PreparedScene(Scene scene, const SceneSetup& setup, const ColorCo
     if (!lit)
       environment_note_ = "a uniform white environment of radiance 1 (the scene has neither lights nor emissive "
                           "surfaces; --env sets another)";
+    else if (world_.lights.empty())
+      environment_note_ = "none: the scene is lit by its emissive surfaces alone (glTF carries no environment; "
+                          "--env sets one)";
   } else if (const auto c = parse_color(setup.env)) {
     if (!(c->x >= 0.0f && c->y >= 0.0f && c->z >= 0.0f))
       throw input_error("--env " + setup.env, "a radiance cannot be negative");

@@ -14,6 +14,7 @@
 #include "gltf/scene.h"
 #include "render/texture_set.h"
 #include "textures/color.h"
+#include "base/setup_progress.h"
 
 namespace svbrdf {
 
@@ -29,6 +30,8 @@ struct SceneSetup {
   // The texture filter whose MIP data to build now (the materials in parallel); render() builds
   // what any other filter needs on first use.
   std::optional<TextureFilter> filter;
+  // Where the set-up's stages report (base/setup_progress.h); null: nowhere.
+  SetupProgress* progress = nullptr;
 };
 
 class PreparedScene {
@@ -39,8 +42,8 @@ class PreparedScene {
   const Camera& camera() const { return *camera_; }
   const EmbreeScene& bvh() const { return *bvh_; }
   // The environment the render uses, in words, when it is not the file's own (glTF carries none, so
-  // whenever it is not black): e.g. "a uniform white environment of radiance 1 (the scene has no
-  // lights; --env sets another)". Empty when the environment is black.
+  // whenever it is not black), e.g. "a uniform white environment of radiance 1 (...)"; and for a
+  // scene lit by its emissive surfaces alone, that it has none. Empty otherwise.
   const std::string& environment_note() const { return environment_note_; }
   const Emitters& emitters() const { return *emitters_; }
   // What the set-up changed from the file's intent, one line each: a --res whose aspect ratio is not
