@@ -45,10 +45,10 @@ BsdfSample walk_sample(const glm::vec3& wi, const Rgb& throughput, float choices
   return s;
 }
 
-// Up to six candidate impulses (two inner impulses through three paths); Impulses holds two, the
+// Up to eight candidate impulses (two inner impulses through four paths); Impulses holds two, the
 // strongest are kept and equal directions merge.
 struct Candidates {
-  std::array<Impulse, 6> items{};
+  std::array<Impulse, 8> items{};
   int count = 0;
   void add(const glm::vec3& d, const Rgb& m) {
     if (!(max_channel(m) > 0)) return;
@@ -145,31 +145,39 @@ float MicrofacetNormalMapping::blocked_cos(const glm::vec3& wi) const {
   return sin_p_ * std::max(0.0f, glm::dot(wi, wt_));
 }
 
-// The paper's explicit evaluation, f(wi, wo) <wi, wg> as a sum over the three paths (fp the inner
-// BSDF in the frame of wp, wo' = mirror_t(wo), wi' = mirror_t(wi)):
-//   wo → wp → wi:       λp(wo) fp(wi, wo)  <wi, wp>  G1(wi, wp)
-//   wo → wp → wt → wi:  λp(wo) fp(wi', wo) <wi', wp> (1 − G1(wi', wp)) G1(wi, wt)
-//   wo → wt → wp → wi:  λt(wo) fp(wi, wo') <wi, wp>  G1(wi, wp)
-// In the last, the ray mirrored by wt descends and meets wp for sure: the paper's 1 − G1(wo', wt) = 1.
-// The three are reciprocal as a set (the second and third exchange under wi ↔ wo).
+// The explicit evaluation, f(wi, wo) <wi, wg> as a sum over the four paths with one scattering on wp
+// (fp the inner BSDF in the frame of wp, wo' = mirror_t(wo), wi' = mirror_t(wi)):
+//   wo → wp → wi:            λp(wo) fp(wi, wo)   <wi, wp>  G1(wi, wp)
+//   wo → wp → wt → wi:       λp(wo) fp(wi', wo)  <wi', wp> (1 − G1(wi', wp)) G1(wi, wt)
+//   wo → wt → wp → wi:       λt(wo) fp(wi, wo')  <wi, wp>  G1(wi, wp)
+//   wo → wt → wp → wt → wi:  λt(wo) fp(wi', wo') <wi', wp> (1 − G1(wi', wp)) G1(wi, wt)
+// The first three are the paper's; the fourth is as exact: a ray that wt mirrors descends and meets
+// wp for sure (the paper's 1 − G1(wo', wt) = 1), and it leaves wp along wi' as in the second. Without
+// it a viewer that sees only wt (λp = 0) gets nothing from a light that sees only wt (<wi, wp> ≤ 0):
+// black under a delta light, which reaches the microsurface through eval alone. The four are
+// reciprocal as a set (the second and third exchange under wi ↔ wo; the first and fourth are their
+// own images).
 Rgb MicrofacetNormalMapping::eval(const glm::vec3& wi, const glm::vec3& wo) const {
   if (pass_through_) return inner_.eval(wi, wo);
   if (!(wi.z > 0) || !(wo.z > 0)) return Rgb(0.0f);
   const glm::vec3& wp = frame_p_.n;
   const float lp = lambda_p(wo), lt = 1.0f - lp;
-  const float direct = masking_over_cos(wi, wp);  // G1(wi, wp) / <wi, wg>
+  const float direct = masking_over_cos(wi, wp);    // G1(wi, wp) / <wi, wg>
+  const float escape_t = masking_over_cos(wi, wt_);  // G1(wi, wt) / <wi, wg>
+  const glm::vec3 wi_p = to_p(wi), wi_mp = to_p(mirror_t(wi));
   Rgb f(0.0f);
-  if (lp > 0) {
-    const glm::vec3 wo_p = to_p(wo);
-    if (direct > 0) f += inner_.eval(to_p(wi), wo_p) * (lp * glm::dot(wi, wp) * direct);
-    const float escape_t = masking_over_cos(wi, wt_);  // G1(wi, wt) / <wi, wg>
-    if (escape_t > 0) f += inner_.eval(to_p(mirror_t(wi)), wo_p) * (lp * blocked_cos(wi) * escape_t);
-  }
-  if (lt > 0 && direct > 0) f += inner_.eval(to_p(wi), to_p(mirror_t(wo))) * (lt * glm::dot(wi, wp) * direct);
+  // The light leaves wp toward the viewer along `toward` (wo, or wo' after wt), first facet chosen with l.
+  const auto through_wp = [&](const glm::vec3& toward, float l) {
+    const glm::vec3 toward_p = to_p(toward);
+    if (direct > 0) f += inner_.eval(wi_p, toward_p) * (l * glm::dot(wi, wp) * direct);
+    if (escape_t > 0) f += inner_.eval(wi_mp, toward_p) * (l * blocked_cos(wi) * escape_t);
+  };
+  if (lp > 0) through_wp(wo, lp);
+  if (lt > 0) through_wp(mirror_t(wo), lt);
   return f;
 }
 
-// The density of the walks that take the three explicit paths through a finite inner sample: the
+// The density of the walks that take the four explicit paths through a finite inner sample: the
 // facet is chosen with λ, the inner model samples with its pdf, leaving or meeting the other facet
 // is chosen with G1; mirroring is a one-to-one map of directions of Jacobian 1.
 float MicrofacetNormalMapping::pdf(const glm::vec3& wi, const glm::vec3& wo) const {
@@ -178,18 +186,19 @@ float MicrofacetNormalMapping::pdf(const glm::vec3& wi, const glm::vec3& wo) con
   const glm::vec3& wp = frame_p_.n;
   const float lp = lambda_p(wo), lt = 1.0f - lp;
   const float direct = masking(wi, wp);
+  const float escape_t = masking(wi, wt_);
+  const glm::vec3 wi_m = mirror_t(wi);
+  const glm::vec3 wi_p = to_p(wi), wi_mp = to_p(wi_m);
+  // (1 − G1(wi', wp)) G1(wi, wt)
+  const float via_t = escape_t > 0 ? blocked_cos(wi) / glm::dot(wi_m, wp) * escape_t : 0.0f;
   float p = 0.0f;
-  if (lp > 0) {
-    const glm::vec3 wo_p = to_p(wo);
-    if (direct > 0) p += lp * inner_.pdf(to_p(wi), wo_p) * direct;
-    const float escape_t = masking(wi, wt_);
-    if (escape_t > 0) {
-      const glm::vec3 wi_m = mirror_t(wi);
-      const float blocked = blocked_cos(wi) / glm::dot(wi_m, wp);  // 1 − G1(wi', wp)
-      p += lp * inner_.pdf(to_p(wi_m), wo_p) * blocked * escape_t;
-    }
-  }
-  if (lt > 0 && direct > 0) p += lt * inner_.pdf(to_p(wi), to_p(mirror_t(wo))) * direct;
+  const auto through_wp = [&](const glm::vec3& toward, float l) {
+    const glm::vec3 toward_p = to_p(toward);
+    if (direct > 0) p += l * inner_.pdf(wi_p, toward_p) * direct;
+    if (via_t > 0) p += l * inner_.pdf(wi_mp, toward_p) * via_t;
+  };
+  if (lp > 0) through_wp(wo, lp);
+  if (lt > 0) through_wp(mirror_t(wo), lt);
   return p;
 }
 
@@ -250,8 +259,8 @@ BsdfSample MicrofacetNormalMapping::sample(const glm::vec3& wo, const SampleU& u
     d = mirror_t(d);  // met wt
     const float gt = masking(d, wt_);
     if (rng.next_float() < gt) {
-      // wo → wp → wt → wi; wo → wt → wp → wt → wi is the walk's
-      if (explicit_path && !first_on_t) return finite_sample(d, pdf(d, wo), eval(d, wo));
+      // wo → wp → wt → wi or wo → wt → wp → wt → wi
+      if (explicit_path) return finite_sample(d, pdf(d, wo), eval(d, wo));
       return walk_sample(d, throughput, choices * gt);
     }
     choices *= 1.0f - gt;
@@ -261,7 +270,7 @@ BsdfSample MicrofacetNormalMapping::sample(const glm::vec3& wo, const SampleU& u
   return {};  // cut by the bound
 }
 
-// The inner model's impulses through the three explicit paths, with eval's factors; an impulse
+// The inner model's impulses through the four explicit paths, with eval's factors; an impulse
 // below wp's plane (transmission) is passed through with the facet's λ and no masking.
 Impulses MicrofacetNormalMapping::impulses_in(const glm::vec3& wo) const {
   if (pass_through_) return inner_.impulses_in(wo);
@@ -269,34 +278,28 @@ Impulses MicrofacetNormalMapping::impulses_in(const glm::vec3& wo) const {
   const glm::vec3& wp = frame_p_.n;
   const float lp = lambda_p(wo), lt = 1.0f - lp;
   Candidates c;
-  if (lp > 0) {
-    const Impulses in = inner_.impulses_in(to_p(wo));
+  const auto through_wp = [&](const glm::vec3& toward, float l) {
+    const Impulses in = inner_.impulses_in(to_p(toward));
     for (int i = 0; i < in.count; ++i) {
       const Impulse& imp = in.items[static_cast<std::size_t>(i)];
       const glm::vec3 d = from_p(imp.direction);
       if (!(imp.direction.z > 0)) {
-        c.add(d, lp * imp.magnitude);
+        c.add(d, l * imp.magnitude);
         continue;
       }
       const float g = masking(d, wp);
-      c.add(d, (lp * g) * imp.magnitude);  // wo → wp → wi
+      c.add(d, (l * g) * imp.magnitude);  // wo → wp → wi, wo → wt → wp → wi
       const glm::vec3 wi = mirror_t(d);
-      c.add(wi, (lp * (1.0f - g) * masking(wi, wt_)) * imp.magnitude);  // wo → wp → wt → wi
+      // wo → wp → wt → wi, wo → wt → wp → wt → wi
+      c.add(wi, (l * (1.0f - g) * masking(wi, wt_)) * imp.magnitude);
     }
-  }
-  if (lt > 0) {
-    const Impulses in = inner_.impulses_in(to_p(mirror_t(wo)));
-    for (int i = 0; i < in.count; ++i) {
-      const Impulse& imp = in.items[static_cast<std::size_t>(i)];
-      const glm::vec3 d = from_p(imp.direction);
-      const float g = imp.direction.z > 0 ? masking(d, wp) : 1.0f;
-      c.add(d, (lt * g) * imp.magnitude);  // wo → wt → wp → wi
-    }
-  }
+  };
+  if (lp > 0) through_wp(wo, lp);
+  if (lt > 0) through_wp(mirror_t(wo), lt);
   return c.strongest_two();
 }
 
-// The same three paths seen from the light: light from wi reaches wp directly (G1(wi, wp)) or
+// The same four paths seen from the light: light from wi reaches wp directly (G1(wi, wp)) or
 // after wt (wi' = mirror_t(wi), 1 − G1(wi', wp), G1(wi, wt)); the inner model's impulse leaves wp
 // along e, toward a viewer at e (λp(e)) or, mirrored by wt, at mirror_t(e) (λt).
 Impulses MicrofacetNormalMapping::impulses_out(const glm::vec3& wi) const {
@@ -304,7 +307,7 @@ Impulses MicrofacetNormalMapping::impulses_out(const glm::vec3& wi) const {
   if (!(wi.z > 0)) return {};
   const glm::vec3& wp = frame_p_.n;
   Candidates c;
-  const auto leave = [&](const Impulses& out, float arrive, bool direct) {
+  const auto leave = [&](const Impulses& out, float arrive) {
     for (int i = 0; i < out.count; ++i) {
       const Impulse& imp = out.items[static_cast<std::size_t>(i)];
       const glm::vec3 e = from_p(imp.direction);
@@ -314,19 +317,18 @@ Impulses MicrofacetNormalMapping::impulses_out(const glm::vec3& wi) const {
       }
       if (!(e.z > 0)) continue;  // descends onto wt and wp again: the walk's
       c.add(e, (arrive * lambda_p(e)) * imp.magnitude);  // wi → wp → wo or wi → wt → wp → wo
-      if (direct) {
-        const glm::vec3 wo = mirror_t(e);
-        c.add(wo, (arrive * (1.0f - lambda_p(wo))) * imp.magnitude);  // wi → wp → wt → wo
-      }
+      const glm::vec3 wo = mirror_t(e);
+      // wi → wp → wt → wo, wi → wt → wp → wt → wo
+      c.add(wo, (arrive * (1.0f - lambda_p(wo))) * imp.magnitude);
     }
   };
   const float direct = masking(wi, wp);
-  if (direct > 0) leave(inner_.impulses_out(to_p(wi)), direct, true);
+  if (direct > 0) leave(inner_.impulses_out(to_p(wi)), direct);
   const float escape_t = masking(wi, wt_);
   if (escape_t > 0) {
     const glm::vec3 wi_m = mirror_t(wi);
     const float blocked = blocked_cos(wi) / glm::dot(wi_m, wp);
-    leave(inner_.impulses_out(to_p(wi_m)), blocked * escape_t, false);
+    leave(inner_.impulses_out(to_p(wi_m)), blocked * escape_t);
   }
   return c.strongest_two();
 }

@@ -27,8 +27,9 @@ glm::vec3 bump_normal(int x, int y) {
   return glm::normalize(glm::vec3(float(-dhdx), float(-dhdy), 1.0f));
 }
 
-// A white Lambertian square (side 2, facing +z) carrying the bump map, seen straight down.
-Scene bumpy_plane() {
+// A white Lambertian square (side `size`, facing +z) carrying the bump map, seen straight down. The
+// map repeats size/2 times along each side, so the bumps keep their size whatever the square's.
+Scene bumpy_plane(float size = 2.0f) {
   Scene s;
   ImageDesc im;
   im.pixels = Image(kTexels, kTexels, 3);
@@ -43,7 +44,8 @@ Scene bumpy_plane() {
   MaterialDesc m = lambertian(Rgb(1.0f));
   m.normal_texture.texture = 0;
   s.materials.push_back(m);
-  add_quad(s, 0, glm::dmat4(1.0), 2.0f);
+  add_quad(s, 0, glm::dmat4(1.0), size);
+  for (auto& uv : s.meshes.back().primitives[0].texcoords[0]) uv *= 0.5f * size;
   s.cameras.push_back(ortho_camera({0, 0, 5}, {0, 0, 0}, 1.0f));
   return s;
 }
@@ -77,7 +79,9 @@ TEST(NormalMapping, StrongMapKeepsTheFurnacesEnergy) {
 }
 
 // A sun 15° above the horizon: where the mapped normal turns away from it (a quarter of the texels
-// here) the geometric surface is still lit, and so is every pixel.
+// here) the geometric surface is still lit, and so is every pixel, from every view: straight down,
+// and 40° and 70° from the normal on the sun's side, across it and facing it. The oblique views
+// see texels whose mapped normal turns from the viewer, shaded only through the tangent facet.
 TEST(NormalMapping, NoBlackCrescentUnderAGrazingSun) {
   const float elevation = glm::radians(15.0f);
   const glm::vec3 to_sun(std::cos(elevation), 0.0f, std::sin(elevation));
@@ -86,19 +90,30 @@ TEST(NormalMapping, NoBlackCrescentUnderAGrazingSun) {
     for (int x = 0; x < kTexels; ++x) away += glm::dot(bump_normal(x, y), to_sun) <= 0.0f;
   ASSERT_GT(away, kTexels * kTexels / 10) << "the map must turn some normals from the sun for the test to mean anything";
 
-  Scene s = bumpy_plane();
-  LightDesc sun;
-  sun.type = LightDesc::Type::directional;
-  sun.intensity = 3.0f;
-  sun.direction = -to_sun;
-  s.lights.push_back(sun);
-  SceneSetup setup;
-  setup.width = setup.height = 64;  // one pixel a texel
-  setup.env = "0,0,0";
-  const Image im = render_scene(std::move(s), setup, 16, level0()).radiance();
-  int black = 0;
-  for (int p = 0; p < 64 * 64; ++p) black += !(im.pixels[std::size_t(p) * im.channels] > 0.0f);
-  EXPECT_EQ(black, 0);
+  struct View {
+    double theta, phi;  // of the camera, degrees from the normal and from the sun's azimuth
+  };
+  const View views[] = {{0, 0}, {40, 0}, {40, 90}, {40, 180}, {70, 0}, {70, 90}, {70, 180}};
+  for (const View& v : views) {
+    // Side 8: an orthographic view of half height 1 at 70° covers 2/cos 70° ≈ 5.8 of it, all plane.
+    Scene s = bumpy_plane(8.0f);
+    const double t = glm::radians(v.theta), p = glm::radians(v.phi);
+    const glm::vec3 eye =
+        5.0f * glm::vec3(float(std::sin(t) * std::cos(p)), float(std::sin(t) * std::sin(p)), float(std::cos(t)));
+    s.cameras[0] = v.theta == 0 ? ortho_camera(eye, {0, 0, 0}, 1.0f) : ortho_camera(eye, {0, 0, 0}, 1.0f, {0, 0, 1});
+    LightDesc sun;
+    sun.type = LightDesc::Type::directional;
+    sun.intensity = 3.0f;
+    sun.direction = -to_sun;
+    s.lights.push_back(sun);
+    SceneSetup setup;
+    setup.width = setup.height = 64;  // about a pixel a texel
+    setup.env = "0,0,0";
+    const Image im = render_scene(std::move(s), setup, 16, level0()).radiance();
+    int black = 0;
+    for (int px = 0; px < 64 * 64; ++px) black += !(im.pixels[std::size_t(px) * im.channels] > 0.0f);
+    EXPECT_EQ(black, 0) << "camera " << v.theta << "° from the normal, " << v.phi << "° from the sun's azimuth";
+  }
 }
 
 }  // namespace
