@@ -98,7 +98,7 @@ int main(int argc, char** argv) {
 
   CLI::App app{"svbrdf-render: path-trace a textured glTF 2.0 scene"};
   std::string scene_file, out = "", png, res, camera, env, sun, filter = "brdf", light_sampling = "mis", ocio,
-      light_units = "photometric";
+      light_units = "photometric", normal_mapping = "shading";
   int spp = 64, threads = 0, max_depth = 16;
   std::uint64_t seed = 0, max_texels = svbrdf::resource_limits().max_texels;
   double time_limit = 0.0;
@@ -139,6 +139,11 @@ int main(int argc, char** argv) {
       ->check(svbrdf::cli::number_in(0.0, kMaxFootprintScale, true, false));
   app.add_option("--light-sampling", light_sampling, "environment sampling: mis | nee | bsdf")
       ->check(CLI::IsMember({"mis", "nee", "bsdf"}));
+  app.add_option("--normal-mapping", normal_mapping,
+                 "how normal maps shade: shading (the mapped normal, turned toward the viewer where it faces away; "
+                 "dark where it turns from a light, as in Cycles; the default) | microfacet (Schuessler et al. 2017: "
+                 "never black where the surface is lit, energy kept, strong maps flattened under low light)")
+      ->check(CLI::IsMember({"shading", "microfacet"}));
   app.add_option("--clamp", clamp,
                  "cap on the radiance one indirect light sample brings back, per channel (0: off, the default; "
                  "removes fireflies at the cost of bias)")
@@ -214,6 +219,8 @@ int main(int argc, char** argv) {
     options.integrator.footprints = aovs;  // the MIP-level AOV; the MIP filters compute their own
     options.integrator.footprint_scale = footprint_scale;  // 0: resolved to 1/√spp by render()
     options.integrator.clamp = clamp;
+    options.integrator.normal_mapping =
+        normal_mapping == "microfacet" ? svbrdf::NormalMapping::microfacet : svbrdf::NormalMapping::shading;
     options.aovs = aovs;
     options.integrator.light_sampling = light_sampling == "nee"    ? svbrdf::LightSampling::nee
                                         : light_sampling == "bsdf" ? svbrdf::LightSampling::bsdf

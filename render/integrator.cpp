@@ -129,6 +129,10 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
       fp = mip->to_texture(footprint(sp, mip->uv_set(), dpdx, dpdy));
       choice = mip->texture().choose(s.filter, fp, Rgb(sp.color), u_select);
       prefetch_emission(sp, *w.textures);
+      // A level-0 texel of a normal-mapped material is shaded as a material without MIP data
+      // shades it (below: the normal turned toward the viewer, or the microsurface), not by its lone
+      // lobe, whose f_eff vanishes wherever the mapped normal turns from the viewer.
+      if (choice.level == 0 && sp.material->normal_texture.present()) mip = nullptr;
     }
 
     // Next-event estimation of the environment, its shadow ray first: the ray needs the hit's
@@ -159,7 +163,8 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
 
     // The BSDF at the hit and the frame it works in. A material with MIP data is shaded by the
     // filter's lobes in the geometric tangent frame (the lobes carry the normal-mapped normals);
-    // any other by SurfaceBsdf in the normal-mapped shading frame.
+    // any other by SurfaceBsdf in its shading frame, or under NormalMapping::microfacet as the
+    // microsurface of its mapped normal in the geometric tangent frame.
     std::optional<SurfaceBsdf> surface_bsdf;
     std::optional<MicrofacetNormalMapping> normal_mapped;
     const Bsdf* bsdf = nullptr;
@@ -176,11 +181,10 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
       }
       if (aov_footprint) out.mip_level = mip->texture().level(fp);
     } else {
-      // A normal map tilts the shading normal off the surface's own; the microfacet-based normal
-      // mapping of Schüssler et al. (2017) shades the tilt as a microsurface whose mean normal is the
-      // surface's, in the surface's frame (appearance/microfacet_normal_mapping.h).
+      // A normal map tilts the shading normal off the surface's own (NormalMapping says how it shades).
       const Frame surface_frame = geometric_frame(sp);
       apply_normal_map(sp, *w.textures);
+      if (s.normal_mapping == NormalMapping::shading) keep_reflection_above(sp, -ray.dir);
       const ShadingParams sh = shading_params(sp, *w.textures);
       if (depth == 0) {
         out.albedo = sh.base_color;
@@ -196,7 +200,7 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
       bsdf = &surface_bsdf.emplace(sh);
       frame = sp.shading;
       const glm::vec3 wp = surface_frame.to_local(sp.shading.n);
-      if (wp.z < 1.0f - 1e-6f) {
+      if (s.normal_mapping == NormalMapping::microfacet && wp.z < 1.0f - 1e-6f) {
         bsdf = &normal_mapped.emplace(*bsdf, wp);
         frame = surface_frame;
       }

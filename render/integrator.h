@@ -42,6 +42,18 @@ struct RenderWorld {
   RayLog* ray_log = nullptr;      // when set, every traced ray is recorded (benchmarks)
 };
 
+// How a normal map's (or interpolated) shading normal shades a hit.
+enum class NormalMapping {
+  // The mapped normal itself, as the map's author saw it in Blender, Substance or a game engine,
+  // turned toward the viewer where it faces away (keep_reflection_above, surface.h). Where it turns
+  // from a light the surface is dark, as in Cycles.
+  shading,
+  // The mapped normal as one facet of a microsurface whose mean normal is the surface's (Schüssler
+  // et al. 2017, appearance/microfacet_normal_mapping.h): never black where the surface is lit and no
+  // energy lost, but a strong map is flattened under a low light.
+  microfacet,
+};
+
 struct IntegratorSettings {
   int max_depth = 16;   // scattering events; 0 renders emission and the environment only
   int rr_depth = 3;     // Russian roulette from this depth on
@@ -57,6 +69,7 @@ struct IntegratorSettings {
   // jittered samples needs each sample to filter only about 1/√n of it. render() sets 1/√spp when
   // this is 0 (resolve_footprint_scale); trace_path reads 0 as 1.
   float footprint_scale = 0.0f;
+  NormalMapping normal_mapping = NormalMapping::shading;
   // The most radiance a path may carry back from one of its indirect light samples (after the
   // first bounce), per channel; 0: no clamp. A biased cap on fireflies, off unless asked for.
   float clamp = 0.0f;

@@ -1,5 +1,6 @@
 #include "render/surface.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "textures/normal_map.h"
@@ -103,6 +104,27 @@ void apply_normal_map(SurfacePoint& sp, const TextureSet& textures) {
   if (!sp.front) mapped = -mapped;
   mapped = same_side(mapped, sp.ng);
   sp.shading = Frame::from_normal_tangent(mapped, sp.shading.s);
+}
+
+void keep_reflection_above(SurfacePoint& sp, const glm::vec3& wo) {
+  const glm::vec3 n = sp.shading.n, ng = sp.ng;
+  const float cos_o = glm::dot(wo, ng);
+  if (!(cos_o > 0.0f)) return;  // seen from below the geometric surface: nothing to keep above
+  // The margin: the reflection at least this far above the horizon (in cosine), never more than
+  // most of the view's own elevation, so a grazing view keeps a grazing reflection.
+  const float margin = std::min(0.9f * cos_o, 0.01f);
+  auto reflection_height = [&](const glm::vec3& m) { return glm::dot(2.0f * glm::dot(wo, m) * m - wo, ng); };
+  if (reflection_height(n) >= margin) return;
+  // The normal turned toward ng in their common plane, n(t) ∝ (1 − t)·n + t·ng, just enough: at t = 1
+  // the reflection is wo's mirror about ng, cos_o ≥ margin above, so the smallest t that reaches the
+  // margin is found by bisection (24 halvings: to float precision).
+  float lo = 0.0f, hi = 1.0f;
+  for (int i = 0; i < 24; ++i) {
+    const float mid = 0.5f * (lo + hi);
+    if (reflection_height(normalize_or((1.0f - mid) * n + mid * ng, ng)) >= margin) hi = mid;
+    else lo = mid;
+  }
+  sp.shading = Frame::from_normal_tangent(normalize_or((1.0f - hi) * n + hi * ng, ng), sp.shading.s);
 }
 
 ShadingParams shading_params(const SurfacePoint& sp, const TextureSet& textures) {

@@ -30,6 +30,13 @@ SurfacePoint make_surface_point(const EmbreeScene& bvh, const RayHit& hit, const
 // Applies the material's normal map to sp.shading (tangent space, +Y up, scale; glTF §3.9.3).
 void apply_normal_map(SurfacePoint& sp, const TextureSet& textures);
 
+// Turns sp.shading's normal just enough toward the viewer that the mirror reflection of `wo` (unit,
+// toward the viewer) leaves above the geometric surface, by a margin: a shading normal that faces
+// away from the viewer otherwise shades a surface the viewer sees as black. Nothing changes where the
+// reflection already leaves above. The normal turns toward the geometric normal in their common
+// plane, as Cycles' ensure_valid_reflection turns it (found here by bisection).
+void keep_reflection_above(SurfacePoint& sp, const glm::vec3& wo);
+
 ShadingParams shading_params(const SurfacePoint& sp, const TextureSet& textures);
 // The parts of shading_params that the MIP filters do not cover: emission, and the base color (for
 // the albedo AOV), both at level0.

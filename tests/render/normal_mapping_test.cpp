@@ -1,5 +1,7 @@
-// Normal maps shaded as microsurfaces (appearance/microfacet_normal_mapping.h) in the renderer: a
-// strong normal map keeps a white furnace's energy and leaves no black crescent under a grazing sun.
+// Normal maps in the renderer. As microsurfaces (NormalMapping::microfacet,
+// appearance/microfacet_normal_mapping.h): a strong normal map keeps a white furnace's energy and
+// leaves no black crescent under a grazing sun. As the mapped normal (NormalMapping::shading, the
+// default): no texel the viewer sees is black for facing away from the viewer.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -50,9 +52,10 @@ Scene bumpy_plane(float size = 2.0f) {
   return s;
 }
 
-IntegratorSettings level0() {
+IntegratorSettings level0(NormalMapping mode = NormalMapping::microfacet) {
   IntegratorSettings integ;
   integ.filter = TextureFilter::level0;  // the normal map read texel by texel, shaded by SurfaceBsdf
+  integ.normal_mapping = mode;
   return integ;
 }
 
@@ -113,6 +116,36 @@ TEST(NormalMapping, NoBlackCrescentUnderAGrazingSun) {
     int black = 0;
     for (int px = 0; px < 64 * 64; ++px) black += !(im.pixels[std::size_t(px) * im.channels] > 0.0f);
     EXPECT_EQ(black, 0) << "camera " << v.theta << "° from the normal, " << v.phi << "° from the sun's azimuth";
+  }
+}
+
+// The default shading by the mapped normal: seen 70° from the normal with the sun behind the
+// viewer, the texels whose mapped normal faces away from the viewer (a fifth of them here) would
+// shade black; turned toward the viewer (keep_reflection_above) they face the sun too, and no pixel
+// is black.
+TEST(NormalMapping, ShadingNormalsFacingAwayFromTheViewerAreTurnedBack) {
+  const double t = glm::radians(70.0);
+  const glm::vec3 to_eye(float(std::sin(t)), 0.0f, float(std::cos(t)));
+  int away = 0;
+  for (int y = 0; y < kTexels; ++y)
+    for (int x = 0; x < kTexels; ++x) away += glm::dot(bump_normal(x, y), to_eye) <= 0.0f;
+  ASSERT_GT(away, kTexels * kTexels / 10) << "the map must turn some normals from the viewer for the test to mean anything";
+  for (const NormalMapping mode : {NormalMapping::shading, NormalMapping::microfacet}) {
+    Scene s = bumpy_plane(8.0f);
+    s.cameras[0] = ortho_camera(5.0f * to_eye, {0, 0, 0}, 1.0f, {0, 0, 1});
+    LightDesc sun;
+    sun.type = LightDesc::Type::directional;
+    sun.intensity = 3.0f;
+    const float elevation = glm::radians(25.0f);
+    sun.direction = -glm::vec3(std::cos(elevation), 0.0f, std::sin(elevation));
+    s.lights.push_back(sun);
+    SceneSetup setup;
+    setup.width = setup.height = 64;
+    setup.env = "0,0,0";
+    const Image im = render_scene(std::move(s), setup, 16, level0(mode)).radiance();
+    int black = 0;
+    for (int px = 0; px < 64 * 64; ++px) black += !(im.pixels[std::size_t(px) * im.channels] > 0.0f);
+    EXPECT_EQ(black, 0) << (mode == NormalMapping::shading ? "shading" : "microfacet");
   }
 }
 
