@@ -510,14 +510,8 @@ TEST(Environment, ImportanceSamplingIsUnbiased) {
 // footprint of N/W texels: the MIP-level AOV reads log2(N/W).
 TEST(Integrator, CameraFootprintGivesTheMipLevel) {
   Scene s;
-  ImageDesc im;
-  im.pixels = Image(256, 256, 3);
-  s.images.push_back(std::move(im));
-  TextureDesc t;
-  t.image = 0;
-  s.textures.push_back(t);
   MaterialDesc m = lambertian(Rgb(1.0f));
-  m.base_color_texture.texture = 0;
+  m.base_color_texture.texture = test::add_image_texture(s, Image(256, 256, 3));
   s.materials.push_back(m);
   add_quad(s, 0, glm::dmat4(1.0), 2.0f);
   s.cameras.push_back(ortho_camera({0, 0, 5}, {0, 0, 0}, 1.0f));

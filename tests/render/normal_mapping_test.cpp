@@ -33,18 +33,13 @@ glm::vec3 bump_normal(int x, int y) {
 // map repeats size/2 times along each side, so the bumps keep their size whatever the square's.
 Scene bumpy_plane(float size = 2.0f) {
   Scene s;
-  ImageDesc im;
-  im.pixels = Image(kTexels, kTexels, 3);
+  Image map(kTexels, kTexels, 3);
   for (int y = 0; y < kTexels; ++y)
     for (int x = 0; x < kTexels; ++x)
       for (int c = 0; c < 3; ++c)
-        im.pixels.pixels[(std::size_t(y) * kTexels + x) * 3 + std::size_t(c)] = 0.5f * bump_normal(x, y)[c] + 0.5f;
-  s.images.push_back(std::move(im));
-  TextureDesc t;
-  t.image = 0;
-  s.textures.push_back(t);
+        map.pixels[(std::size_t(y) * kTexels + x) * 3 + std::size_t(c)] = 0.5f * bump_normal(x, y)[c] + 0.5f;
   MaterialDesc m = lambertian(Rgb(1.0f));
-  m.normal_texture.texture = 0;
+  m.normal_texture.texture = test::add_image_texture(s, std::move(map));
   s.materials.push_back(m);
   add_quad(s, 0, glm::dmat4(1.0), size);
   for (auto& uv : s.meshes.back().primitives[0].texcoords[0]) uv *= 0.5f * size;

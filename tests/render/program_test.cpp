@@ -86,6 +86,17 @@ TEST(Program, BadArgumentsExit2) {
   }
 }
 
+// A Lambertian square of side 8 at z = 0 facing +z, of albedo `rgb` (glTF's specular layer off
+// through KHR_materials_specular), as the light-unit tests below see it.
+test::GltfQuad lambertian_quad(const std::string& rgb) {
+  test::GltfQuad q;
+  q.positions = {-4, -4, 0, 4, -4, 0, 4, 4, 0, -4, 4, 0};
+  q.materials = R"([{"pbrMetallicRoughness": {"baseColorFactor": [)" + rgb + R"(, 1], "metallicFactor": 0},
+                     "extensions": {"KHR_materials_specular": {"specularFactor": 0}}}])";
+  q.primitive_extra = R"(, "material": 0)";
+  return q;
+}
+
 // End to end through the file format: a Lambertian quad (glTF's specular layer off through
 // KHR_materials_specular) under a KHR_lights_punctual directional light of E lux at 60°, an
 // orthographic glTF camera, a black environment: every pixel of the float EXR is ρ/π·(E/683)·cos 60°,
@@ -93,11 +104,7 @@ TEST(Program, BadArgumentsExit2) {
 // W/m² and --light-units radiometric gives the same image.
 TEST(Program, UnitsEndToEnd) {
   test::TempDir dir;
-  test::GltfQuad q;
-  q.positions = {-4, -4, 0, 4, -4, 0, 4, 4, 0, -4, 4, 0};
-  q.materials = R"([{"pbrMetallicRoughness": {"baseColorFactor": [0.25, 0.5, 0.75, 1], "metallicFactor": 0},
-                     "extensions": {"KHR_materials_specular": {"specularFactor": 0}}}])";
-  q.primitive_extra = R"(, "material": 0)";
+  test::GltfQuad q = lambertian_quad("0.25, 0.5, 0.75");
   // Light node: rotated so its −Z travels along −(sin 60°, 0, cos 60°): a rotation of 60° about +Y.
   q.nodes = R"([{"mesh": 0}, {"camera": 0, "translation": [0, 0, 3]},
                 {"rotation": [0, 0.5, 0, 0.8660254037844387], "extensions": {"KHR_lights_punctual": {"light": 0}}}])";
@@ -144,11 +151,7 @@ TEST(Program, UnitsEndToEnd) {
 // over the pixel, found here on a fine grid of it.
 TEST(Program, PointAndSpotLightsInCandela) {
   test::TempDir dir;
-  test::GltfQuad q;
-  q.positions = {-4, -4, 0, 4, -4, 0, 4, 4, 0, -4, 4, 0};
-  q.materials = R"([{"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0},
-                     "extensions": {"KHR_materials_specular": {"specularFactor": 0}}}])";
-  q.primitive_extra = R"(, "material": 0)";
+  test::GltfQuad q = lambertian_quad("0.5, 0.5, 0.5");
   const double d = 1.0, I = 1366.0, rho = 0.5;  // 2 W/sr
   const double outer = 0.5235987755982988, inner = 0.2617993877991494;  // 30° and 15°
   // The light's −Z points down at the quad as placed: no rotation needed.

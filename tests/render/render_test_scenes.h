@@ -84,6 +84,18 @@ inline CameraDesc perspective_camera(const glm::vec3& eye, const glm::vec3& targ
   return c;
 }
 
+// An image and a texture that reads it with the default sampler (repeat, as glTF's default);
+// returns the texture's index for a TextureRef.
+inline int add_image_texture(Scene& s, Image pixels) {
+  ImageDesc im;
+  im.pixels = std::move(pixels);
+  s.images.push_back(std::move(im));
+  TextureDesc t;
+  t.image = int(s.images.size()) - 1;
+  s.textures.push_back(t);
+  return int(s.textures.size()) - 1;
+}
+
 // A pure Lambertian material: glTF's specular layer off (KHR_materials_specular factor 0).
 inline MaterialDesc lambertian(const Rgb& rho) {
   MaterialDesc m;
