@@ -182,7 +182,9 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
       if (aov_footprint) out.mip_level = mip->texture().level(fp);
     } else {
       // A normal map tilts the shading normal off the surface's own (NormalMapping says how it shades).
-      const Frame surface_frame = geometric_frame(sp);
+      // The surface's own frame, which only the microsurface works in (taken before the map tilts it).
+      const bool microfacet = s.normal_mapping == NormalMapping::microfacet;
+      const Frame surface_frame = microfacet ? geometric_frame(sp) : Frame{};
       apply_normal_map(sp, *w.textures);
       if (s.normal_mapping == NormalMapping::shading) keep_reflection_above(sp, -ray.dir);
       const ShadingParams sh = shading_params(sp, *w.textures);
@@ -199,10 +201,12 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
       emission = sh.emission;
       bsdf = &surface_bsdf.emplace(sh);
       frame = sp.shading;
-      const glm::vec3 wp = surface_frame.to_local(sp.shading.n);
-      if (s.normal_mapping == NormalMapping::microfacet && wp.z < 1.0f - 1e-6f) {
-        bsdf = &normal_mapped.emplace(*bsdf, wp);
-        frame = surface_frame;
+      if (microfacet) {
+        const glm::vec3 wp = surface_frame.to_local(sp.shading.n);
+        if (wp.z < 1.0f - 1e-6f) {
+          bsdf = &normal_mapped.emplace(*bsdf, wp);
+          frame = surface_frame;
+        }
       }
     }
     // A single-sided surface emits from its front face only (glTF 2.0 §3.9.6). Emission found by a
