@@ -1,0 +1,166 @@
+// The random material family (textures/random_material.h) against the distributions its header
+// states: determinism per seed, the roughness range over seeds, the tilt bounds, one-axis
+// corrugations, and that a two-population texture holds two populations and nothing much between.
+#include "textures/random_material.h"
+
+#include <gtest/gtest.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace svbrdf {
+namespace {
+
+constexpr int kSeeds = 200;
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+
+double tilt_deg(const glm::vec3& n) { return std::acos(std::clamp(double(n.z), -1.0, 1.0)) / kDeg; }
+
+template <class Pred>
+double fraction(const MaterialTexels& t, Pred pred) {
+  std::size_t n = 0;
+  for (std::size_t k = 0; k < t.size(); ++k) n += pred(k) ? 1 : 0;
+  return double(n) / double(t.size());
+}
+
+bool same(const MaterialTexels& a, const MaterialTexels& b) {
+  return a.base_color == b.base_color && a.metallic == b.metallic && a.roughness == b.roughness && a.normal == b.normal;
+}
+
+TEST(RandomMaterial, SameSeedSameTexelsAtAnyThreadCount) {
+  for (std::uint64_t seed : {1u, 7u, 12345u}) {
+    const RandomMaterialDraw d = draw_random_material(seed);
+    const MaterialTexels a = random_material_texels(d, 64);
+    MaterialTexels b;
+    tbb::task_arena one(1);
+    one.execute([&] { b = random_material_texels(draw_random_material(seed), 64); });
+    EXPECT_TRUE(same(a, b)) << seed;
+    EXPECT_EQ(d.summary(), draw_random_material(seed).summary());
+    EXPECT_FALSE(same(a, random_material_texels(draw_random_material(seed + 1), 64))) << seed;
+  }
+}
+
+// Perceptual roughness stays in [0.02, 1] and the seeds reach both ends; the base population is
+// log-uniform, so P(r1 < 0.1) = ln(0.1/0.02)/ln(1/0.02) = 0.41 (±0.035 for 200 seeds).
+TEST(RandomMaterial, RoughnessSpansItsRange) {
+  float lo = 1, hi = 0;
+  int below = 0, single = 0;
+  for (std::uint64_t seed = 1; seed <= kSeeds; ++seed) {
+    const RandomMaterialDraw d = draw_random_material(seed);
+    const MaterialTexels t = random_material_texels(d, 32);
+    for (float r : t.roughness) {
+      ASSERT_GE(r, 0.02f);
+      ASSERT_LE(r, 1.0f);
+      lo = std::min(lo, r), hi = std::max(hi, r);
+    }
+    if (d.second_share > 0) continue;
+    // One population: its median texel is r1 within its ±15 % variation.
+    std::vector<float> r = t.roughness;
+    std::nth_element(r.begin(), r.begin() + std::ptrdiff_t(r.size() / 2), r.end());
+    ++single;
+    below += r[r.size() / 2] < 0.1f;
+  }
+  EXPECT_LE(lo, 0.021f);
+  EXPECT_GE(hi, 0.95f);
+  EXPECT_NEAR(double(below) / single, 0.411, 0.12);  // 3 deviations for the ~100 one-population seeds
+}
+
+// No texel tilts past 35°; a seed with relief tilts its steepest texel by what it drew, a flat one
+// not at all; over the seeds the tilt reaches its bound.
+TEST(RandomMaterial, TiltsWithinTheStatedBounds) {
+  double steepest = 0;
+  int flat = 0, partial = 0;
+  for (std::uint64_t seed = 1; seed <= kSeeds; ++seed) {
+    const RandomMaterialDraw d = draw_random_material(seed);
+    const MaterialTexels t = random_material_texels(d, 32);
+    double most = 0;
+    for (const glm::vec3& n : t.normal) most = std::max(most, tilt_deg(n));
+    ASSERT_LE(most, 35.0 + 1e-2) << d.summary();
+    steepest = std::max(steepest, most);
+    if (d.relief == Relief::flat) {
+      ++flat;
+      EXPECT_EQ(most, 0.0) << d.summary();
+      continue;
+    }
+    EXPECT_NEAR(most, d.max_tilt_deg, 0.05) << d.summary();
+    if (d.relief_share < 1.0f) {
+      // Where the relief is not, the surface is flat: the unrelieved share less half the mask's
+      // edge (a fifth of the texels) is untilted but for the texels whose central differences
+      // reach across its border (a ring that takes up to half of a small flat share at 32²).
+      ++partial;
+      EXPECT_GE(fraction(t, [&](std::size_t k) { return tilt_deg(t.normal[k]) < 1e-3; }), 0.25 * (0.9 - d.relief_share))
+          << d.summary();
+    }
+  }
+  EXPECT_GE(steepest, 33.0);
+  // Flat is drawn with p = 0.15, partial relief with 0.5 of the rest (3 deviations for 200 seeds).
+  EXPECT_NEAR(flat / double(kSeeds), 0.15, 0.08);
+  EXPECT_NEAR(partial / double(kSeeds - flat), 0.5, 0.12);
+}
+
+// A corrugation varies along its axis only: the normal leans along the axis (a, b) of texel columns
+// and rows, which in the tangent frame (+Y up, rows down) is (a, −b), so n.x·b + n.y·a = 0.
+TEST(RandomMaterial, CorrugationsTiltAlongOneAxis) {
+  int checked = 0;
+  for (std::uint64_t seed = 1; seed <= kSeeds; ++seed) {
+    const RandomMaterialDraw d = draw_random_material(seed);
+    if ((d.relief != Relief::ribbed && d.relief != Relief::brushed) || d.relief_share < 1.0f) continue;
+    const MaterialTexels t = random_material_texels(d, 32);
+    const glm::ivec2 a = d.corrugation_axis;
+    double across = 0, along = 0;
+    for (const glm::vec3& n : t.normal) {
+      across = std::max(across, double(std::abs(n.x * float(a.y) + n.y * float(a.x))));
+      along = std::max(along, double(std::abs(n.x * float(a.x) - n.y * float(a.y))));
+    }
+    EXPECT_LT(across, 1e-5) << d.summary();
+    EXPECT_GT(along, 0.05) << d.summary();
+    ++checked;
+  }
+  EXPECT_GE(checked, 10);
+}
+
+// A two-population texture: texels within ±20 % (in ln r, more than the ±15 % variation) of r1 and
+// of r2 in the drawn shares, the two ≥ 2.5× apart, and at most a few percent in between (the edges).
+TEST(RandomMaterial, TwoPopulationsAreTwo) {
+  int two = 0;
+  for (std::uint64_t seed = 1; seed <= kSeeds; ++seed) {
+    const RandomMaterialDraw d = draw_random_material(seed);
+    if (d.second_share == 0) continue;
+    ++two;
+    const MaterialTexels t = random_material_texels(d, 64);
+    const double r1 = d.roughness, r2 = d.second_roughness;
+    ASSERT_GE(std::max(r1, r2) / std::min(r1, r2), 2.5 - 1e-6) << d.summary();
+    auto near = [&](double r, double of) { return std::abs(std::log(std::clamp(r, 0.02, 1.0) / std::clamp(of, 0.02, 1.0))) < 0.2; };
+    const double first = fraction(t, [&](std::size_t k) { return near(t.roughness[k], r1); });
+    const double second = fraction(t, [&](std::size_t k) { return near(t.roughness[k], r2); });
+    EXPECT_NEAR(second, d.second_share, 0.06) << d.summary();
+    EXPECT_NEAR(first, 1 - d.second_share, 0.06) << d.summary();
+    EXPECT_GE(first + second, 0.94) << d.summary();
+  }
+  EXPECT_NEAR(two / double(kSeeds), 0.5, 0.12);
+}
+
+// Metal, dielectric or both in the drawn share; colours within [0, 1].
+TEST(RandomMaterial, MetalAndColour) {
+  int both = 0;
+  for (std::uint64_t seed = 1; seed <= kSeeds; ++seed) {
+    const RandomMaterialDraw d = draw_random_material(seed);
+    const MaterialTexels t = random_material_texels(d, 32);
+    const double metal = fraction(t, [&](std::size_t k) { return t.metallic[k] > 0.5f; });
+    for (const glm::vec3& c : t.base_color)
+      for (int i = 0; i < 3; ++i) ASSERT_TRUE(c[i] >= 0 && c[i] <= 1) << d.summary();
+    switch (d.metal) {
+      case MetalMix::dielectric: EXPECT_EQ(metal, 0.0); break;
+      case MetalMix::metal: EXPECT_EQ(metal, 1.0); break;
+      case MetalMix::both:
+        ++both;
+        EXPECT_NEAR(metal, d.metal_share, 0.06) << d.summary();
+        break;
+    }
+  }
+  EXPECT_NEAR(both / double(kSeeds), 0.3, 0.1);
+}
+
+}  // namespace
+}  // namespace svbrdf
