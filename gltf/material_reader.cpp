@@ -242,6 +242,7 @@ void decode_image(Document& doc, Materials& m, std::size_t i) {
   } catch (const Error& e) {
     throw input_error(doc.path.string(), e.what());
   }
+  d.encoded_digest = sha256(std::as_bytes(std::span(b.data(), b.size())));
   std::vector<unsigned char>().swap(b);
 }
 

@@ -5,11 +5,13 @@
 // space. Built by load_gltf (gltf/scene_reader.h); nothing in it refers back to tinygltf.
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "base/sha256.h"
 #include "gltf/material_desc.h"
 #include "textures/image.h"
 #include "textures/sampler.h"
@@ -55,6 +57,10 @@ struct ImageDesc {
   std::string mime_type;  // from the file, or guessed from the uri's extension
   std::string where;      // "images[3]"
   Image pixels;
+  // SHA-256 of the encoded bytes the pixels were decoded from (the file, data: URI or buffer view):
+  // what the MIP cache's key hashes instead of the decoded floats, 4 to 16 times fewer bytes. Absent
+  // for an image made in memory.
+  std::optional<Sha256Digest> encoded_digest;
 };
 
 struct CameraDesc {

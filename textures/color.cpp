@@ -159,6 +159,14 @@ const std::string& ColorConfig::srgb_texture_space() const { return impl_->srgb_
 const std::string& ColorConfig::default_display() const { return impl_->display; }
 const std::string& ColorConfig::default_view() const { return impl_->view; }
 
+std::string ColorConfig::identity() const {
+  std::ostringstream text;
+  impl_->config->serialize(text);
+  text << "\nlinear: " << impl_->linear << "\nsrgb texture: " << impl_->srgb_texture
+       << "\nsrgb to linear: " << impl_->srgb_to_linear->getCacheID() << '\n';
+  return text.str();
+}
+
 void ColorConfig::srgb_texture_to_linear(Image& image) const { apply_processor(impl_->srgb_to_linear, image); }
 void ColorConfig::linear_to_srgb_texture(Image& image) const { apply_processor(impl_->linear_to_srgb, image); }
 

@@ -37,6 +37,11 @@ class ColorConfig {
   const std::string& srgb_texture_space() const;
   const std::string& default_display() const;
   const std::string& default_view() const;
+  // What decoding a color texture depends on, as text: the config's content (serialized), the
+  // color spaces chosen and the sRGB → linear transform's own identity (OpenColorIO's cache ID, which
+  // covers the LUT files it reads). Two configs with the same identity decode texels alike; a key of
+  // decoded texels (render/mip_cache.h) hashes it.
+  std::string identity() const;
 
   // In place, channels 0..2 (RGB); an alpha channel passes through unchanged. A gray image (1 or 2
   // channels) is first expanded to RGB(A), as glTF reads gray color textures.
