@@ -1,6 +1,10 @@
 #include "mip/mip.h"
 
+#include <cstdio>
+
+#include "base/error.h"
 #include "mip/brdf_pyramid.h"
+#include "mip/mip_file.h"
 #include "mip/mip_lookup.h"
 #include "mip/param_pyramid.h"
 
@@ -32,6 +36,29 @@ MipTexture::MipTexture(const MaterialTexels& level0, WrapMode wrap_s, WrapMode w
       pyramids_(std::make_unique<Pyramids>()) {
   pyramids_->param = ParamPyramid::level0_only(level0);
   pyramids_->build(filter, level0);
+}
+
+MipTexture::MipTexture(MipData data, WrapMode wrap_s, WrapMode wrap_t)
+    : extent_(data.extent(0)), wrap_s_(wrap_s), wrap_t_(wrap_t), pyramids_(std::make_unique<Pyramids>()) {
+  pyramids_->param = std::move(data.param);
+  pyramids_->brdf = std::move(data.brdf);
+  pyramids_->has_brdf = true;
+}
+
+void MipTexture::write(const std::filesystem::path& path, const std::string& cache_key) const {
+  if (!prepared(TextureFilter::brdf) || !prepared(TextureFilter::param))
+    throw Error(path.string() + ": a MIP file needs both pyramids built", Error::Kind::internal);
+  write_mip_file(path, pyramids_->param, pyramids_->brdf, cache_key);
+}
+
+std::string mip_build_identity() {
+  // The options MipTexture::prepare builds with (BrdfPyramid::build's defaults).
+  const BrdfBuildOptions o;
+  char text[256];
+  std::snprintf(text, sizeof text, "mip file %d; lobes %d; tolerance %a; spread %a; radial %d; recentre %d", kMipFileVersion,
+                o.reduction.max_lobes, double(o.reduction.tolerance), double(o.reduction.spread_scale),
+                int(o.radial_correction), int(o.recentre));
+  return text;
 }
 
 void MipTexture::prepare(TextureFilter filter) {

@@ -29,8 +29,10 @@
 // level 0), for level0's lookups and brdf's level-0 taps, which the BRDF pyramid does not hold; the
 // parameter pyramid's coarse levels and the BRDF pyramid are built for the filters that read them.
 // Lookups allocate nothing and only read, so any number of threads may call them for a prepared filter.
+#include <filesystem>
 #include <memory>
 #include <span>
+#include <string>
 
 #include <glm/glm.hpp>
 
@@ -42,12 +44,18 @@
 
 namespace svbrdf {
 
+struct MipData;  // mip_data.h: what a MIP file holds (mip_file.h)
+
 class MipTexture {
  public:
   // Level 0 from `level0`, read with the wrap modes along u (s) and v (t), and what `filter` reads
   // built from the same texels.
   MipTexture(const MaterialTexels& level0, WrapMode wrap_s, WrapMode wrap_t,
              TextureFilter filter = TextureFilter::level0);
+  // Level 0 and both pyramids as a MIP file holds them (read_mip_file, mip_file.h), moved in: every
+  // filter is prepared and nothing is built. A MIP file reads back bit-identically, so lookups answer
+  // as those of the texture that wrote it.
+  MipTexture(MipData data, WrapMode wrap_s, WrapMode wrap_t);
   MipTexture(MipTexture&&) noexcept;
   MipTexture& operator=(MipTexture&&) noexcept;
   ~MipTexture();
@@ -59,6 +67,10 @@ class MipTexture {
   bool prepared(TextureFilter filter) const;
 
   Extent extent() const { return extent_; }
+
+  // Writes level 0 and both pyramids as a MIP file (mip_file.h; `cache_key` as there); brdf and a
+  // parameter filter must be prepared. Throws svbrdf::Error naming the file when it cannot be written.
+  void write(const std::filesystem::path& path, const std::string& cache_key = {}) const;
 
   // A lookup in two steps, so that a caller can do other work while the texel's memory arrives (the
   // fetch into a large texture is most of a lookup's cost): choose() picks the texel — brdf's
@@ -100,6 +112,11 @@ class MipTexture {
   WrapMode wrap_s_ = WrapMode::repeat, wrap_t_ = WrapMode::repeat;
   std::unique_ptr<Pyramids> pyramids_;
 };
+
+// What a MipTexture's build depends on besides its level-0 texels and this code, as text for a cache
+// key (render/mip_cache.h): the BRDF build's options (lobes, tolerance, the radial correction) and
+// the MIP file version.
+std::string mip_build_identity();
 
 // The continuous MIP level λ the filters read at a texture-space footprint on a level-0 image of
 // `level0` texels (for a texture without MIP data: the level a filter would read there).

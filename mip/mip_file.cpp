@@ -1,6 +1,7 @@
 #include "mip/mip_file.h"
 
 #include <Imath/half.h>
+#include <OpenImageIO/hash.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include <cstring>
 #include <iterator>
 #include <map>
+#include <numeric>
 #include <memory>
 #include <string>
 #include <vector>
@@ -62,6 +64,8 @@ constexpr std::size_t kLobeChannelCount = std::size(kLobeChannels);
 
 constexpr const char* kRadialInner = "svbrdf:radial_inner";
 constexpr const char* kRadialOuter = "svbrdf:radial_outer";
+constexpr const char* kChecksum = "svbrdf:checksum";
+constexpr const char* kCacheKey = "svbrdf:cache_key";
 std::string radial_channel(int node) { return "radial.R" + std::to_string(node); }
 
 std::string where(const fs::path& p) { return p.string(); }
@@ -145,6 +149,66 @@ bool get_float(const std::byte* at, OIIO::TypeDesc f, float& v) {
   return true;
 }
 
+// The layout of a pixel whose channels (`formats`, by channel index) lie in the order of their names:
+// OpenEXR stores them so and reads them back so, whatever order they were written in, which makes it
+// the one order in which a writer and a reader see the same bytes.
+NativeLayout name_ordered(const std::vector<std::string>& names, const std::vector<OIIO::TypeDesc>& formats) {
+  std::vector<std::size_t> by_name(names.size());
+  std::iota(by_name.begin(), by_name.end(), std::size_t(0));
+  std::sort(by_name.begin(), by_name.end(), [&](std::size_t a, std::size_t b) { return names[a] < names[b]; });
+  NativeLayout l;
+  l.formats = formats;
+  l.offsets.assign(names.size(), 0);
+  for (const std::size_t c : by_name) {
+    l.offsets[c] = l.stride;
+    l.stride += formats[c].size();
+  }
+  return l;
+}
+
+// A level's pixels are checked in bands of whole rows, about this many bytes each, as they are read:
+// the reader keeps one band, not a second copy of the level.
+constexpr std::size_t kBandBytes = std::size_t(1) << 22;
+int band_rows(int width, std::size_t stride) {
+  return static_cast<int>(std::max<std::size_t>(1, kBandBytes / (std::size_t(std::max(width, 1)) * std::max<std::size_t>(stride, 1))));
+}
+
+// The fingerprint of one band of pixels in name order. Fingerprint128 is fixed and portable (unlike
+// OpenImageIO's Hash128), so a file checks on any machine; it guards against corruption, not against
+// an adversary (the cache key is the SHA-256 one).
+void add_band(std::vector<std::uint64_t>& bands, std::span<const std::byte> name_ordered_pixels) {
+  const auto f = OIIO::farmhash::Fingerprint128(reinterpret_cast<const char*>(name_ordered_pixels.data()),
+                                                name_ordered_pixels.size());
+  bands.push_back(OIIO::farmhash::Uint128Low64(f));
+  bands.push_back(OIIO::farmhash::Uint128High64(f));
+}
+
+// A level's checksum (mip_file.h, svbrdf:checksum): the header values that give its pixels their
+// meaning, then its bands' fingerprints.
+std::string level_checksum(const OIIO::ImageSpec& s, int max_lobes, float radial_inner, float radial_outer,
+                           const std::vector<std::uint64_t>& bands) {
+  std::string header = "level " + std::to_string(s.get_int_attribute("svbrdf:level", -1)) + " " +
+                       std::to_string(s.width) + "x" + std::to_string(s.height) + " version " +
+                       std::to_string(s.get_int_attribute("svbrdf:mip_version", 0)) + " slots " +
+                       std::to_string(s.get_int_attribute("svbrdf:slots", -1)) + " max_lobes " +
+                       std::to_string(max_lobes);
+  std::uint32_t bits[2];
+  std::memcpy(&bits[0], &radial_inner, 4);
+  std::memcpy(&bits[1], &radial_outer, 4);
+  header += " radial " + std::to_string(bits[0]) + " " + std::to_string(bits[1]);
+  // Channels in name order, as the pixels: OpenImageIO lists a file's channels in an order of its own.
+  std::vector<std::string> channels;
+  for (int c = 0; c < s.nchannels; ++c)
+    channels.push_back(s.channelnames[static_cast<std::size_t>(c)] + ":" + std::string(s.channelformat(c).c_str()));
+  std::sort(channels.begin(), channels.end());
+  for (const std::string& c : channels) header += " " + c;
+  for (const std::uint64_t b : bands) header += " " + std::to_string(b);
+  const auto all = OIIO::farmhash::Fingerprint128(header.data(), header.size());
+  char hex[33];
+  std::snprintf(hex, sizeof hex, "%016llx%016llx", static_cast<unsigned long long>(OIIO::farmhash::Uint128High64(all)),
+                static_cast<unsigned long long>(OIIO::farmhash::Uint128Low64(all)));
+  return hex;
+}
 
 // The fewest bytes an OpenEXR file holding `spec`'s pixels can have, from the format (OpenEXR's
 // "Technical Introduction", file layout): an 8-byte offset-table entry and an 8-byte chunk header
@@ -168,89 +232,159 @@ std::uint64_t least_exr_bytes(const OIIO::ImageSpec& spec) {
 }
 }  // namespace
 
-void write_mip_file(const fs::path& path, const MipData& mip) {
-  const int levels = mip.levels();
-  if (levels == 0) throw Error(where(path) + ": nothing to write (an empty material)", Error::Kind::internal);
+namespace {
+
+// Level `level`'s pixels in `layout` (the spec's channels, by index, at the layout's offsets).
+std::vector<std::byte> pack_level(const ParamPyramid& param, const BrdfPyramid& brdf, int level, const NativeLayout& layout) {
   const int lobe_nch = static_cast<int>(kLobeChannelCount);
+  const Extent e = param.extent(level);
+  const std::size_t texels = static_cast<std::size_t>(e.width) * e.height;
+  std::vector<std::byte> buf(texels * layout.stride);
+  const auto params = param.level(level);
+  for (std::size_t t = 0; t < texels; ++t) {
+    std::byte* px = buf.data() + t * layout.stride;
+    const ParamTexel& p = params[t];
+    const float values[8] = {p.base_color.r, p.base_color.g, p.base_color.b, p.metallic,
+                             p.roughness,    p.normal.x,     p.normal.y,     p.normal.z};
+    for (std::size_t c = 0; c < 8; ++c) put_float(px, layout, c, values[c]);
+    if (level == 0) continue;
+    // Empty slots: weight 0 (and a plain GGX of α² 1 about the geometric normal, so every channel
+    // holds a meaningful value).
+    static const Lobe kEmpty{0.0f, glm::vec3(0), glm::vec3(0), glm::vec3(0, 0, 1), 1.0f};
+    const BrdfLevel& bl = brdf.level(level);
+    const std::span<const Lobe> lobes = bl.texel_lobes(t);
+    for (int k = 0; k < bl.slots; ++k) {
+      const LobeValues v = pack_lobe(k < static_cast<int>(lobes.size()) ? lobes[static_cast<std::size_t>(k)] : kEmpty);
+      for (int c = 0; c < lobe_nch; ++c) {
+        const std::size_t ch = 8 + static_cast<std::size_t>(k * lobe_nch + c);
+        const LobeChannel& lc = kLobeChannels[c];
+        if (lc.role == Role::normal_direction) put_uint(px, layout, ch, v.direction);
+        else put_float(px, layout, ch, v[lc.role]);
+      }
+    }
+    if (!bl.correction.empty())
+      for (int r = 0; r < RadialGrid::kNodes; ++r)
+        put_float(px, layout, 8 + static_cast<std::size_t>(bl.slots * lobe_nch + r), bl.correction[t].ratio[static_cast<std::size_t>(r)]);
+  }
+  return buf;
+}
+
+// Checks a level's pixels against its svbrdf:checksum band by band as they are read (`native`: the
+// layout OpenImageIO reads them in): add() each band, then finish(), which throws when they differ,
+// or when the checksum is absent and `required`.
+class LevelCheck {
+ public:
+  LevelCheck(const fs::path& path, const OIIO::ImageSpec& s, const NativeLayout& native, bool required)
+      : path_(path), spec_(s), native_(native), stored_(s.get_string_attribute(kChecksum, "")) {
+    if (stored_.empty() && required)
+      throw input_error(where(path), "level " + std::to_string(s.get_int_attribute("svbrdf:level", -1)) + " has no " + kChecksum);
+    std::vector<OIIO::TypeDesc> formats;
+    for (int c = 0; c < s.nchannels; ++c) formats.push_back(s.channelformat(c));
+    ordered_ = name_ordered(s.channelnames, formats);
+    for (const OIIO::TypeDesc& f : formats) sizes_.push_back(f.size());
+  }
+  void add(std::span<const std::byte> band) {
+    if (stored_.empty()) return;
+    if (ordered_.offsets == native_.offsets) return add_band(bands_, band);
+    // Not in name order: the band put in it first.
+    scratch_.resize(band.size());
+    const std::size_t texels = band.size() / native_.stride;
+    for (std::size_t c = 0; c < sizes_.size(); ++c)
+      for (std::size_t t = 0; t < texels; ++t)
+        std::memcpy(&scratch_[t * ordered_.stride + ordered_.offsets[c]], &band[t * native_.stride + native_.offsets[c]], sizes_[c]);
+    add_band(bands_, scratch_);
+  }
+  void finish(int max_lobes, float radial_inner, float radial_outer) const {
+    if (stored_.empty()) return;
+    const std::string actual = level_checksum(spec_, max_lobes, radial_inner, radial_outer, bands_);
+    if (actual != stored_)
+      throw input_error(where(path_), "level " + std::to_string(spec_.get_int_attribute("svbrdf:level", -1)) +
+                                          " does not match its " + kChecksum + " (" + stored_ + ", the texels give " + actual +
+                                          "): a corrupt file");
+  }
+
+ private:
+  const fs::path& path_;
+  const OIIO::ImageSpec& spec_;
+  const NativeLayout& native_;
+  std::string stored_;
+  NativeLayout ordered_;
+  std::vector<std::size_t> sizes_;
+  std::vector<std::byte> scratch_;
+  std::vector<std::uint64_t> bands_;
+};
+
+}  // namespace
+
+void write_mip_file(const fs::path& path, const MipData& mip, const std::string& cache_key) {
+  write_mip_file(path, mip.param, mip.brdf, cache_key);
+}
+
+void write_mip_file(const fs::path& path, const ParamPyramid& param, const BrdfPyramid& brdf, const std::string& cache_key) {
+  const int levels = param.levels();
+  if (levels == 0) throw Error(where(path) + ": nothing to write (an empty material)", Error::Kind::internal);
   bool corrected = false;
-  for (int level = 1; level < levels; ++level) corrected |= !mip.brdf.level(level).correction.empty();
+  for (int level = 1; level < levels; ++level) corrected |= !brdf.level(level).correction.empty();
+  const float radial_inner = corrected ? brdf.radial_grid().inner : 0.0f;
+  const float radial_outer = corrected ? brdf.radial_grid().outer_deg : 0.0f;
+  std::vector<OIIO::ImageSpec> specs(static_cast<std::size_t>(levels));
+  std::vector<NativeLayout> layouts(static_cast<std::size_t>(levels));
+  for (int level = 0; level < levels; ++level) {
+    const Extent e = param.extent(level);
+    const int slots = level == 0 ? 0 : brdf.level(level).slots;
+    const bool radial = level > 0 && !brdf.level(level).correction.empty();
+    OIIO::ImageSpec& s = specs[static_cast<std::size_t>(level)];
+    NativeLayout& layout = layouts[static_cast<std::size_t>(level)];
+    s = OIIO::ImageSpec(e.width, e.height, 0, OIIO::TypeDesc::FLOAT);
+    // OpenEXR parts share their display window: every level's is level 0's.
+    s.full_x = 0, s.full_y = 0, s.full_width = param.extent(0).width, s.full_height = param.extent(0).height;
+    s.channelnames.clear();
+    s.channelformats.clear();
+    const auto add = [&](std::string name, OIIO::TypeDesc f) {
+      s.channelnames.push_back(std::move(name));
+      s.channelformats.push_back(f);
+      layout.add(f);
+    };
+    for (const char* c : kParamChannels) add(c, OIIO::TypeDesc::FLOAT);
+    for (int k = 0; k < slots; ++k)
+      for (const LobeChannel& c : kLobeChannels) add("lobe" + std::to_string(k) + "." + c.suffix, c.format);
+    if (radial)
+      for (int r = 0; r < RadialGrid::kNodes; ++r) add(radial_channel(r), OIIO::TypeDesc::HALF);
+    s.nchannels = static_cast<int>(s.channelnames.size());
+    s.attribute("name", "level" + std::to_string(level));
+    s.attribute("compression", "zip");
+    s.attribute("svbrdf:mip_version", kMipFileVersion);
+    s.attribute("svbrdf:level", level);
+    s.attribute("svbrdf:max_lobes", brdf.max_lobes());
+    s.attribute("svbrdf:slots", slots);
+    if (corrected) {
+      s.attribute(kRadialInner, radial_inner);
+      s.attribute(kRadialOuter, radial_outer);
+    }
+    if (level == 0 && !cache_key.empty()) s.attribute(kCacheKey, cache_key);
+    // Every header is written when the file opens, so the checksums come first: the level packed once
+    // in name order for them, and again as written below.
+    const NativeLayout ordered_layout = name_ordered(s.channelnames, s.channelformats);
+    const std::vector<std::byte> ordered = pack_level(param, brdf, level, ordered_layout);
+    const std::size_t band_bytes = std::size_t(band_rows(e.width, ordered_layout.stride)) * e.width * ordered_layout.stride;
+    std::vector<std::uint64_t> bands;
+    for (std::size_t at = 0; at < ordered.size(); at += band_bytes)
+      add_band(bands, std::span(ordered).subspan(at, std::min(band_bytes, ordered.size() - at)));
+    s.attribute(kChecksum, level_checksum(s, brdf.max_lobes(), radial_inner, radial_outer, bands));
+  }
   // OpenImageIO 2.4's multi-part OpenEXR writer ignores an "oiio:ioproxy" (it writes a file of the
   // given name in the working folder), so the file is written to a temporary by OpenEXR, which throws
   // on a failed write, and renamed after an fsync; a failure there is the machine's (exit 1).
   write_atomically(path, [&](const fs::path& tmp) {
     std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(tmp.string());
     if (!out) throw environment_error(where(path), "cannot write OpenEXR: " + OIIO::geterror());
-    std::vector<OIIO::ImageSpec> specs(static_cast<std::size_t>(levels));
-    std::vector<NativeLayout> layouts(static_cast<std::size_t>(levels));
-    for (int level = 0; level < levels; ++level) {
-      const Extent e = mip.extent(level);
-      const int slots = level == 0 ? 0 : mip.brdf.level(level).slots;
-      const bool radial = level > 0 && !mip.brdf.level(level).correction.empty();
-      OIIO::ImageSpec& s = specs[static_cast<std::size_t>(level)];
-      NativeLayout& layout = layouts[static_cast<std::size_t>(level)];
-      s = OIIO::ImageSpec(e.width, e.height, 0, OIIO::TypeDesc::FLOAT);
-      // OpenEXR parts share their display window: every level's is level 0's.
-      s.full_x = 0, s.full_y = 0, s.full_width = mip.extent(0).width, s.full_height = mip.extent(0).height;
-      s.channelnames.clear();
-      s.channelformats.clear();
-      const auto add = [&](std::string name, OIIO::TypeDesc f) {
-        s.channelnames.push_back(std::move(name));
-        s.channelformats.push_back(f);
-        layout.add(f);
-      };
-      for (const char* c : kParamChannels) add(c, OIIO::TypeDesc::FLOAT);
-      for (int k = 0; k < slots; ++k)
-        for (const LobeChannel& c : kLobeChannels) add("lobe" + std::to_string(k) + "." + c.suffix, c.format);
-      if (radial)
-        for (int r = 0; r < RadialGrid::kNodes; ++r) add(radial_channel(r), OIIO::TypeDesc::HALF);
-      s.nchannels = static_cast<int>(s.channelnames.size());
-      s.attribute("name", "level" + std::to_string(level));
-      s.attribute("compression", "zip");
-      s.attribute("svbrdf:mip_version", kMipFileVersion);
-      s.attribute("svbrdf:level", level);
-      s.attribute("svbrdf:max_lobes", mip.brdf.max_lobes());
-      s.attribute("svbrdf:slots", slots);
-      if (corrected) {
-        s.attribute(kRadialInner, mip.brdf.radial_grid().inner);
-        s.attribute(kRadialOuter, mip.brdf.radial_grid().outer_deg);
-      }
-    }
     if (!out->open(tmp.string(), levels, specs.data()))
       throw environment_error(where(path), "cannot write: " + out->geterror());
     for (int level = 0; level < levels; ++level) {
       const OIIO::ImageSpec& s = specs[static_cast<std::size_t>(level)];
-      const NativeLayout& layout = layouts[static_cast<std::size_t>(level)];
       if (level > 0 && !out->open(tmp.string(), s, OIIO::ImageOutput::AppendSubimage))
         throw environment_error(where(path), "cannot write level " + std::to_string(level) + ": " + out->geterror());
-      const Extent e = mip.extent(level);
-      const std::size_t texels = static_cast<std::size_t>(e.width) * e.height;
-      std::vector<std::byte> buf(texels * layout.stride);
-      const auto params = mip.param.level(level);
-      for (std::size_t t = 0; t < texels; ++t) {
-        std::byte* px = buf.data() + t * layout.stride;
-        const ParamTexel& p = params[t];
-        const float param[8] = {p.base_color.r, p.base_color.g, p.base_color.b, p.metallic,
-                                p.roughness,    p.normal.x,     p.normal.y,     p.normal.z};
-        for (std::size_t c = 0; c < 8; ++c) put_float(px, layout, c, param[c]);
-        if (level == 0) continue;
-        // Empty slots: weight 0 (and a plain GGX of α² 1 about the geometric normal, so every channel
-        // holds a meaningful value).
-        static const Lobe kEmpty{0.0f, glm::vec3(0), glm::vec3(0), glm::vec3(0, 0, 1), 1.0f};
-        const BrdfLevel& bl = mip.brdf.level(level);
-        const std::span<const Lobe> lobes = bl.texel_lobes(t);
-        for (int k = 0; k < bl.slots; ++k) {
-          const LobeValues v = pack_lobe(k < static_cast<int>(lobes.size()) ? lobes[static_cast<std::size_t>(k)] : kEmpty);
-          for (int c = 0; c < lobe_nch; ++c) {
-            const std::size_t ch = 8 + static_cast<std::size_t>(k * lobe_nch + c);
-            const LobeChannel& lc = kLobeChannels[c];
-            if (lc.role == Role::normal_direction) put_uint(px, layout, ch, v.direction);
-            else put_float(px, layout, ch, v[lc.role]);
-          }
-        }
-        if (!bl.correction.empty())
-          for (int r = 0; r < RadialGrid::kNodes; ++r)
-            put_float(px, layout, 8 + static_cast<std::size_t>(bl.slots * lobe_nch + r), bl.correction[t].ratio[static_cast<std::size_t>(r)]);
-      }
+      const std::vector<std::byte> buf = pack_level(param, brdf, level, layouts[static_cast<std::size_t>(level)]);
       if (!out->write_image(OIIO::TypeUnknown, buf.data()))
         throw environment_error(where(path), "cannot write level " + std::to_string(level) + ": " + out->geterror());
     }
@@ -258,7 +392,7 @@ void write_mip_file(const fs::path& path, const MipData& mip) {
   });
 }
 
-MipData read_mip_file(const fs::path& path) {
+MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
   std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path.string());
   if (!in) {
     std::string why = OIIO::geterror();
@@ -273,6 +407,13 @@ MipData read_mip_file(const fs::path& path) {
     throw input_error(where(path), "MIP file version " + std::to_string(version) + "; this build reads version " +
                                        std::to_string(kMipFileVersion) + " only — rebuild it with `svbrdf-bake mip ... --out " +
                                        where(path) + "`");
+  // A cache entry names its key before anything else is read: another key's entry is never used.
+  if (!cache_key.empty()) {
+    const std::string stored = first.get_string_attribute(kCacheKey, "");
+    if (stored != cache_key)
+      throw input_error(where(path), stored.empty() ? "has no " + std::string(kCacheKey) + " (not a MIP cache entry)"
+                                                    : "holds the cache entry of key " + stored + ", not of " + cache_key);
+  }
   const Extent level0{first.width, first.height};
   if (level0.width <= 0 || level0.height <= 0) throw input_error(where(path), "level 0 has no texels");
   const int levels = level_count(level0);
@@ -362,19 +503,28 @@ MipData read_mip_file(const fs::path& path) {
       for (int r = 0; r < RadialGrid::kNodes; ++r) need(radial_channel(r));
     }
     const std::size_t texels = static_cast<std::size_t>(e.width) * e.height;
-    std::vector<std::byte> buf(texels * layout.stride);
-    if (!in->read_image(level, 0, 0, s.nchannels, OIIO::TypeUnknown, buf.data()))
-      throw input_error(where(path), "cannot read " + at_level + ": " + in->geterror());
+    LevelCheck check(path, s, layout, !cache_key.empty());
+    const int rows = band_rows(e.width, layout.stride);
+    std::vector<std::byte> buf(std::size_t(std::min(rows, e.height)) * e.width * layout.stride);
     std::vector<ParamTexel> params(texels);
     BrdfLevel bl;
     if (level > 0) {
       bl.reset(e, texels);
       bl.slots = slots;
+      // Room for every slot: address space only until written, and no copy as the lobes grow.
+      bl.lobes.reserve(texels * std::size_t(slots));
       if (radial) bl.correction.resize(texels);
     }
     const std::size_t lobe_nch = kLobeChannelCount;
     for (std::size_t t = 0; t < texels; ++t) {
-      const std::byte* px = buf.data() + t * layout.stride;
+      const std::size_t row = t / std::size_t(e.width);
+      if (t % (std::size_t(rows) * e.width) == 0) {  // the next band
+        const int end = std::min(e.height, int(row) + rows);
+        if (!in->read_scanlines(level, 0, int(row), end, 0, 0, s.nchannels, OIIO::TypeUnknown, buf.data()))
+          throw input_error(where(path), "cannot read " + at_level + ": " + in->geterror());
+        check.add(std::span(buf).first(std::size_t(end - int(row)) * e.width * layout.stride));
+      }
+      const std::byte* px = buf.data() + (t - (row - row % std::size_t(rows)) * e.width) * layout.stride;
       const auto value = [&](std::size_t c) {
         float v = 0.0f;
         get_float(px + order[c], formats[c], v);
@@ -407,6 +557,7 @@ MipData read_mip_file(const fs::path& path) {
         for (int r = 0; r < RadialGrid::kNodes; ++r)
           bl.correction[t].ratio[static_cast<std::size_t>(r)] = value(8 + static_cast<std::size_t>(slots) * lobe_nch + r);
     }
+    check.finish(max_lobes, radial_inner, radial_outer);
     if (level == 0) {
       MaterialTexels& m = mip.level0;
       m = MaterialTexels(e.width, e.height);

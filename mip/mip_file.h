@@ -38,10 +38,17 @@
 // svbrdf:max_lobes (int, the --lobes the file was built with), svbrdf:slots (int, S_L), and, where any
 // level has radial channels, svbrdf:radial_inner (float, radians: θ of the grid's node 1) and
 // svbrdf:radial_outer (float, degrees: θ of its last node, RadialGrid::kOuterDeg).
+// svbrdf:checksum (string, on every subimage): 32 hexadecimal digits, farmhash's Fingerprint128 (a
+// fixed, portable hash, OpenImageIO's hash.h) of the level's header values that give its texels a
+// meaning (its level, size, slots, lobes, radial grid, channels) and of its pixels as stored, channels
+// in the order of their names (OpenEXR's); a file that has it is checked level by level as it is read.
+// svbrdf:cache_key (string, on subimage 0): the key of a MIP cache entry (render/mip_cache.h), when
+// the file is one.
 // This build reads version kMipFileVersion only. A file of any other version is refused with one line
 // that names the file, its version and this build's, and how to rebuild it: another version's
 // channels mean other things, and a current file is one `svbrdf-bake mip` away.
 #include <filesystem>
+#include <string>
 
 #include "mip/mip_data.h"
 
@@ -49,11 +56,18 @@ namespace svbrdf {
 
 inline constexpr int kMipFileVersion = 8;
 
-// Throws svbrdf::Error naming the file when it cannot be written.
-void write_mip_file(const std::filesystem::path& path, const MipData& mip);
+// Throws svbrdf::Error naming the file when it cannot be written. A non-empty `cache_key` is stored as
+// svbrdf:cache_key.
+void write_mip_file(const std::filesystem::path& path, const MipData& mip, const std::string& cache_key = {});
+// The same from the two pyramids alone (what a MipTexture holds; the file's level 0 is the parameter
+// pyramid's).
+void write_mip_file(const std::filesystem::path& path, const ParamPyramid& param, const BrdfPyramid& brdf,
+                    const std::string& cache_key = {});
 
 // Throws svbrdf::Error naming the file when it is missing, unreadable, not a MIP file, of another
-// version than kMipFileVersion, or inconsistent (levels of the wrong size, missing channels).
-MipData read_mip_file(const std::filesystem::path& path);
+// version than kMipFileVersion, or inconsistent (levels of the wrong size, missing channels, a level
+// that does not match its svbrdf:checksum). A non-empty `cache_key` must equal the file's
+// svbrdf:cache_key, checked before any pixel is read, and every level must carry its checksum.
+MipData read_mip_file(const std::filesystem::path& path, const std::string& cache_key = {});
 
 }  // namespace svbrdf
