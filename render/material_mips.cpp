@@ -5,15 +5,13 @@
 
 #include <tbb/parallel_for.h>
 
+#include "render/mip_cache_key.h"
+#include "render/texel_inputs.h"
 #include "textures/material_loader.h"
 
 namespace svbrdf {
 
 namespace {
-
-bool same_transform(const TextureTransform& a, const TextureTransform& b) {
-  return a.offset == b.offset && a.scale == b.scale && a.rotation() == b.rotation();
-}
 
 // An image replicated by integer factors onto a larger grid (nearest upsampling).
 Image replicate(const Image& im, Extent e) {
@@ -27,18 +25,6 @@ Image replicate(const Image& im, Extent e) {
     }
   });
   return out;
-}
-
-bool same_ref(const TextureRef& a, const TextureRef& b) {
-  return a.texture == b.texture && (!a.present() || (a.uv_set() == b.uv_set() && same_transform(a.transform, b.transform)));
-}
-
-// Two materials whose level-0 texels and lookups are the same (decode_material_texels' inputs).
-bool same_texels(const MaterialDesc& a, const MaterialDesc& b) {
-  return same_ref(a.base_color_texture, b.base_color_texture) &&
-         same_ref(a.metallic_roughness_texture, b.metallic_roughness_texture) &&
-         same_ref(a.normal_texture, b.normal_texture) && a.base_color == b.base_color && a.metallic == b.metallic &&
-         a.roughness == b.roughness && a.normal_texture.scale == b.normal_texture.scale;
 }
 
 std::string label(const MaterialDesc& m) { return m.where + (m.name.empty() ? "" : " '" + m.name + "'"); }
@@ -134,52 +120,104 @@ int SceneMips::active_count() const {
   return static_cast<int>(std::count_if(slot_.begin(), slot_.end(), [](int s) { return s >= 0; }));
 }
 
+void SceneMips::use_cache(MipCache* cache, std::string color_identity) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  cache_ = cache;
+  color_identity_ = std::move(color_identity);
+}
+
 void SceneMips::prepare(TextureFilter filter, SetupProgress* progress) {
   const std::lock_guard<std::mutex> lock(mutex_);
   std::vector<std::size_t> todo;
   for (std::size_t i = 0; i < mips_.size(); ++i)
     if (!mips_[i].texture_ || !mips_[i].texture_->prepared(filter)) todo.push_back(i);
   if (todo.empty()) return;
+  // The builds the cache holds are read instead (see the header); `keys` then names the rest's.
+  std::vector<std::string> keys;
+  if (cache_ && filter == TextureFilter::brdf) read_cached(todo, keys, progress);
+  if (todo.empty()) return;
+  // Two materials whose inputs differ only in how they are looked up (uv set, transform) have one key:
+  // the first of them stores the entry, so one process never writes one entry twice at once.
+  std::vector<char> stores(keys.size(), 1);
+  for (std::size_t t = 0; t < keys.size(); ++t)
+    for (std::size_t u = 0; u < t && stores[t]; ++u) stores[t] = keys[u] != keys[t];
   const std::string activity = filter == TextureFilter::level0
                                    ? "decoding the materials' texels"
-                                   : "building the " + std::string(filter_name(filter)) + " MIP maps of the materials";
+                                   : "building the " + std::string(filter_name(filter)) + " MIP maps of the materials" +
+                                         (keys.empty() ? "" : " that the MIP cache does not hold");
   const SetupProgress::Stage stage(progress, activity, todo.size());
   // Materials in parallel; each build is parallel over rows inside (oneTBB nests).
   tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t t) {
-    const std::size_t i = todo[t];
-    MaterialMip& mip = mips_[i];
-    if (mip.texture_) {
-      mip.texture_->prepare(filter);
-      if (progress) progress->step();
-      return;
+    MaterialMip& mip = mips_[todo[t]];
+    build(todo[t], filter);
+    if (!keys.empty() && stores[t]) {
+      mip.texture_->prepare(TextureFilter::param);  // an entry holds both pyramids
+      cache_->store(keys[t], *mip.texture_);
     }
-    const MaterialDesc& m = scene_.materials[source_[i]];
-    // The images as TextureSet holds them (base color already scene-linear: decoded once), smaller
-    // ones replicated onto the grid.
-    std::vector<Image> replicas;
-    replicas.reserve(3);
-    auto image_for = [&](const TextureRef& r, bool color) -> const Image* {
-      if (!r.present()) return nullptr;
-      const Image& im = textures_.image(r, color);
-      if (im.width == mip.extent_.width && im.height == mip.extent_.height) return &im;
-      replicas.push_back(replicate(im, mip.extent_));
-      return &replicas.back();
-    };
-    MaterialImages in;
-    in.base_color = image_for(m.base_color_texture, true);
-    in.base_color_is_linear = m.base_color_texture.present() && textures_.linearized(m.base_color_texture);
-    in.base_color_name = m.where + ".pbrMetallicRoughness.baseColorTexture";
-    in.base_color_factor = glm::vec4(m.base_color, m.base_alpha);
-    in.metallic_roughness = image_for(m.metallic_roughness_texture, false);
-    in.metallic_roughness_name = m.where + ".pbrMetallicRoughness.metallicRoughnessTexture";
-    in.metallic_factor = m.metallic;
-    in.roughness_factor = m.roughness;
-    in.normal = image_for(m.normal_texture, false);
-    in.normal_name = m.where + ".normalTexture";
-    in.normal_scale = m.normal_texture.scale;
-    mip.texture_.emplace(decode_material_texels(in), mip.sampler_.wrap_s, mip.sampler_.wrap_t, filter);
     if (progress) progress->step();
   }, tbb::simple_partitioner());
+  if (!keys.empty()) counts_.built += static_cast<int>(todo.size());
+}
+
+void SceneMips::read_cached(std::vector<std::size_t>& todo, std::vector<std::string>& keys, SetupProgress* progress) {
+  std::vector<std::string> all(todo.size());
+  std::vector<char> read(todo.size(), 0);
+  {
+    const SetupProgress::Stage stage(progress, "reading the materials' MIP maps from the MIP cache", todo.size());
+    tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t t) {
+      MaterialMip& mip = mips_[todo[t]];
+      all[t] = mip_cache_key(scene_, textures_, scene_.materials[source_[todo[t]]], mip.extent_, color_identity_);
+      if (std::optional<MipData> data = cache_->load(all[t])) {
+        mip.texture_.emplace(std::move(*data), mip.sampler_.wrap_s, mip.sampler_.wrap_t);
+        read[t] = 1;
+      }
+      if (progress) progress->step();
+    }, tbb::simple_partitioner());
+  }
+  std::vector<std::size_t> missed;
+  for (std::size_t t = 0; t < todo.size(); ++t) {
+    if (read[t]) {
+      ++counts_.read;
+      continue;
+    }
+    missed.push_back(todo[t]);
+    keys.push_back(std::move(all[t]));
+  }
+  todo = std::move(missed);
+}
+
+void SceneMips::build(std::size_t i, TextureFilter filter) {
+  MaterialMip& mip = mips_[i];
+  if (mip.texture_) {
+    mip.texture_->prepare(filter);
+    return;
+  }
+  const MaterialDesc& m = scene_.materials[source_[i]];
+  // The images as TextureSet holds them (base color already scene-linear: decoded once), smaller
+  // ones replicated onto the grid.
+  std::vector<Image> replicas;
+  replicas.reserve(3);
+  auto image_for = [&](const TextureRef& r, bool color) -> const Image* {
+    if (!r.present()) return nullptr;
+    const Image& im = textures_.image(r, color);
+    if (im.width == mip.extent_.width && im.height == mip.extent_.height) return &im;
+    replicas.push_back(replicate(im, mip.extent_));
+    return &replicas.back();
+  };
+  // decode_material_texels' arguments: what render/texel_inputs.h lists.
+  MaterialImages in;
+  in.base_color = image_for(m.base_color_texture, true);
+  in.base_color_is_linear = m.base_color_texture.present() && textures_.linearized(m.base_color_texture);
+  in.base_color_name = m.where + ".pbrMetallicRoughness.baseColorTexture";
+  in.base_color_factor = glm::vec4(m.base_color, m.base_alpha);
+  in.metallic_roughness = image_for(m.metallic_roughness_texture, false);
+  in.metallic_roughness_name = m.where + ".pbrMetallicRoughness.metallicRoughnessTexture";
+  in.metallic_factor = m.metallic;
+  in.roughness_factor = m.roughness;
+  in.normal = image_for(m.normal_texture, false);
+  in.normal_name = m.where + ".normalTexture";
+  in.normal_scale = m.normal_texture.scale;
+  mip.texture_.emplace(decode_material_texels(in), mip.sampler_.wrap_s, mip.sampler_.wrap_t, filter);
 }
 
 }  // namespace svbrdf

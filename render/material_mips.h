@@ -21,8 +21,14 @@
 //
 // Building: SceneMips::prepare(filter) builds, for every active material in parallel, the texels and
 // what the filter reads, once; later calls for other filters add what is missing. Materials with the
-// same textures, factors, uv set and transform share one build. Lookups allocate nothing and only
-// read, so any number of threads may call them after prepare().
+// same textures, factors, uv set and transform share one build (render/texel_inputs.h lists what
+// enters the texels). Lookups allocate nothing and only read, so any number of threads may call them
+// after prepare().
+//
+// The MIP cache (render/mip_cache.h), when given: the brdf filter's build, the one that takes
+// seconds, is read from the cache when an entry of its key is there (no texels are decoded, nothing
+// is built), and stored there with both pyramids when it was built. The parameter filters build in
+// less time than an entry takes to read, and do not use it.
 #include <mutex>
 #include <optional>
 #include <string>
@@ -30,6 +36,7 @@
 
 #include "mip/mip.h"
 #include "gltf/scene.h"
+#include "render/mip_cache.h"
 #include "render/texture_set.h"
 #include "base/setup_progress.h"
 
@@ -61,6 +68,15 @@ class SceneMips {
   SceneMips(const SceneMips&) = delete;
   SceneMips& operator=(const SceneMips&) = delete;
 
+  // Reads and stores brdf builds in `cache` (null: none), their keys made with the color config's
+  // identity (ColorConfig::identity, the config that decoded the textures). `cache` must outlive this.
+  void use_cache(MipCache* cache, std::string color_identity);
+  // How many distinct MIP builds prepare() read from the cache and how many it built (brdf only).
+  struct CacheCounts {
+    int read = 0, built = 0;
+  };
+  CacheCounts cache_counts() const { return counts_; }
+
   // Builds what `filter` needs for every active material (nothing for level0 beyond the texels),
   // a step of `progress` (a stage of its own) per material. Thread-safe and idempotent; throws
   // svbrdf::Error (bad input) naming the image when one cannot be decoded into texels.
@@ -83,6 +99,11 @@ class SceneMips {
   int distinct_count() const { return static_cast<int>(mips_.size()); }
 
  private:
+  // prepare()'s steps: the cached builds read (`todo` left with the rest, `keys` with their keys),
+  // and one entry's build.
+  void read_cached(std::vector<std::size_t>& todo, std::vector<std::string>& keys, SetupProgress* progress);
+  void build(std::size_t entry, TextureFilter filter);
+
   const Scene& scene_;
   const TextureSet& textures_;
   std::vector<MaterialMip> mips_;       // distinct MIP data
@@ -90,6 +111,9 @@ class SceneMips {
   std::vector<std::size_t> source_;      // per entry: the first material that uses it
   std::vector<std::string> warnings_;        // materials left out
   std::vector<std::string> tint_warnings_;   // COLOR_0 under brdf
+  MipCache* cache_ = nullptr;
+  std::string color_identity_;
+  CacheCounts counts_;
   std::mutex mutex_;
 };
 

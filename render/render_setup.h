@@ -32,6 +32,8 @@ struct SceneSetup {
   std::optional<TextureFilter> filter;
   // Where the set-up's stages report (base/setup_progress.h); null: nowhere.
   SetupProgress* progress = nullptr;
+  // Where brdf MIP builds are read from and stored (render/mip_cache.h); null: built every time.
+  MipCache* mip_cache = nullptr;
 };
 
 class PreparedScene {
@@ -51,6 +53,8 @@ class PreparedScene {
   const std::vector<std::string>& warnings() const { return warnings_; }
   // What a render under `filter` should warn about the MIP data, one line each (material_mips.h).
   std::vector<std::string> mip_warnings(TextureFilter filter) const { return mips_->warnings(filter); }
+  // How many distinct MIP builds came from SceneSetup::mip_cache and how many were built.
+  SceneMips::CacheCounts mip_cache_counts() const { return mips_->cache_counts(); }
 
  private:
   Scene scene_;

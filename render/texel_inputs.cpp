@@ -1,0 +1,41 @@
+#include "render/texel_inputs.h"
+
+namespace svbrdf {
+
+bool same_transform(const TextureTransform& a, const TextureTransform& b) {
+  return a.offset == b.offset && a.scale == b.scale && a.rotation() == b.rotation();
+}
+
+namespace {
+
+bool same_ref(const TextureRef& a, const TextureRef& b) {
+  return a.texture == b.texture && (!a.present() || (a.uv_set() == b.uv_set() && same_transform(a.transform, b.transform)));
+}
+
+}  // namespace
+
+std::vector<TexelInput> texel_inputs(const MaterialDesc& m) {
+  // The arguments decode_material_texels takes (SceneMips::prepare fills MaterialImages from these).
+  // A new texel input goes here.
+  return {
+      {"baseColorTexture", &m.base_color_texture, true, {}},
+      {"metallicRoughnessTexture", &m.metallic_roughness_texture, false, {}},
+      {"normalTexture", &m.normal_texture, false, {}},
+      // Alpha is not a texel input: MaterialTexels holds no alpha.
+      {"baseColorFactor", nullptr, false, {m.base_color.r, m.base_color.g, m.base_color.b}},
+      {"metallicFactor", nullptr, false, {m.metallic}},
+      {"roughnessFactor", nullptr, false, {m.roughness}},
+      {"normalTexture.scale", nullptr, false, {m.normal_texture.scale}},
+  };
+}
+
+bool same_texels(const MaterialDesc& a, const MaterialDesc& b) {
+  const std::vector<TexelInput> x = texel_inputs(a), y = texel_inputs(b);
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (x[i].texture && !same_ref(*x[i].texture, *y[i].texture)) return false;
+    if (x[i].values != y[i].values) return false;
+  }
+  return true;
+}
+
+}  // namespace svbrdf
