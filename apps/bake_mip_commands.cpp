@@ -2,6 +2,7 @@
 //   mip (--base-color IMG | --base-color-factor r,g,b) [--normal IMG [--normal-scale s]]
 //       [--metallic-roughness IMG] [--metallic-factor m] [--roughness-factor r] [--lobes K] --out FILE
 //   mip SCENE.gltf --material NAME|INDEX [--lobes K] --out FILE
+//   mip SCENE.gltf [--mip-cache DIR] [--mip-cache-size MB]   (every material into the MIP cache)
 //   eval FILE --level L --texel I J --mode exact|param|toksvig|vmf|brdf   (pairs on stdin)
 //   compare FILE [--levels a..b] [--json] [--subset N]
 #include <CLI/CLI.hpp>
@@ -17,13 +18,17 @@
 #include <vector>
 
 #include "apps/direction_text.h"
+#include "apps/mip_cache_options.h"
 #include "base/cli_checks.h"
 #include "base/error.h"
 #include "base/resource_limits.h"
 #include "apps/bake_commands.h"
 #include "apps/compare_report.h"
+#include "base/setup_progress.h"
+#include "gltf/scene_reader.h"
 #include "mip/gltf_material.h"
 #include "mip/mip_file.h"
+#include "render/material_mips.h"
 #include "textures/color.h"
 #include "textures/material_loader.h"
 
@@ -40,6 +45,7 @@ struct MipOptions {
   bool normal_scale_set = false;
   int stats = 0;
   std::uint64_t max_texels = resource_limits().max_texels;
+  MipCacheOptions cache;
 };
 
 // The largest |--normal-scale|: at 1000 a normal map's 8-bit step of 1/255 already tilts the normal
@@ -54,8 +60,43 @@ void add_max_texels_option(CLI::App* cmd, std::uint64_t& max_texels) {
       ->check(cli::whole_in(1, cli::kMaxTexelsOption));
 }
 
+// `mip SCENE.gltf` without --material: every material's brdf build into the MIP cache, as
+// svbrdf-render builds it (its scene reader, textures and materials' set-up, so the same keys), for
+// renders that then build nothing.
+void fill_mip_cache(const MipOptions& o) {
+  if (!o.out.empty()) throw input_error("--out", "a whole glTF file goes into the MIP cache; --out goes with --material or images");
+  if (!o.base_color.empty() || !o.normal.empty() || !o.metallic_roughness.empty() || !o.base_color_factor.empty())
+    throw input_error(o.scene, "give either a glTF file or image options, not both");
+  if (o.lobes != kDefaultLobes || o.tolerance != ReductionOptions{}.tolerance || o.stats != 0)
+    throw input_error(o.scene, "--lobes, --tolerance and --stats go with --material: the MIP cache holds the builds "
+                               "svbrdf-render makes, with the default options");
+  if (o.cache.folder == "off") throw input_error("--mip-cache off", "a whole glTF file goes into the MIP cache; name one");
+  const std::unique_ptr<MipCache> cache = o.cache.open("svbrdf-bake");
+  if (!cache) throw environment_error("--mip-cache", "no MIP cache folder to fill");
+  const ColorConfig color =
+      ColorConfig::resolve(o.ocio_config.empty() ? std::nullopt : std::optional<std::filesystem::path>(o.ocio_config));
+  SetupProgress progress("svbrdf-bake", false);
+  progress.begin("reading " + std::filesystem::path(o.scene).filename().string() + " and decoding its images");
+  const Scene scene = load_gltf(o.scene);
+  progress.end();
+  const TextureSet textures(scene, color);
+  SceneMips mips(scene, textures);
+  mips.use_cache(cache.get(), color.identity());
+  mips.prepare(TextureFilter::brdf, &progress);
+  progress.end();
+  for (const std::string& w : mips.warnings(TextureFilter::brdf))
+    std::fprintf(stderr, "svbrdf-bake: warning: %s\n", message_line(w).c_str());
+  print_mip_cache_warnings(cache.get(), "svbrdf-bake");
+  if (cache->store_failed()) throw environment_error(cache->folder().string(), "the MIP cache could not be filled");
+  const SceneMips::CacheCounts c = mips.cache_counts();
+  std::printf("%s: %d MIP maps in the MIP cache %s (%d were there, %d built)\n", o.scene.c_str(), c.read + c.built,
+              cache->folder().c_str(), c.read, c.built);
+}
+
 void run_mip(const MipOptions& o) {
   resource_limits().max_texels = o.max_texels;  // before any image is read
+  if (!o.scene.empty() && o.material.empty()) return fill_mip_cache(o);
+  if (o.out.empty()) throw input_error("--out", "the MIP file to write is required (or a glTF file alone, to fill the MIP cache)");
   if (o.lobes < 1 || o.lobes > kMaxLobes)
     throw input_error("--lobes", std::to_string(o.lobes) + " is out of range (1.." + std::to_string(kMaxLobes) + ")");
   if (!(o.tolerance >= 0 && o.tolerance < 1)) throw input_error("--tolerance", "must be in [0, 1)");
@@ -64,7 +105,6 @@ void run_mip(const MipOptions& o) {
       ColorConfig::resolve(o.ocio_config.empty() ? std::nullopt : std::optional<std::filesystem::path>(o.ocio_config));
   MaterialTexels texels;
   if (!o.scene.empty()) {
-    if (o.material.empty()) throw input_error("--material", "a glTF file needs --material NAME|INDEX");
     if (!o.base_color.empty() || !o.normal.empty() || !o.metallic_roughness.empty() || !o.base_color_factor.empty())
       throw input_error(o.scene, "give either a glTF file with --material or image options, not both");
     texels = load_gltf_material_texels(o.scene, o.material, color);
@@ -179,7 +219,8 @@ void run_compare(const CompareOptions_& o) {
 void add_mip_commands(CLI::App& app) {
   auto m = std::make_shared<MipOptions>();
   CLI::App* mip = app.add_subcommand("mip", "Build the BRDF pyramid (and the parameter pyramid) of a material into an OpenEXR MIP file");
-  mip->add_option("SCENE", m->scene, "a glTF 2.0 file (.gltf or .glb) to take the material from (with --material)");
+  mip->add_option("SCENE", m->scene, "a glTF 2.0 file (.gltf or .glb) to take the material from (with --material), or "
+                                      "alone: every material's MIP maps into the MIP cache that svbrdf-render reads");
   mip->add_option("--material", m->material, "the glTF material's name or index");
   mip->add_option("--base-color", m->base_color, "base color image (sRGB-encoded; float images are taken as linear)");
   mip->add_option("--base-color-factor", m->base_color_factor, "linear base color factor r,g,b in [0, 1] (multiplies the image)")
@@ -203,7 +244,8 @@ void add_mip_commands(CLI::App& app) {
       ->check(cli::whole_in(0, INT_MAX));
   add_max_texels_option(mip, m->max_texels);
   mip->add_option("--ocio-config", m->ocio_config, "OpenColorIO config to use instead of $OCIO or the built-in one");
-  mip->add_option("--out", m->out, "the MIP file to write (.exr)")->required();
+  mip->add_option("--out", m->out, "the MIP file to write (.exr)");
+  m->cache.add_to(mip);
   mip->callback([m] { run_mip(*m); });
 
   auto e = std::make_shared<EvalOptions>();

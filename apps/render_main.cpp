@@ -14,6 +14,7 @@
 #include <tuple>
 #include <utility>
 
+#include "apps/mip_cache_options.h"
 #include "apps/run_program.h"
 #include "base/checked_number.h"
 #include "base/cli_checks.h"
@@ -151,6 +152,8 @@ int main(int argc, char** argv) {
   app.add_option("--exposure", exposure, "exposure in stops for the PNG, in [-64, 64] (the EXR is never scaled)")
       ->check(svbrdf::cli::number_in(-kMaxExposure, kMaxExposure));
   app.add_option("--ocio-config", ocio, "OpenColorIO config for texture decoding and the PNG (default: $OCIO, else the built-in one)");
+  svbrdf::MipCacheOptions mip_cache_options;
+  mip_cache_options.add_to(&app);
   app.add_flag("--float", use_float, "write 32-bit float EXR (default half)");
   app.add_flag("--aov", aovs, "also write albedo, normal, depth and MIP-level EXRs beside the output");
   app.add_flag("-q,--quiet", quiet, "no progress output or notes (warnings and errors are still printed)");
@@ -189,12 +192,20 @@ int main(int argc, char** argv) {
     load.light_units = light_units == "radiometric" ? svbrdf::LightUnits::radiometric : svbrdf::LightUnits::photometric;
     svbrdf::SetupProgress setup_progress("svbrdf-render", quiet);
     setup.progress = &setup_progress;
+    // The brdf filter's builds are the ones worth keeping (render/mip_cache.h).
+    const std::unique_ptr<svbrdf::MipCache> mip_cache =
+        texture_filter == svbrdf::TextureFilter::brdf ? mip_cache_options.open("svbrdf-render") : nullptr;
+    setup.mip_cache = mip_cache.get();
     setup_progress.begin("reading " + scene_path.filename().string() + " and decoding its images");
     svbrdf::Scene scene = svbrdf::load_gltf(scene_path, load);
     setup_progress.end();
     for (const std::string& w : scene.warnings)
       std::fprintf(stderr, "svbrdf-render: warning: %s\n", svbrdf::message_line(w).c_str());
     const svbrdf::PreparedScene prepared(std::move(scene), setup, color);
+    svbrdf::print_mip_cache_warnings(mip_cache.get(), "svbrdf-render");
+    if (const auto counts = prepared.mip_cache_counts(); !quiet && counts.read + counts.built > 0)
+      std::fprintf(stderr, "svbrdf-render: MIP maps: %d read from the MIP cache %s, %d built\n", counts.read,
+                   svbrdf::message_line(mip_cache->folder().string()).c_str(), counts.built);
     // glTF carries no environment: whichever one lights the render is said, once (a note, not a
     // warning: --quiet silences it with the progress).
     if (!quiet && !prepared.environment_note().empty())
