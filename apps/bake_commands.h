@@ -12,6 +12,8 @@ namespace svbrdf {
 void add_material_command(CLI::App& app);
 // `svbrdf-bake mip | eval | compare`: ../shared/spec/brdf-mip.md, "svbrdf-bake surface".
 void add_mip_commands(CLI::App& app);
+// `svbrdf-bake random-family`: the BRDF MIP's error distribution over the random material family.
+void add_random_family_command(CLI::App& app);
 // `svbrdf-bake scene RECIPE --out DIR`: scene recipes (scenes/*.json) into glTF scenes.
 void add_scene_command(CLI::App& app);
 

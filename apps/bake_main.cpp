@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   svbrdf::add_material_command(app);
   svbrdf::add_mip_commands(app);
   svbrdf::add_scene_command(app);
+  svbrdf::add_random_family_command(app);
   // The subcommands run as CLI11 callbacks, inside the parse.
   return svbrdf::run_program("svbrdf-bake", app, argc, argv, [] { return 0; });
 }
