@@ -12,6 +12,7 @@
 #include <iterator>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -270,8 +271,8 @@ std::vector<std::byte> pack_level(const ParamPyramid& param, const BrdfPyramid& 
 }
 
 // Checks a level's pixels against its svbrdf:checksum band by band as they are read (`native`: the
-// layout OpenImageIO reads them in): add() each band, then finish(), which throws when they differ,
-// or when the checksum is absent and `required`.
+// layout OpenImageIO reads them in): add() each band, then mismatch(), the error when they differ.
+// The constructor throws when the checksum is absent and `required`.
 class LevelCheck {
  public:
   LevelCheck(const fs::path& path, const OIIO::ImageSpec& s, const NativeLayout& native, bool required)
@@ -294,13 +295,13 @@ class LevelCheck {
         std::memcpy(&scratch_[t * ordered_.stride + ordered_.offsets[c]], &band[t * native_.stride + native_.offsets[c]], sizes_[c]);
     add_band(bands_, scratch_);
   }
-  void finish(int max_lobes, float radial_inner, float radial_outer) const {
-    if (stored_.empty()) return;
+  std::optional<Error> mismatch(int max_lobes, float radial_inner, float radial_outer) const {
+    if (stored_.empty()) return std::nullopt;
     const std::string actual = level_checksum(spec_, max_lobes, radial_inner, radial_outer, bands_);
-    if (actual != stored_)
-      throw input_error(where(path_), "level " + std::to_string(spec_.get_int_attribute("svbrdf:level", -1)) +
-                                          " does not match its " + kChecksum + " (" + stored_ + ", the texels give " + actual +
-                                          "): a corrupt file");
+    if (actual == stored_) return std::nullopt;
+    return input_error(where(path_), "level " + std::to_string(spec_.get_int_attribute("svbrdf:level", -1)) +
+                                         " does not match its " + kChecksum + " (" + stored_ + ", the texels give " + actual +
+                                         "): a corrupt file");
   }
 
  private:
@@ -450,6 +451,7 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
                                          std::to_string(level0.height) + " levels need: a truncated or corrupt file");
   }
   MipData mip;
+  std::optional<Error> corrupt;  // the first level that fails its checksum
   std::vector<std::vector<ParamTexel>> param_levels;
   std::vector<BrdfLevel> coarse;
   for (int level = 0; level < levels; ++level) {
@@ -557,7 +559,9 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
         for (int r = 0; r < RadialGrid::kNodes; ++r)
           bl.correction[t].ratio[static_cast<std::size_t>(r)] = value(8 + static_cast<std::size_t>(slots) * lobe_nch + r);
     }
-    check.finish(max_lobes, radial_inner, radial_outer);
+    // Said after the whole file is read: a more telling refusal of a later level (a missing grid)
+    // comes first.
+    if (!corrupt) corrupt = check.mismatch(max_lobes, radial_inner, radial_outer);
     if (level == 0) {
       MaterialTexels& m = mip.level0;
       m = MaterialTexels(e.width, e.height);
@@ -574,6 +578,7 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
   }
   if (in->seek_subimage(levels, 0))
     throw input_error(where(path), "has more subimages than the " + std::to_string(levels) + " levels of its level 0");
+  if (corrupt) throw *corrupt;
   mip.param = ParamPyramid::from_levels(level0, std::move(param_levels));
   mip.brdf = BrdfPyramid::from_levels(mip.level0, max_lobes, std::move(coarse),
                                       radial_inner > 0.0f ? RadialGrid::with_inner(radial_inner, radial_outer) : RadialGrid{});

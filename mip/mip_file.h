@@ -41,7 +41,8 @@
 // svbrdf:checksum (string, on every subimage): 32 hexadecimal digits, farmhash's Fingerprint128 (a
 // fixed, portable hash, OpenImageIO's hash.h) of the level's header values that give its texels a
 // meaning (its level, size, slots, lobes, radial grid, channels) and of its pixels as stored, channels
-// in the order of their names (OpenEXR's); a file that has it is checked level by level as it is read.
+// in the order of their names (OpenEXR's); a file that has it is checked as it is read, and refused
+// once read when a level differs (after any other refusal, which says more).
 // svbrdf:cache_key (string, on subimage 0): the key of a MIP cache entry (render/mip_cache.h), when
 // the file is one.
 // This build reads version kMipFileVersion only. A file of any other version is refused with one line

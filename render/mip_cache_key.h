@@ -17,7 +17,7 @@
 #include <string>
 
 #include "gltf/scene.h"
-#include "mip/pyramid_shape.h"
+#include "mip/mip.h"
 #include "render/texture_set.h"
 
 namespace svbrdf {
