@@ -23,10 +23,6 @@ namespace svbrdf {
 namespace reduction {
 namespace {
 
-// The share of the LEAN estimate in the peak of a merged lobe that becomes a spread core (merge_union
-// says why; chosen by the sweep that chose kPeakWeight, docs/mip-algorithm.md, §9).
-constexpr double kLeanPeakShareSpread = 0.4;
-
 // The merged lobe but for its shape: the linear parts (weight, ρ, F0, mean normal).
 struct MergeBase {
   Lobe lobe;
@@ -70,8 +66,9 @@ struct Merged {
 };
 
 // Merges the union u; returns the merged lobe, its summary and, when the union's terms are given (a
-// candidate merge, not one already chosen), its cost.
-Merged merge_union(std::span<const Member> u, const UnionTerms* terms, float spread_scale, double peak_weight = kPeakWeight) {
+// candidate merge, not one already chosen), its cost, with `peak_weight` on its highlight term (the
+// options' for pairs; the whole-union try has its own, merge_cost.h).
+Merged merge_union(std::span<const Member> u, const UnionTerms* terms, const ReductionOptions& o, double peak_weight) {
   const MergeBase mb = merge_base(u);
   double K = 0;
   for (const Member& x : u) K += x.sum->amp;
@@ -96,7 +93,7 @@ Merged merge_union(std::span<const Member> u, const UnionTerms* terms, float spr
   // the union's centre (by about ln(2σ²/α²) for a Gaussian spread σ) and the error compounds over the
   // levels (+8 % at granite's mirror pairs by level 8); the union's exact D at the merged normal
   // (P_centre) alone underestimates it for the next level (−9 %: the union's core is flatter than a
-  // spread core's). The spread core takes a blend, kLeanPeakShareSpread of P_lean; a roughness
+  // spread core's). The spread core takes a blend, lean_peak_share_spread of P_lean; a roughness
   // mixture keeps P_lean for its band (a blend there moved metal-tray's off-specular level means by
   // 5–7 %), and so does its atom where it gets one (set_shape; P_centre there raised polished granite's
   // highlight by 2–3 % and lowered the tray's glow under a 45° sun by 1–2 %; docs/mip-algorithm.md, §4.1).
@@ -106,10 +103,11 @@ Merged merge_union(std::span<const Member> u, const UnionTerms* terms, float spr
     const double k = by_amp ? a.amp : a.weight;
     const double t = std::min(tan2_between(a.n, n), 1e3);
     A += k * a.tail;
-    P_lean += k / (1.0 / a.peak + spread_scale * t);
+    P_lean += k / (1.0 / a.peak + o.spread_scale * t);
   }
   double P = P_lean;
-  if (A * P_lean < K * K) P = (1.0 - kLeanPeakShareSpread) * union_centre() * K + kLeanPeakShareSpread * P_lean;
+  const double lean = o.lean_peak_share_spread;
+  if (A * P_lean < K * K) P = (1.0 - lean) * union_centre() * K + lean * P_lean;
   // A spread core narrower than a few degrees gets a skirt fitted to the union's mass in the cone of
   // kSkirtTan2 (set_shape): with its peak and tail kept, a one-width core puts into that cone the
   // mass the union spreads just outside it (texels tilted by 1–3°), +2 to +3.5 % on polished granite's
@@ -124,12 +122,12 @@ Merged merge_union(std::span<const Member> u, const UnionTerms* terms, float spr
   return best;
 }
 
-Merged merge_pair(const Lobe& a, const Summary& sa, const Lobe& b, const Summary& sb, float spread_scale,
+Merged merge_pair(const Lobe& a, const Summary& sa, const Lobe& b, const Summary& sb, const ReductionOptions& o,
                   bool with_cost = true) {
   const std::array<Member, 2> u{Member{&a, &sa}, Member{&b, &sb}};
-  if (!with_cost) return merge_union(u, nullptr, spread_scale);
+  if (!with_cost) return merge_union(u, nullptr, o, o.peak_weight);
   const UnionTerms terms = union_terms(u);
-  return merge_union(u, &terms, spread_scale);
+  return merge_union(u, &terms, o, o.peak_weight);
 }
 
 // Keeps the union's specular albedo: scales the merged lobe's weight (which scales its specular part)
@@ -186,7 +184,9 @@ Lobe merge_lobes(const Lobe& a, const Lobe& b, float spread_scale) {
   using namespace reduction;
   if (!(double(a.weight) + b.weight > 0)) return a;
   const Summary sa = summarize(a), sb = summarize(b);
-  Merged m = merge_pair(a, sa, b, sb, spread_scale, false);
+  ReductionOptions o;
+  o.spread_scale = spread_scale;
+  Merged m = merge_pair(a, sa, b, sb, o, false);
   keep_specular_flux(std::array<Member, 2>{Member{&a, &sa}, Member{&b, &sb}}, m);
   return m.lobe;
 }
@@ -224,7 +224,7 @@ int reduce_lobes(std::span<Lobe> lobes, int n, const ReductionOptions& options) 
     // (the caller recomputes bi's row).
     // `known`: the pair's merge when the search made it already (its cost known), else null.
     auto merge_into = [&](int bi, int bj, auto& M, const Merged* known) {
-      Merged m = known ? *known : merge_pair(L(bi), S(bi), L(bj), S(bj), options.spread_scale, false);
+      Merged m = known ? *known : merge_pair(L(bi), S(bi), L(bj), S(bj), options, false);
       keep_specular_flux(std::array<Member, 2>{Member{&L(bi), &S(bi)}, Member{&L(bj), &S(bj)}}, m);
       L(bi) = m.lobe;
       sum[static_cast<std::size_t>(bi)] = m.summary;
@@ -251,7 +251,7 @@ int reduce_lobes(std::span<Lobe> lobes, int n, const ReductionOptions& options) 
     if (budget > 0) {
       const UnionTerms terms{spec_norm2, horizon_sums(whole, union_weight(whole))};
       if (union_cost_bound(whole, terms.horizon) <= budget) {
-        Merged m = merge_union(whole, &terms, options.spread_scale, kWholePeakWeight);
+        Merged m = merge_union(whole, &terms, options, kWholePeakWeight);
         if (m.cost <= budget) {
           keep_specular_flux(whole, m);
           L(0) = m.lobe;
@@ -311,7 +311,7 @@ int reduce_lobes(std::span<Lobe> lobes, int n, const ReductionOptions& options) 
         std::tie(bi, bj) = cheapest_pair(n, C);
         best = C(bi, bj);
         if (exact[at(bi, bj)] || (n <= max_lobes && spent + best > budget)) break;
-        made.push_back(merge_pair(L(bi), S(bi), L(bj), S(bj), options.spread_scale));
+        made.push_back(merge_pair(L(bi), S(bi), L(bj), S(bj), options));
         made_at[at(bi, bj)] = static_cast<std::uint16_t>(made.size() - 1);
         C(bi, bj) = made.back().cost;
         exact[at(bi, bj)] = true;

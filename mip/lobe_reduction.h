@@ -48,10 +48,22 @@ inline constexpr int kMaxLobes = 8;
 // The default --lobes, chosen by the measurements in bench/results/mip.md.
 inline constexpr int kDefaultLobes = 4;
 
+// The weight of the cost's highlight term at h = z (merge_cost.h, union_cost): the blurred L2 cannot
+// see a narrow lobe moved by a degree or two, the metric's mirror pairs can. Lower lets glossy lobes
+// with tilted normals merge; higher keeps polished sub-lobes apart and merges rough lobes into them.
+// Chosen by sweeps (docs/mip-algorithm.md, §9).
+inline constexpr double kPeakWeight = 2e-4;
+// The share of the LEAN estimate in the peak of a merged lobe that becomes a spread core, the rest the
+// union's exact D at the merged normal (lobe_reduction.cpp, merge_union, says why). Chosen by the
+// same sweeps.
+inline constexpr double kLeanPeakShareSpread = 0.4;
+
 struct ReductionOptions {
   int max_lobes = kDefaultLobes;
   float tolerance = 0.01f;    // relative L2 error estimate allowed for merges below max_lobes
   float spread_scale = 1.0f;  // γ in α² += γ·E[tan²θ]
+  double peak_weight = kPeakWeight;
+  double lean_peak_share_spread = kLeanPeakShareSpread;
 };
 
 Lobe merge_lobes(const Lobe& a, const Lobe& b, float spread_scale = 1.0f);

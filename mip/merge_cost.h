@@ -24,12 +24,8 @@ namespace svbrdf::reduction {
 // mirror-like lobes (α ≈ 0.005 against 0.01) would outweigh everything else and a polished tray's
 // soft fingerprint glow would be merged away to keep them apart.
 constexpr double kResolutionAlpha2 = 0.01;
-// The weight of the highlight-peak term of union_cost (see there): the blurred L2 cannot see a narrow
-// lobe moved by a degree or two, the metric's mirror pairs can. Lower lets granite's mica flecks merge
-// into tilted lobes; higher keeps polished sub-lobes apart and merges the tray's rough fingerprint lobes
-// into them. Chosen by a sweep on the granite variants and the metal tray (docs/mip-algorithm.md, §9).
-constexpr double kPeakWeight = 2e-4;
-// The weight for the first try of a texel's whole union as one lobe (reduce_lobes): that try asks
+// The weight of the highlight term for the first try of a texel's whole union as one lobe
+// (reduce_lobes; the pairwise merges take ReductionOptions::peak_weight): that try asks
 // whether the texel is smooth within the L2 budget, a norm with no peak term; it keeps the small weight.
 constexpr double kWholePeakWeight = 1e-5;
 // The weight of the log-profile term of union_cost (the shape between peak and tail), and its steps.
