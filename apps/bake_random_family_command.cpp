@@ -1,4 +1,5 @@
-// `svbrdf-bake random-family [--seeds N] [--first-seed K] [--size S] [--json FILE] [--threads T]`: the
+// `svbrdf-bake random-family [--seeds N] [--first-seed K] [--size S] [--json FILE] [--threads T]
+// [--peak-weight W] [--lean-share S]`: the
 // BRDF pyramid's error distribution over the random material family (textures/random_material.h),
 // against the targets of docs/mip-algorithm.md §8, `brdf` beside `param` (apps/random_family_summary.h).
 #include <CLI/CLI.hpp>
@@ -30,6 +31,7 @@ struct RandomFamilyOptions {
   int seeds = 100, size = 64, threads = 0;
   std::uint64_t first_seed = 1;
   std::string json;
+  BrdfBuildOptions build;  // default but for the reduction constants under sweep
 };
 
 // The largest --size: a 4096² seed's exact reference is minutes per seed; larger is a typo.
@@ -47,7 +49,7 @@ void run_random_family(const RandomFamilyOptions& o) {
   std::atomic<int> done{0};
   // Seeds in parallel, and texels within each; the figures do not depend on the order.
   tbb::parallel_for(0, o.seeds, [&](int k) {
-    figures[std::size_t(k)] = measure_random_seed(o.first_seed + std::uint64_t(k), o.size);
+    figures[std::size_t(k)] = measure_random_seed(o.first_seed + std::uint64_t(k), o.size, o.build);
     const int n = ++done;
     const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (t > 1.0) std::fprintf(stderr, "svbrdf-bake: random-family: %d of %d seeds (%.0f s)\n", n, o.seeds, t);
@@ -66,6 +68,13 @@ void add_random_family_command(CLI::App& app) {
   cmd->add_option("--first-seed", o->first_seed, "the first seed; seeds K, K+1, ... (default 1)")->check(cli::unsigned_whole);
   cmd->add_option("--size", o->size, "texels per side (default 64)")->check(cli::whole_in(2, kMaxFamilySize));
   cmd->add_option("--json", o->json, "also write every seed's figures and the distribution as JSON to FILE");
+  // The reduction constants chosen on this family (docs/mip-algorithm.md §9), for sweeps.
+  cmd->add_option("--peak-weight", o->build.reduction.peak_weight,
+                  "weight of the merge cost's highlight term (default " + std::to_string(kPeakWeight) + ")")
+      ->check(cli::number_in(0.0, 1.0));
+  cmd->add_option("--lean-share", o->build.reduction.lean_peak_share_spread,
+                  "share of the LEAN peak in a spread core's peak (default " + std::to_string(kLeanPeakShareSpread) + ")")
+      ->check(cli::number_in(0.0, 1.0));
   cmd->add_option("--threads", o->threads, "worker threads (0: all cores; more than the machine runs at once are capped)")
       ->check(cli::whole_in(0, 4096));
   cmd->footer("Targets (docs/mip-algorithm.md, §8): e_log <= 0.01, e_mean <= 0.005, mean e_rel <= 0.02 outside the glint "

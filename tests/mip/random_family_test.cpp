@@ -183,7 +183,8 @@ TEST(RandomFamilyCli, ReportsWhatTheLibraryMeasures) {
   EXPECT_NEAR(level["brdf"]["e_log"].get<double>(), f.levels[1].brdf.elog_mean, 1e-5 * f.levels[1].brdf.elog_mean);
   EXPECT_NEAR(level["param"]["e_mean"].get<double>(), f.levels[1].param.emean, 1e-5 * f.levels[1].param.emean);
 
-  for (const char* bad : {"--seeds 0", "--size 1", "--first-seed -1", "--seeds 2 --first-seed 18446744073709551615"}) {
+  for (const char* bad : {"--seeds 0", "--size 1", "--first-seed -1", "--seeds 2 --first-seed 18446744073709551615",
+                          "--peak-weight 2", "--lean-share -0.1"}) {
     const testing::CommandResult r = bake(bad);
     EXPECT_EQ(r.status, 2) << bad;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << bad << ": " << r.err;
