@@ -1,7 +1,7 @@
 // `svbrdf-bake random-family [--seeds N] [--first-seed K] [--size S] [--json FILE] [--threads T]
-// [--peak-weight W] [--lean-share S]`: the
-// BRDF pyramid's error distribution over the random material family (textures/random_material.h),
-// against the targets of docs/mip-algorithm.md §8, `brdf` beside `param` (apps/random_family_summary.h).
+// [--peak-weight W] [--lean-share S]`: the BRDF pyramid's error distribution over the random material
+// family (textures/random_material.h), against the targets of docs/mip-algorithm.md §8, `brdf` beside
+// `param` (apps/random_family_summary.h).
 #include <CLI/CLI.hpp>
 
 #include <atomic>

@@ -41,6 +41,8 @@ bool in_glint_regime(const MaterialTexels& m, int level, int i, int j) {
 
 namespace {
 
+// 16² strata per technique, as the preset tests take the albedo; a quadrature error common to a texel
+// and its exact value (the same lobes, the same samples at level 1) largely cancels in the ratio.
 constexpr int kAlbedoStrata = 16;
 
 glm::dvec3 incident(int t) {
@@ -48,6 +50,8 @@ glm::dvec3 incident(int t) {
   return {std::sin(theta), 0.0, std::cos(theta)};
 }
 
+// One number per albedo: the channels' mean (a channel near zero would make its own relative error
+// meaningless).
 double grey(const glm::dvec3& c) { return (c.r + c.g + c.b) / 3.0; }
 
 // The albedo figures of one mode at a level: `texel_albedo(i, j, t)` the mode's, `exact` per texel and θi.

@@ -89,7 +89,7 @@ Distribution distribution(const std::vector<SeedFigures>& seeds, int level, cons
     if (!std::isfinite(v)) continue;
     values.push_back(v);
     if (values.size() == 1 || v > d.max) d.max = v, d.worst_seed = s.seed;
-    if (!(v > metric.target)) ++d.meeting;
+    if (v <= metric.target) ++d.meeting;  // never for a figure without a target (NaN)
   }
   d.count = static_cast<int>(values.size());
   if (values.empty()) return d;

@@ -27,7 +27,7 @@ struct Distribution {
   int count = 0;  // seeds with a figure
   double median = 0, p90 = 0, max = 0;
   std::uint64_t worst_seed = 0;
-  int meeting = 0;  // seeds whose figure meets the target
+  int meeting = 0;  // seeds whose figure meets the target (0 without one)
 };
 // A seed is in the glint regime at a level when at least half of the texels measured there are
 // (random_family_measure.h): its level means and albedo are then the sum of a few spikes that no

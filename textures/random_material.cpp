@@ -136,6 +136,8 @@ RandomMaterialDraw draw_random_material(std::uint64_t seed) {
   RandomMaterialDraw d;
   d.seed = seed;
   {
+    // Every number of a stream is drawn whatever the branches take, so that no choice shifts the
+    // draws after it: a seed with one population keeps its other ingredients if it had two.
     noise::Sequence s(seed, kRoughnessStream);
     d.roughness = log_uniform(s, kMinRoughness, kMaxRoughness);
     d.roughness_variation = s.uniform(0.0f, 0.15f);
