@@ -137,7 +137,7 @@ RandomMaterialDraw draw_random_material(std::uint64_t seed) {
   d.seed = seed;
   {
     // Every number of a stream is drawn whatever the branches take, so that no choice shifts the
-    // draws after it: a seed with one population keeps its other ingredients if it had two.
+    // draws after it (a second population's ratio, side, share and size are drawn for every seed).
     noise::Sequence s(seed, kRoughnessStream);
     d.roughness = log_uniform(s, kMinRoughness, kMaxRoughness);
     d.roughness_variation = s.uniform(0.0f, 0.15f);
