@@ -53,18 +53,19 @@ double specular_flux(const Lobe& l) {
   if (l.alpha2_hi > l.alpha2) {
     // A roughness mixture reflects the mean of its components' albedos: its band's over log-uniform α²
     // (midpoint rule in log α², 8 points), or its upper atom's, and its lower atom's.
-    const double lo = series_log(double(l.alpha2)), f0 = mean3(l.f0);
+    const double lo = series_log(double(l.alpha2)), f0 = mean3(l.f0), f90 = l.f90;
     if (l.skirt == 0.0f) {
-      spec = t.ggx_albedo_at_log(series_log(double(l.alpha2_hi)), f0);
+      spec = t.ggx_albedo_at_log(series_log(double(l.alpha2_hi)), f0, f90);
     } else {
       const double step = series_log(double(l.alpha2_hi) / double(l.alpha2)) / 8;
-      for (int k = 0; k < 8; ++k) spec += t.ggx_albedo_at_log(lo + (k + 0.5) * step, f0) / 8;
+      for (int k = 0; k < 8; ++k) spec += t.ggx_albedo_at_log(lo + (k + 0.5) * step, f0, f90) / 8;
     }
-    spec = l.ggx * spec + (1 - l.ggx) * t.ggx_albedo_at_log(lo, f0);
+    spec = l.ggx * spec + (1 - l.ggx) * t.ggx_albedo_at_log(lo, f0, f90);
   } else {
-    spec = l.skirt > 1.0f ? l.ggx * t.albedo(l.alpha2, mean3(l.f0), 1.0) +
-                                (1 - l.ggx) * t.albedo(double(l.alpha2) * l.skirt, mean3(l.f0), 0.0)
-                          : t.albedo(l.alpha2, mean3(l.f0), l.ggx);
+    const double f0 = mean3(l.f0), f90 = l.f90;
+    spec = l.skirt > 1.0f ? l.ggx * t.albedo(l.alpha2, f0, 1.0, f90) +
+                                (1 - l.ggx) * t.albedo(double(l.alpha2) * l.skirt, f0, 0.0, f90)
+                          : t.albedo(l.alpha2, f0, l.ggx, f90);
   }
   return double(l.weight) * glm::length(glm::dvec3(l.normal)) * spec;
 }

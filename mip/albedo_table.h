@@ -10,25 +10,25 @@
 
 namespace svbrdf::reduction {
 
-// The specular albedo of a flat lobe, ∫ D·V·(F0 + (1 − F0)·w)·wo.z dωo = F0·a(α², θi) + (1 − F0)·b(α², θi),
+// The specular albedo of a flat lobe, ∫ D·V·(F0 + (F90 − F0)·w)·wo.z dωo = F0·a(α², θi) + (F90 − F0)·b(α², θi),
 // summed over θi ∈ {0°, 45°, 75°}, tabulated over log α² by quadrature (wo from GGX half vectors,
 // stratified). GGX with the glTF visibility loses energy as α grows (single scattering), so merging a
 // rough lobe into a sharp one would add flux; merges rescale the specular part to keep this albedo.
 class SpecAlbedoTable {
  public:
   static const SpecAlbedoTable& get();
-  double albedo(double alpha2, double f0, double ggx) const {
-    return albedo_at_log(series_log(std::clamp(alpha2, kMin, 1.0)), f0, ggx);
+  double albedo(double alpha2, double f0, double ggx, double f90 = 1) const {
+    return albedo_at_log(series_log(std::clamp(alpha2, kMin, 1.0)), f0, ggx, f90);
   }
   // The same at ln α² (clamped to the table).
-  double albedo_at_log(double ln_alpha2, double f0, double ggx) const {
+  double albedo_at_log(double ln_alpha2, double f0, double ggx, double f90 = 1) const {
     const Cell c = cell(ln_alpha2);
-    return ggx * (f0 * c.at(a_) + (1 - f0) * c.at(b_)) + (1 - ggx) * (f0 * c.at(ba_) + (1 - f0) * c.at(bb_));
+    return ggx * (f0 * c.at(a_) + (f90 - f0) * c.at(b_)) + (1 - ggx) * (f0 * c.at(ba_) + (f90 - f0) * c.at(bb_));
   }
   // The same for μ = 1 (a GGX lobe; a roughness mixture's components), without the Beckmann columns.
-  double ggx_albedo_at_log(double ln_alpha2, double f0) const {
+  double ggx_albedo_at_log(double ln_alpha2, double f0, double f90 = 1) const {
     const Cell c = cell(ln_alpha2);
-    return f0 * c.at(a_) + (1 - f0) * c.at(b_);
+    return f0 * c.at(a_) + (f90 - f0) * c.at(b_);
   }
 
  private:

@@ -46,7 +46,7 @@ int gather_children(Extent level0, int level, int i, int j, const BrdfLevel& fin
       const std::size_t t = static_cast<std::size_t>(y) * fine.extent.width + x;
       if (level == 1) {
         out[static_cast<std::size_t>(n++)] = lobe_from_texel(m.base_color[t], m.metallic[t], m.roughness[t], m.normal[t],
-                                                             static_cast<float>(share));
+                                                             static_cast<float>(share), m.specular_layer(t));
         continue;
       }
       for (Lobe l : fine.texel_lobes(t)) {
@@ -233,7 +233,8 @@ BrdfPyramid BrdfPyramid::build(const MaterialTexels& m, const BrdfBuildOptions& 
 
 int BrdfPyramid::bytes_per_texel(int level) const {
   const BrdfLevel& l = this->level(level);
-  return l.slots * kBytesPerLobe + (l.correction.empty() ? 0 : kBytesPerCorrection);
+  return l.slots * (kBytesPerLobe + (l.specular_layer() ? kBytesPerSpecularLayer : 0)) +
+         (l.correction.empty() ? 0 : kBytesPerCorrection);
 }
 
 BrdfPyramid BrdfPyramid::from_levels(const MaterialTexels& m, int max_lobes, std::vector<BrdfLevel> coarse,

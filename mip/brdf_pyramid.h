@@ -55,6 +55,14 @@ struct BrdfLevel {
     }
     return out;
   }
+  // Whether some lobe has the specular layer's factors (ρ90 ≠ 0 or F90 ≠ 1: lobe.h), which the MIP file
+  // then stores in kBytesPerSpecularLayer more bytes a slot.
+  bool specular_layer() const {
+    for (std::size_t t = 0; t < counts.size(); ++t)
+      for (const Lobe& l : texel_lobes(t))
+        if (l.f90 != 1.0f || l.diffuse90 != glm::vec3(0.0f)) return true;
+    return false;
+  }
   // Makes room for `texels` texels, all empty.
   void reset(Extent e, std::size_t texels) {
     extent = e;

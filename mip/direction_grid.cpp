@@ -82,7 +82,8 @@ void accumulate(const Lobe& lobe, double scale, std::span<glm::dvec3> table, con
   const T nx = shape.n.x, ny = shape.n.y, nz = shape.n.z;
   const T rho_r = T(0.96) * kInvPi * T(lobe.diffuse.r), rho_g = T(0.96) * kInvPi * T(lobe.diffuse.g),
           rho_b = T(0.96) * kInvPi * T(lobe.diffuse.b);
-  const T f0r = lobe.f0.r, f0g = lobe.f0.g, f0b = lobe.f0.b;
+  const T f0r = lobe.f0.r, f0g = lobe.f0.g, f0b = lobe.f0.b, f90 = lobe.f90;
+  const T d90_r = kInvPi * T(lobe.diffuse90.r), d90_g = kInvPi * T(lobe.diffuse90.g), d90_b = kInvPi * T(lobe.diffuse90.b);
   const DirectionGrid::Columns<T>* cols;
   if constexpr (std::is_same_v<T, double>)
     cols = &grid.columns_d();
@@ -113,9 +114,9 @@ void accumulate(const Lobe& lobe, double scale, std::span<glm::dvec3> table, con
       // smith_ggx_visibility(α², ci, co) from the hoisted roots.
       const T vis = T(0.5) / (cosine[static_cast<std::size_t>(o)] * gi + ci * root[static_cast<std::size_t>(o)]);
       const T w = fw[o], s = vis * d * T(ks[o]), k = fi * wo_factor[static_cast<std::size_t>(o)];
-      out_r[static_cast<std::size_t>(o)] = k * ((T(1) - w) * rho_r + s * (f0r + (T(1) - f0r) * w));
-      out_g[static_cast<std::size_t>(o)] = k * ((T(1) - w) * rho_g + s * (f0g + (T(1) - f0g) * w));
-      out_b[static_cast<std::size_t>(o)] = k * ((T(1) - w) * rho_b + s * (f0b + (T(1) - f0b) * w));
+      out_r[static_cast<std::size_t>(o)] = k * ((T(1) - w) * rho_r + w * d90_r + s * (f0r + (f90 - f0r) * w));
+      out_g[static_cast<std::size_t>(o)] = k * ((T(1) - w) * rho_g + w * d90_g + s * (f0g + (f90 - f0g) * w));
+      out_b[static_cast<std::size_t>(o)] = k * ((T(1) - w) * rho_b + w * d90_b + s * (f0b + (f90 - f0b) * w));
     }
     glm::dvec3* row = table.data() + i * nd;
     for (int o = 0; o < nd; ++o) {

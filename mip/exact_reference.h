@@ -14,7 +14,7 @@ namespace svbrdf {
 
 // The level-0 lobe of texel k of a material (exactly f_eff of that texel).
 inline Lobe level0_lobe(const MaterialTexels& m, std::size_t k) {
-  return lobe_from_texel(m.base_color[k], m.metallic[k], m.roughness[k], m.normal[k]);
+  return lobe_from_texel(m.base_color[k], m.metallic[k], m.roughness[k], m.normal[k], 1.0f, m.specular_layer(k));
 }
 
 // The level-0 texels a texel of any level covers (power-of-two or not; pyramid_shape.h).

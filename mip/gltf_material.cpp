@@ -30,25 +30,44 @@ MaterialTexels load_gltf_material_texels(const std::filesystem::path& path, cons
     if (mi < 0) throw input_error("--material", file + " has no material named \"" + material + "\"");
   }
   const MaterialDesc& d = m.materials[static_cast<std::size_t>(mi)];
-  // The image behind a texture slot, decoded once.
-  auto image_of = [&](const TextureRef& r) -> const Image* {
-    if (!r.present()) return nullptr;
+  // The image behind a texture slot, decoded once (stored encoded: colour slots are decoded from sRGB).
+  auto image_of = [&](const TextureRef& r, bool) -> SlotImage {
     const auto image = static_cast<std::size_t>(m.textures[static_cast<std::size_t>(r.texture)].image);
     gltf::decode_image(doc, m, image);
-    return &m.images[image].pixels;
+    return {&m.images[image].pixels, false};
   };
+  const MaterialImages in = material_images(d, image_of, file + ": ");
+  return decode_material_texels(in, color);
+}
+
+MaterialImages material_images(const MaterialDesc& d, const std::function<SlotImage(const TextureRef&, bool color)>& image_of,
+                               const std::string& prefix) {
+  const auto image = [&](const TextureRef& r, bool color, bool* linear = nullptr) -> const Image* {
+    if (!r.present()) return nullptr;
+    const SlotImage s = image_of(r, color);
+    if (linear) *linear = s.linear;
+    return s.image;
+  };
+  const std::string at = prefix + d.where;
   MaterialImages in;
-  in.base_color = image_of(d.base_color_texture);
-  in.base_color_name = file + ": base color texture of " + d.where;
+  in.base_color = image(d.base_color_texture, true, &in.base_color_is_linear);
+  in.base_color_name = at + ".pbrMetallicRoughness.baseColorTexture";
   in.base_color_factor = glm::vec4(d.base_color, d.base_alpha);
-  in.metallic_roughness = image_of(d.metallic_roughness_texture);
-  in.metallic_roughness_name = file + ": metallic-roughness texture of " + d.where;
+  in.metallic_roughness = image(d.metallic_roughness_texture, false);
+  in.metallic_roughness_name = at + ".pbrMetallicRoughness.metallicRoughnessTexture";
   in.metallic_factor = d.metallic;
   in.roughness_factor = d.roughness;
-  in.normal = image_of(d.normal_texture);
-  in.normal_name = file + ": normal texture of " + d.where;
+  in.normal = image(d.normal_texture, false);
+  in.normal_name = at + ".normalTexture";
   in.normal_scale = d.normal_texture.scale;
-  return decode_material_texels(in, color);
+  in.specular = image(d.specular_texture, false);
+  in.specular_name = at + ".extensions.KHR_materials_specular.specularTexture";
+  in.specular_factor = d.specular;
+  in.specular_color = image(d.specular_color_texture, true, &in.specular_color_is_linear);
+  in.specular_color_name = at + ".extensions.KHR_materials_specular.specularColorTexture";
+  in.specular_color_factor = d.specular_color;
+  in.ior = d.ior;
+  return in;
 }
 
 }  // namespace svbrdf

@@ -12,6 +12,8 @@
 //             rescaled its specular part to keep the flux of the lobes it replaced (lobe_reduction.h;
 //             ρ is divided by the same factor, so weight·ρ stays the exact diffuse amplitude),
 //   diffuse — the mean ρ, f0 — the mean F0 (linear, exact under averaging),
+//   diffuse90, f90 — the diffuse and specular factors at grazing incidence (w = 1), linear too; 0 and 1
+//             for the plain glTF BRDF, other values under KHR_materials_specular and _ior (below),
 //   normal  — the mean of the unit shading normals, unnormalized: its length says how much they spread,
 //   alpha2, alpha2_hi, ggx, skirt — the specular shape about n̂ = normalize(normal) (below),
 // and its microfacet distribution D is one of two shapes, both normalized, both exactly GGX(α²) for a
@@ -33,7 +35,8 @@
 // α² would raise every off-specular value by the ratio of widened to base α² (×4 for α = 0.01 lobes
 // tilted ±1°).
 // and reflects, in the geometric tangent frame,
-//   weight · [0.96·(1 − w)·ρ/π + D·V·(F0 + (1 − F0)·w)] · (normal·wi) / wi.z,
+//   weight · [(0.96·(1 − w)·ρ + w·ρ90)/π + D·V·(F0 + (F90 − F0)·w)] · (normal·wi) / wi.z,
+// (ρ90 = diffuse90, F90 = f90: the plain glTF BRDF has ρ90 = 0 and F90 = 1, the form above),
 // with D as above and V the glTF (GGX, height-correlated Smith) visibility about n̂ — for a roughness
 // mixture the mean of its components' V (atoms and band) weighted by their D at the half vector, for a spread core's
 // Beckmann share and its skirt at the GGX share's α² (the masking functions differ by a few percent at
@@ -57,6 +60,7 @@
 #include "appearance/microfacet_core.h"
 #include "base/math.h"
 #include "base/series_log.h"
+#include "textures/material_texels.h"
 
 namespace svbrdf {
 
@@ -64,6 +68,8 @@ struct Lobe {
   float weight = 0.0f;
   glm::vec3 diffuse{0.0f};
   glm::vec3 f0{0.0f};
+  glm::vec3 diffuse90{0.0f};  // ρ90: the diffuse factor at w = 1 (specular_layer below)
+  float f90 = 1.0f;           // F90: the specular Fresnel at w = 1
   glm::vec3 normal{0.0f, 0.0f, 1.0f};
   float alpha2 = 1e-6f;     // GGX α² (a roughness mixture's lower end)
   float ggx = 1.0f;         // μ, the GGX share of a spread core; β, the upper part's share of a roughness mixture
@@ -72,17 +78,42 @@ struct Lobe {
                             // mixture's upper part: 1 the band [alpha2, alpha2_hi], 0 an atom at alpha2_hi
 };
 
+// The glTF layering of KHR_materials_specular (its "fresnel_mix", appearance/gltf.h gltf_layers):
+// with the dielectric's f0 = min(((ior − 1)/(ior + 1))²·colour, 1) and fr = f0 + (1 − f0)·w,
+//   dielectric = (1 − s·max(fr))·ρ/π + s·fr·D·V,   metal = (c + (1 − c)·w)·D·V,   f = mix(dielectric, metal, m).
+// max over channels of f0 + (1 − f0)·w is max(f0) + (1 − max(f0))·w (each channel rises with f0 for
+// w ≤ 1), so every factor is linear in w, and the lobe's four factors are
+//   0.96·ρ = (1 − m)·c·(1 − s·max(f0)),  ρ90 = (1 − m)·c·(1 − s),
+//   F0 = (1 − m)·s·f0 + m·c,            F90 = (1 − m)·s + m.
+// For the plain layer (f0 = 0.04, s = 1) these are ρ = (1 − m)·c, ρ90 = 0, F0 = mix(0.04, c, m), F90 = 1.
+inline float dielectric_f0(float ior) {
+  const float r = (ior - 1.0f) / (ior + 1.0f);
+  return r * r;
+}
+
 // The level-0 lobe of a texel with glTF parameters (linear base color, metallic, perceptual
-// roughness) and a unit shading normal: α = max(roughness², 1e-3) as brdf-models.md defines.
-inline Lobe lobe_from_texel(const glm::vec3& base_color, float metallic, float roughness,
-                            const glm::vec3& normal, float weight = 1.0f) {
+// roughness), a unit shading normal and its specular layer: α = max(roughness², 1e-3) as brdf-models.md
+// defines.
+inline Lobe lobe_from_texel(const glm::vec3& base_color, float metallic, float roughness, const glm::vec3& normal,
+                            float weight = 1.0f, const SpecularLayer& layer = {}) {
   const float alpha = gltf_alpha(roughness);
   Lobe l;
   l.weight = weight;
-  l.diffuse = (1.0f - metallic) * base_color;
-  l.f0 = glm::mix(glm::vec3(0.04f), base_color, metallic);
   l.normal = normal;
   l.alpha2 = alpha * alpha;
+  if (layer.plain()) {
+    // The plain layer in its own arithmetic, so that its lobes stay bit for bit what they always were.
+    l.diffuse = (1.0f - metallic) * base_color;
+    l.f0 = glm::mix(glm::vec3(0.04f), base_color, metallic);
+    return l;
+  }
+  const glm::vec3 f0 = glm::min(dielectric_f0(layer.ior) * layer.color, glm::vec3(1.0f));
+  const float f0_max = std::max(f0.r, std::max(f0.g, f0.b));
+  const glm::vec3 rho = (1.0f - metallic) * base_color;
+  l.diffuse = rho * ((1.0f - layer.specular * f0_max) / 0.96f);
+  l.diffuse90 = rho * (1.0f - layer.specular);
+  l.f0 = (1.0f - metallic) * layer.specular * f0 + metallic * base_color;
+  l.f90 = (1.0f - metallic) * layer.specular + metallic;
   return l;
 }
 
@@ -254,7 +285,7 @@ T lobe_d(const LobeShape<T>& s, T ch, const glm::vec<3, T>& nxh) {
   return d;
 }
 
-// The glTF terms of a lobe for one pair, given its two sides: 0.96·(1 − w)·ρ/π + D·V·(F0 + (1 − F0)·w).
+// The glTF terms of a lobe for one pair, given its two sides: (0.96·(1 − w)·ρ + w·ρ90)/π + D·V·(F0 + (F90 − F0)·w).
 // spec_scale multiplies the specular term (a coarse texel's radial correction, radial_correction.h).
 template <class T>
 glm::vec<3, T> lobe_brdf(const Lobe& lobe, const LobeShape<T>& s, const PairTerms<T>& p, T ci, T co, T spec_scale = T(1)) {
@@ -315,8 +346,9 @@ glm::vec<3, T> lobe_brdf(const Lobe& lobe, const LobeShape<T>& s, const PairTerm
     vis = visibility(s.alpha2);
   }
   const T w = p.fresnel_w;
-  const V3 f0(lobe.f0), rho(lobe.diffuse);
-  return (T(0.96) * (T(1) - w) * kInvPiOf<T>) * rho + (vis * d * spec_scale) * (f0 + (V3(1) - f0) * w);
+  const V3 f0(lobe.f0), rho(lobe.diffuse), rho90(lobe.diffuse90);
+  return (T(0.96) * (T(1) - w) * kInvPiOf<T>) * rho + (w * kInvPiOf<T>) * rho90 +
+         (vis * d * spec_scale) * (f0 + (V3(T(lobe.f90)) - f0) * w);
 }
 
 // weight · f_eff of one lobe for one pair (see the top of this file), in precision T.

@@ -33,10 +33,11 @@ void LobeMixtureBsdf::assign(std::span<const Lobe> lobes) {
     k.lobe = l;
     k.shape = lobe_shape<float>(l);
     if (!k.shape.valid) continue;
-    // Albedo estimates for the choice: the diffuse term 0.96·ρ, the specular F0 plus Fresnel's rise.
+    // Albedo estimates for the choice: the diffuse term 0.96·ρ (and ρ90 at grazing angles), the
+    // specular F0 plus Fresnel's rise toward F90.
     const float scale = l.weight * k.shape.len;
-    k.diffuse_albedo = scale * 0.96f * mean3(l.diffuse);
-    k.spec_albedo = scale * (mean3(l.f0) + 0.1f * (1.0f - mean3(l.f0)));
+    k.diffuse_albedo = scale * (0.96f * mean3(l.diffuse) + 0.05f * mean3(l.diffuse90));
+    k.spec_albedo = scale * (mean3(l.f0) + 0.1f * (l.f90 - mean3(l.f0)));
     ++count_;
   }
 }

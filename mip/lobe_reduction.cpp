@@ -36,13 +36,18 @@ MergeBase merge_base(std::span<const Member> u) {
   for (const Member& x : u) w += x.lobe->weight;
   // Shares by one reciprocal: this runs for every candidate merge of every texel.
   const double inv_w = 1.0 / w;
-  glm::dvec3 diffuse(0), f0(0), nbar(0);
+  glm::dvec3 diffuse(0), f0(0), diffuse90(0), nbar(0);
+  double f90 = 0;
+  bool plain = true;  // every member's F90 is 1: the mean is 1 exactly, not a rounding of it
   Summary& s = mb.summary;
   s.rho = s.f0 = 0;
   for (const Member& x : u) {
     const double t = x.lobe->weight * inv_w;
     diffuse += t * glm::dvec3(x.lobe->diffuse);
     f0 += t * glm::dvec3(x.lobe->f0);
+    diffuse90 += t * glm::dvec3(x.lobe->diffuse90);
+    f90 += t * x.lobe->f90;
+    plain = plain && x.lobe->f90 == 1.0f;
     nbar += t * glm::dvec3(x.lobe->normal);
     s.rho += t * x.sum->rho;
     s.f0 += t * x.sum->f0;
@@ -50,11 +55,15 @@ MergeBase merge_base(std::span<const Member> u) {
   m.weight = static_cast<float>(w);
   m.diffuse = glm::vec3(diffuse);
   m.f0 = glm::vec3(f0);
+  m.diffuse90 = glm::vec3(diffuse90);
+  if (plain) f90 = 1.0;
+  m.f90 = static_cast<float>(f90);
+  s.f90 = f90;
   m.normal = glm::vec3(nbar);
   const double len = glm::length(nbar);
   s.n = len > 0 ? nbar * (1.0 / len) : glm::dvec3(0, 0, 1);
   s.weight = w;
-  s.amp = specular_amp(w, len, s.f0);
+  s.amp = specular_amp(w, len, s.f0, s.f90);
   return mb;
 }
 
@@ -131,7 +140,7 @@ Merged merge_pair(const Lobe& a, const Summary& sa, const Lobe& b, const Summary
 }
 
 // Keeps the union's specular albedo: scales the merged lobe's weight (which scales its specular part)
-// and divides its ρ by the same factor (which leaves its diffuse part as it was). Applied when a merge
+// and divides its ρ and ρ90 by the same factor (which leaves its diffuse part as it was). Applied when a merge
 // is made, not while costs are estimated (it changes them by a few percent of the amplitude only).
 void keep_specular_flux(std::span<const Member> u, Merged& m) {
   // A lobe made by an earlier merge knows its flux (it was set to keep its lobes' there).
@@ -143,12 +152,13 @@ void keep_specular_flux(std::span<const Member> u, Merged& m) {
     const double scale = want / have;
     m.lobe.weight = static_cast<float>(m.lobe.weight * scale);
     m.lobe.diffuse = glm::vec3(glm::dvec3(m.lobe.diffuse) / scale);
+    m.lobe.diffuse90 = glm::vec3(glm::dvec3(m.lobe.diffuse90) / scale);
     // What of the summary the weight and ρ enter (its shape is unchanged).
     const double len = glm::length(glm::dvec3(m.lobe.normal));
     m.summary.weight = m.lobe.weight;
     m.summary.rho = mean3(m.lobe.diffuse);
     m.summary.f0 = mean3(m.lobe.f0);
-    m.summary.amp = specular_amp(m.lobe.weight, len, m.summary.f0);
+    m.summary.amp = specular_amp(m.lobe.weight, len, m.summary.f0, m.summary.f90);
     m.summary.flux = want;
   }
 }

@@ -64,7 +64,8 @@ Summary summarize(const Lobe& l) {
   s.weight = l.weight;
   s.rho = mean3(l.diffuse);
   s.f0 = mean3(l.f0);
-  s.amp = specular_amp(l.weight, len, s.f0);
+  s.f90 = l.f90;
+  s.amp = specular_amp(l.weight, len, s.f0, s.f90);
   const LobeShape<double> sh = lobe_shape<double>(l, false);
   s.ggx = sh.ggx;
   if (sh.alpha2_hi > 0) {

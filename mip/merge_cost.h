@@ -33,9 +33,11 @@ constexpr double kProfileWeight = 25.0;
 constexpr std::size_t kProfileSteps = 15;
 
 // A lobe's specular amplitude, its share of the reflected flux for the cost model: F0 plus a little
-// for Fresnel's rise toward grazing angles, times its weight and cosine factor (the mean normal's
-// length).
-inline double specular_amp(double weight, double len, double f0) { return weight * len * (f0 + 0.05 * (1.0 - f0)); }
+// for Fresnel's rise toward grazing angles (toward F90), times its weight and cosine factor (the mean
+// normal's length).
+inline double specular_amp(double weight, double len, double f0, double f90) {
+  return weight * len * (f0 + 0.05 * (f90 - f0));
+}
 
 // What D of a lobe shape depends on (lobe_d), without the horizons' fields.
 struct DShape {
@@ -54,6 +56,7 @@ struct Summary {
   double d_z = 0;     // D at h = z (the geometric normal)
   double rho = 0;     // mean diffuse albedo
   double f0 = 0;      // mean F0
+  double f90 = 1;     // F90 (lobe.h)
   double alpha2 = 1;  // the core's width 1/P, for the Gaussian model of union_cost
   double ggx = 1;     // μ, the GGX share of a spread core (lobe.h)
   double tail = 0;    // A: the tail coefficient, D ≈ A/(π t²) far out

@@ -116,16 +116,17 @@ MipTexture::Choice MipTexture::choose(TextureFilter filter, const Footprint& f, 
 std::span<const Lobe> MipTexture::lobes(const Choice& c, Lobe& scratch) const {
   const Pyramids& p = *pyramids_;
   if (c.level < 0) {
-    ParamTexel t = filter_params(p.param, folded(c.footprint));
+    SpecularLayer layer;
+    ParamTexel t = filter_params(p.param, folded(c.footprint), kMaxProbes, &layer);
     t.base_color *= c.tint;
-    scratch = param_lobe(t, c.filter);
+    scratch = param_lobe(t, c.filter, layer);
     return {&scratch, 1};
   }
   if (c.level >= 1) return p.brdf.texel(c.level, c.i, c.j);
   // Level 0 (the BRDF pyramid does not hold it twice): the texel's f_eff. With tint 1 the product is
   // exact, so this is level0_lobe of the texel, the BRDF pyramid's level-0 lobe bit for bit.
   const ParamTexel& t = p.level0(c.i, c.j);
-  scratch = lobe_from_texel(t.base_color * c.tint, t.metallic, t.roughness, t.normal);
+  scratch = lobe_from_texel(t.base_color * c.tint, t.metallic, t.roughness, t.normal, 1.0f, p.param.specular(0, c.i, c.j));
   return {&scratch, 1};
 }
 

@@ -57,7 +57,7 @@ glm::dvec3 texel_eval(const MipData& mip, TextureFilter filter, int level, int i
     for (const Lobe& l : brdf_texel(mip, level, i, j, scratch)) sum += glm::dvec3(lobe_eval<float>(l, lobe_shape<float>(l), p, k));
     return sum;
   }
-  return glm::dvec3(lobe_eval<float>(param_lobe(mip.param.texel(level, i, j), filter), p));
+  return glm::dvec3(lobe_eval<float>(param_lobe(mip.param.texel(level, i, j), filter, mip.param.specular(level, i, j)), p));
 }
 
 BrdfTable texel_table(const MipData& mip, TextureFilter filter, int level, int i, int j) {
@@ -65,14 +65,14 @@ BrdfTable texel_table(const MipData& mip, TextureFilter filter, int level, int i
   if (filter == TextureFilter::brdf) {
     accumulate_brdf_texel(mip, level, i, j, 1.0, t);
   } else {
-    accumulate_lobe_float(param_lobe(mip.param.texel(level, i, j), filter), 1.0, t);
+    accumulate_lobe_float(param_lobe(mip.param.texel(level, i, j), filter, mip.param.specular(level, i, j)), 1.0, t);
   }
   return t;
 }
 
 int bytes_per_texel(const MipData& mip, TextureFilter filter, int level) {
   if (filter == TextureFilter::brdf && level > 0) return mip.brdf.bytes_per_texel(level);
-  return ParamPyramid::kBytesPerTexel;
+  return ParamPyramid::kBytesPerTexel + (mip.param.specular_level(0).empty() ? 0 : ParamPyramid::kBytesPerSpecularTexel);
 }
 
 }  // namespace svbrdf

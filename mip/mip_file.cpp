@@ -31,12 +31,17 @@ namespace fs = std::filesystem;
 
 const char* const kParamChannels[8] = {"param.R",         "param.G",   "param.B",   "param.metallic",
                                        "param.roughness", "param.N.X", "param.N.Y", "param.N.Z"};
+// The specular layer's means, where the material's layer is not plain (mip_file.h).
+const char* const kParamSpecularChannels[4] = {"param.specular", "param.specular.R", "param.specular.G",
+                                               "param.specular.B"};
+constexpr const char* kIor = "svbrdf:ior";
 
 // What a lobe channel holds.
 enum class Role {
   weight, diffuse_r, diffuse_g, diffuse_b, f0_r, f0_g, f0_b,
   normal_direction, normal_deficit,  // stored_normal.h
   alpha, shape, skirt,               // stored_lobe.h
+  diffuse90_r, diffuse90_g, diffuse90_b, f90,  // the specular layer's (kSpecularLobeChannels)
   count
 };
 struct LobeChannel {
@@ -61,7 +66,20 @@ constexpr LobeChannel kLobeChannels[] = {
     {"shape", Role::shape, kHalf},
     {"skirt", Role::skirt, kHalf},
 };
-constexpr std::size_t kLobeChannelCount = std::size(kLobeChannels);
+// A lobe's channels of the specular layer, 8 bytes (kBytesPerSpecularLayer), in levels where some
+// lobe has ρ90 ≠ 0 or F90 ≠ 1.
+constexpr LobeChannel kSpecularLobeChannels[] = {
+    {"diffuse90.R", Role::diffuse90_r, kHalf},
+    {"diffuse90.G", Role::diffuse90_g, kHalf},
+    {"diffuse90.B", Role::diffuse90_b, kHalf},
+    {"F90", Role::f90, kHalf},
+};
+// The channels of a level's lobe slots, without or with the specular layer's.
+std::vector<LobeChannel> lobe_channels(bool specular) {
+  std::vector<LobeChannel> c(std::begin(kLobeChannels), std::end(kLobeChannels));
+  if (specular) c.insert(c.end(), std::begin(kSpecularLobeChannels), std::end(kSpecularLobeChannels));
+  return c;
+}
 
 constexpr const char* kRadialInner = "svbrdf:radial_inner";
 constexpr const char* kRadialOuter = "svbrdf:radial_outer";
@@ -84,6 +102,8 @@ LobeValues pack_lobe(const Lobe& l) {
   out[Role::weight] = l.weight;
   out[Role::diffuse_r] = l.diffuse.r, out[Role::diffuse_g] = l.diffuse.g, out[Role::diffuse_b] = l.diffuse.b;
   out[Role::f0_r] = l.f0.r, out[Role::f0_g] = l.f0.g, out[Role::f0_b] = l.f0.b;
+  out[Role::diffuse90_r] = l.diffuse90.r, out[Role::diffuse90_g] = l.diffuse90.g, out[Role::diffuse90_b] = l.diffuse90.b;
+  out[Role::f90] = l.f90;
   const StoredNormal n = store_normal(l.normal);  // exact: the pyramid's normals are decoded codes
   out.direction = n.direction;
   out[Role::normal_deficit] = n.deficit;
@@ -97,6 +117,8 @@ Lobe unpack_lobe(const LobeValues& in) {
   l.weight = in[Role::weight];
   l.diffuse = {in[Role::diffuse_r], in[Role::diffuse_g], in[Role::diffuse_b]};
   l.f0 = {in[Role::f0_r], in[Role::f0_g], in[Role::f0_b]};
+  l.diffuse90 = {in[Role::diffuse90_r], in[Role::diffuse90_g], in[Role::diffuse90_b]};
+  l.f90 = in[Role::f90];
   l.normal = load_normal(StoredNormal{in.direction, in[Role::normal_deficit]});
   l.alpha2 = in[Role::alpha] * in[Role::alpha];
   set_lobe_shape_code(l, in[Role::shape]);
@@ -197,6 +219,9 @@ std::string level_checksum(const OIIO::ImageSpec& s, int max_lobes, float radial
   std::memcpy(&bits[0], &radial_inner, 4);
   std::memcpy(&bits[1], &radial_outer, 4);
   header += " radial " + std::to_string(bits[0]) + " " + std::to_string(bits[1]);
+  const float ior = s.get_float_attribute(kIor, 1.5f);
+  std::memcpy(&bits[0], &ior, 4);
+  header += " ior " + std::to_string(bits[0]);
   // Channels in name order, as the pixels: OpenImageIO lists a file's channels in an order of its own.
   std::vector<std::string> channels;
   for (int c = 0; c < s.nchannels; ++c)
@@ -236,36 +261,50 @@ std::uint64_t least_exr_bytes(const OIIO::ImageSpec& spec) {
 namespace {
 
 // Level `level`'s pixels in `layout` (the spec's channels, by index, at the layout's offsets).
-std::vector<std::byte> pack_level(const ParamPyramid& param, const BrdfPyramid& brdf, int level, const NativeLayout& layout) {
-  const int lobe_nch = static_cast<int>(kLobeChannelCount);
+std::vector<std::byte> pack_level(const ParamPyramid& param, const BrdfPyramid& brdf, int level, const NativeLayout& layout,
+                                  const std::vector<LobeChannel>& lobe_ch) {
+  const std::size_t lobe_nch = lobe_ch.size();
+  const bool param_specular = !param.specular_level(0).empty();
+  const std::size_t first_lobe = param_specular ? 12 : 8;  // the first lobe channel
   const Extent e = param.extent(level);
   const std::size_t texels = static_cast<std::size_t>(e.width) * e.height;
   std::vector<std::byte> buf(texels * layout.stride);
   const auto params = param.level(level);
+  const auto specular = param.specular_level(level);
   for (std::size_t t = 0; t < texels; ++t) {
     std::byte* px = buf.data() + t * layout.stride;
     const ParamTexel& p = params[t];
     const float values[8] = {p.base_color.r, p.base_color.g, p.base_color.b, p.metallic,
                              p.roughness,    p.normal.x,     p.normal.y,     p.normal.z};
     for (std::size_t c = 0; c < 8; ++c) put_float(px, layout, c, values[c]);
+    if (param_specular) {
+      const ParamSpecular& sp = specular[t];
+      const float spec[4] = {sp.specular, sp.color.r, sp.color.g, sp.color.b};
+      for (std::size_t c = 0; c < 4; ++c) put_float(px, layout, 8 + c, spec[c]);
+    }
     if (level == 0) continue;
     // Empty slots: weight 0 (and a plain GGX of α² 1 about the geometric normal, so every channel
     // holds a meaningful value).
-    static const Lobe kEmpty{0.0f, glm::vec3(0), glm::vec3(0), glm::vec3(0, 0, 1), 1.0f};
+    static const Lobe kEmpty = [] {
+      Lobe l;
+      l.weight = 0.0f, l.diffuse = glm::vec3(0), l.f0 = glm::vec3(0), l.alpha2 = 1.0f;
+      return l;
+    }();
     const BrdfLevel& bl = brdf.level(level);
     const std::span<const Lobe> lobes = bl.texel_lobes(t);
     for (int k = 0; k < bl.slots; ++k) {
       const LobeValues v = pack_lobe(k < static_cast<int>(lobes.size()) ? lobes[static_cast<std::size_t>(k)] : kEmpty);
-      for (int c = 0; c < lobe_nch; ++c) {
-        const std::size_t ch = 8 + static_cast<std::size_t>(k * lobe_nch + c);
-        const LobeChannel& lc = kLobeChannels[c];
+      for (std::size_t c = 0; c < lobe_nch; ++c) {
+        const std::size_t ch = first_lobe + static_cast<std::size_t>(k) * lobe_nch + c;
+        const LobeChannel& lc = lobe_ch[c];
         if (lc.role == Role::normal_direction) put_uint(px, layout, ch, v.direction);
         else put_float(px, layout, ch, v[lc.role]);
       }
     }
     if (!bl.correction.empty())
       for (int r = 0; r < RadialGrid::kNodes; ++r)
-        put_float(px, layout, 8 + static_cast<std::size_t>(bl.slots * lobe_nch + r), bl.correction[t].ratio[static_cast<std::size_t>(r)]);
+        put_float(px, layout, first_lobe + static_cast<std::size_t>(bl.slots) * lobe_nch + static_cast<std::size_t>(r),
+                  bl.correction[t].ratio[static_cast<std::size_t>(r)]);
   }
   return buf;
 }
@@ -328,6 +367,10 @@ void write_mip_file(const fs::path& path, const ParamPyramid& param, const BrdfP
   for (int level = 1; level < levels; ++level) corrected |= !brdf.level(level).correction.empty();
   const float radial_inner = corrected ? brdf.radial_grid().inner : 0.0f;
   const float radial_outer = corrected ? brdf.radial_grid().outer_deg : 0.0f;
+  const bool param_specular = !param.specular_level(0).empty();
+  std::vector<std::vector<LobeChannel>> channels(static_cast<std::size_t>(levels));
+  for (int level = 1; level < levels; ++level)
+    channels[static_cast<std::size_t>(level)] = lobe_channels(brdf.level(level).specular_layer());
   std::vector<OIIO::ImageSpec> specs(static_cast<std::size_t>(levels));
   std::vector<NativeLayout> layouts(static_cast<std::size_t>(levels));
   for (int level = 0; level < levels; ++level) {
@@ -347,8 +390,11 @@ void write_mip_file(const fs::path& path, const ParamPyramid& param, const BrdfP
       layout.add(f);
     };
     for (const char* c : kParamChannels) add(c, OIIO::TypeDesc::FLOAT);
+    if (param_specular)
+      for (const char* c : kParamSpecularChannels) add(c, OIIO::TypeDesc::FLOAT);
     for (int k = 0; k < slots; ++k)
-      for (const LobeChannel& c : kLobeChannels) add("lobe" + std::to_string(k) + "." + c.suffix, c.format);
+      for (const LobeChannel& c : channels[static_cast<std::size_t>(level)])
+        add("lobe" + std::to_string(k) + "." + c.suffix, c.format);
     if (radial)
       for (int r = 0; r < RadialGrid::kNodes; ++r) add(radial_channel(r), OIIO::TypeDesc::HALF);
     s.nchannels = static_cast<int>(s.channelnames.size());
@@ -358,6 +404,7 @@ void write_mip_file(const fs::path& path, const ParamPyramid& param, const BrdfP
     s.attribute("svbrdf:level", level);
     s.attribute("svbrdf:max_lobes", brdf.max_lobes());
     s.attribute("svbrdf:slots", slots);
+    if (param.ior() != 1.5f) s.attribute(kIor, param.ior());
     if (corrected) {
       s.attribute(kRadialInner, radial_inner);
       s.attribute(kRadialOuter, radial_outer);
@@ -366,7 +413,7 @@ void write_mip_file(const fs::path& path, const ParamPyramid& param, const BrdfP
     // Every header is written when the file opens, so the checksums come first: the level packed once
     // in name order for them, and again as written below.
     const NativeLayout ordered_layout = name_ordered(s.channelnames, s.channelformats);
-    const std::vector<std::byte> ordered = pack_level(param, brdf, level, ordered_layout);
+    const std::vector<std::byte> ordered = pack_level(param, brdf, level, ordered_layout, channels[static_cast<std::size_t>(level)]);
     const std::size_t band_bytes = std::size_t(band_rows(e.width, ordered_layout.stride)) * e.width * ordered_layout.stride;
     std::vector<std::uint64_t> bands;
     for (std::size_t at = 0; at < ordered.size(); at += band_bytes)
@@ -385,7 +432,8 @@ void write_mip_file(const fs::path& path, const ParamPyramid& param, const BrdfP
       const OIIO::ImageSpec& s = specs[static_cast<std::size_t>(level)];
       if (level > 0 && !out->open(tmp.string(), s, OIIO::ImageOutput::AppendSubimage))
         throw environment_error(where(path), "cannot write level " + std::to_string(level) + ": " + out->geterror());
-      const std::vector<std::byte> buf = pack_level(param, brdf, level, layouts[static_cast<std::size_t>(level)]);
+      const std::vector<std::byte> buf =
+          pack_level(param, brdf, level, layouts[static_cast<std::size_t>(level)], channels[static_cast<std::size_t>(level)]);
       if (!out->write_image(OIIO::TypeUnknown, buf.data()))
         throw environment_error(where(path), "cannot write level " + std::to_string(level) + ": " + out->geterror());
     }
@@ -420,6 +468,9 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
   const int levels = level_count(level0);
   const int max_lobes = first.get_int_attribute("svbrdf:max_lobes", 1);
   const float radial_inner = first.get_float_attribute(kRadialInner, 0.0f);
+  const float ior = first.get_float_attribute(kIor, 1.5f);
+  if (!(std::isfinite(ior) && ior >= 0.0f && ior <= 1e4f))
+    throw input_error(where(path), std::string(kIor) + " is " + std::to_string(ior) + ", not an index of refraction");
   if (first.find_attribute(kRadialInner) && !(radial_inner > 0.0f && radial_inner < 0.5f))
     throw input_error(where(path), std::string(kRadialInner) + " is " + std::to_string(radial_inner) +
                                        ", not an angle in (0, 0.5) radians");
@@ -453,6 +504,7 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
   MipData mip;
   std::optional<Error> corrupt;  // the first level that fails its checksum
   std::vector<std::vector<ParamTexel>> param_levels;
+  std::vector<std::vector<ParamSpecular>> specular_levels;
   std::vector<BrdfLevel> coarse;
   for (int level = 0; level < levels; ++level) {
     const std::string at_level = "level " + std::to_string(level);
@@ -490,8 +542,17 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
       formats.push_back(f);
     };
     for (const char* c : kParamChannels) need(c);
+    // The specular layer's channels: in every level or in none (param), per level (lobes).
+    const bool param_specular = index.count(kParamSpecularChannels[0]) > 0;
+    if (level > 0 && param_specular != !specular_levels.empty())
+      throw input_error(where(path), at_level + (param_specular ? " has" : " has no") + " channel " +
+                                         kParamSpecularChannels[0] + (param_specular ? " but level 0 has none" : " but level 0 has"));
+    if (param_specular)
+      for (const char* c : kParamSpecularChannels) need(c);
+    const std::size_t first_lobe = order.size();
+    const std::vector<LobeChannel> lobe_ch = lobe_channels(slots > 0 && index.count("lobe0.F90") > 0);
     for (int k = 0; k < slots; ++k)
-      for (const LobeChannel& c : kLobeChannels) {
+      for (const LobeChannel& c : lobe_ch) {
         const std::string name = "lobe" + std::to_string(k) + "." + c.suffix;
         need(name);
         if (c.role == Role::normal_direction && formats.back() != OIIO::TypeDesc::UINT)
@@ -517,7 +578,8 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
       bl.lobes.reserve(texels * std::size_t(slots));
       if (radial) bl.correction.resize(texels);
     }
-    const std::size_t lobe_nch = kLobeChannelCount;
+    const std::size_t lobe_nch = lobe_ch.size();
+    std::vector<ParamSpecular> specular(param_specular ? texels : 0);
     for (std::size_t t = 0; t < texels; ++t) {
       const std::size_t row = t / std::size_t(e.width);
       if (t % (std::size_t(rows) * e.width) == 0) {  // the next band
@@ -537,14 +599,16 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
       p.metallic = value(3);
       p.roughness = value(4);
       p.normal = {value(5), value(6), value(7)};
+      if (param_specular) specular[t] = {value(8), {value(9), value(10), value(11)}};
       if (level == 0) continue;
       bl.first[t] = static_cast<std::uint32_t>(bl.lobes.size());
       // Lobes are packed from slot 0: the first empty slot (weight 0) ends the texel's.
       for (int k = 0; k < slots; ++k) {
         LobeValues v;
+        v[Role::f90] = 1.0f;  // the plain layer's, where the level has no specular channels
         for (std::size_t c = 0; c < lobe_nch; ++c) {
-          const std::size_t ch = 8 + static_cast<std::size_t>(k) * lobe_nch + c;
-          const Role role = kLobeChannels[c].role;
+          const std::size_t ch = first_lobe + static_cast<std::size_t>(k) * lobe_nch + c;
+          const Role role = lobe_ch[c].role;
           if (role == Role::normal_direction) std::memcpy(&v.direction, px + order[ch], 4);
           else v[role] = value(ch);
         }
@@ -557,7 +621,7 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
       if (bl.counts[t] == 1) bl.single[t] = bl.lobes.back(), bl.lobes.pop_back();
       if (radial)
         for (int r = 0; r < RadialGrid::kNodes; ++r)
-          bl.correction[t].ratio[static_cast<std::size_t>(r)] = value(8 + static_cast<std::size_t>(slots) * lobe_nch + r);
+          bl.correction[t].ratio[static_cast<std::size_t>(r)] = value(first_lobe + static_cast<std::size_t>(slots) * lobe_nch + r);
     }
     // Said after the whole file is read: a more telling refusal of a later level (a missing grid)
     // comes first.
@@ -571,15 +635,22 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
         m.roughness[t] = params[t].roughness;
         m.normal[t] = params[t].normal;
       }
+      m.ior = ior;
+      if (param_specular) {
+        m.specular.resize(texels);
+        m.specular_color.resize(texels);
+        for (std::size_t t = 0; t < texels; ++t) m.specular[t] = specular[t].specular, m.specular_color[t] = specular[t].color;
+      }
     } else {
       coarse.push_back(std::move(bl));
     }
     param_levels.push_back(std::move(params));
+    if (param_specular) specular_levels.push_back(std::move(specular));
   }
   if (in->seek_subimage(levels, 0))
     throw input_error(where(path), "has more subimages than the " + std::to_string(levels) + " levels of its level 0");
   if (corrupt) throw *corrupt;
-  mip.param = ParamPyramid::from_levels(level0, std::move(param_levels));
+  mip.param = ParamPyramid::from_levels(level0, std::move(param_levels), std::move(specular_levels), ior);
   mip.brdf = BrdfPyramid::from_levels(mip.level0, max_lobes, std::move(coarse),
                                       radial_inner > 0.0f ? RadialGrid::with_inner(radial_inner, radial_outer) : RadialGrid{});
   return mip;

@@ -10,6 +10,10 @@
 //   param.N.X, param.N.Y, param.N.Z  mean of the unit shading normals in the tangent frame,
 //                               unnormalized (its length < 1 says how much they spread); at
 //                               level 0 the texel's unit normal                          float
+// and, in every level of a material whose specular layer is not plain (KHR_materials_specular;
+// textures/material_texels.h), 16 bytes:
+//   param.specular              mean specular weight s                                   float
+//   param.specular.R/G/B        mean specular colour (linear)                            float
 // and, for L ≥ 1, for each lobe slot k = 0 .. S_L − 1 (lobe.h for the meaning), 26 bytes:
 //   lobeK.weight                fraction of the texel's area, times the lobe's specular-flux
 //                               factor (0: empty slot; slots are packed from 0)          half
@@ -28,6 +32,9 @@
 //   lobeK.skirt                 a core's c ≥ 1 (the Beckmann share's α² is c·alpha2); a
 //                               mixture's upper share β, as β ≤ ½ or β − 1 ∈ (−½, 0]; 1
 //                               otherwise (stored_lobe.h, lobe_skirt_code)              half
+// and, in a level where some lobe has ρ90 ≠ 0 or F90 ≠ 1 (the specular layer), 8 bytes more a slot:
+//   lobeK.diffuse90.R/G/B       the diffuse factor at grazing incidence ρ90              half
+//   lobeK.F90                   the specular Fresnel at grazing incidence F90           half
 // and, for L ≥ kFirstCorrectedLevel (4), 24 bytes (radial_correction.h):
 //   radial.R0 .. radial.R11     the texel's radial correction: the ratio of its true radial
 //                               profile of reflected light to its lobes' (gated beyond 10°)
@@ -35,7 +42,8 @@
 //                               svbrdf:radial_outer define                                half
 // Level 0's BRDF pyramid is its parameters (one lobe per texel) and is not stored twice.
 // Attributes on every subimage: svbrdf:mip_version (int, kMipFileVersion), svbrdf:level (int),
-// svbrdf:max_lobes (int, the --lobes the file was built with), svbrdf:slots (int, S_L), and, where any
+// svbrdf:max_lobes (int, the --lobes the file was built with), svbrdf:slots (int, S_L), svbrdf:ior
+// (float, the material's KHR_materials_ior; absent: 1.5), and, where any
 // level has radial channels, svbrdf:radial_inner (float, radians: θ of the grid's node 1) and
 // svbrdf:radial_outer (float, degrees: θ of its last node, RadialGrid::kOuterDeg).
 // svbrdf:checksum (string, on every subimage): 32 hexadecimal digits, farmhash's Fingerprint128 (a
@@ -55,7 +63,7 @@
 
 namespace svbrdf {
 
-inline constexpr int kMipFileVersion = 8;
+inline constexpr int kMipFileVersion = 10;
 
 // Throws svbrdf::Error naming the file when it cannot be written. A non-empty `cache_key` is stored as
 // svbrdf:cache_key.

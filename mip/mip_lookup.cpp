@@ -174,11 +174,15 @@ LobeMixtureBsdf lookup_brdf(const MipData& mip, const Footprint& footprint, floa
   return b;
 }
 
-ParamTexel filter_params(const ParamPyramid& pyramid, const Footprint& footprint, int max_probes) {
+ParamTexel filter_params(const ParamPyramid& pyramid, const Footprint& footprint, int max_probes,
+                         SpecularLayer* specular) {
   ParamTexel sum;
   sum.normal = glm::vec3(0.0f);
+  if (specular) *specular = {1.0f, glm::vec3(1.0f), pyramid.ior()};
   if (pyramid.levels() == 0) return sum;
   const FilterTaps taps = filter_taps(pyramid.level0(), pyramid.levels(), footprint, max_probes);
+  const bool layer = specular && !pyramid.specular_level(0).empty();
+  if (layer) specular->specular = 0.0f, specular->color = glm::vec3(0.0f);
   for (int k = 0; k < taps.count; ++k) {
     const FilterTap& t = taps.taps[static_cast<std::size_t>(k)];
     const ParamTexel& p = pyramid.texel(t.level, t.i, t.j);
@@ -186,13 +190,20 @@ ParamTexel filter_params(const ParamPyramid& pyramid, const Footprint& footprint
     sum.metallic += t.weight * p.metallic;
     sum.roughness += t.weight * p.roughness;
     sum.normal += t.weight * p.normal;
+    if (layer) {
+      const SpecularLayer s = pyramid.specular(t.level, t.i, t.j);
+      specular->specular += t.weight * s.specular;
+      specular->color += t.weight * s.color;
+    }
   }
   return sum;
 }
 
 Lobe lookup_param(const ParamPyramid& pyramid, const Footprint& footprint, TextureFilter filter,
                   int max_probes) {
-  return param_lobe(filter_params(pyramid, footprint, max_probes), filter);
+  SpecularLayer layer;
+  const ParamTexel t = filter_params(pyramid, footprint, max_probes, &layer);
+  return param_lobe(t, filter, layer);
 }
 
 }  // namespace svbrdf

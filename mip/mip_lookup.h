@@ -61,7 +61,9 @@ FilterTap select_tap(Extent level0, int levels, const Footprint& footprint, floa
 LobeMixtureBsdf lookup_brdf(const MipData& mip, const Footprint& footprint, float u, int max_probes = kMaxProbes);
 
 // (2) The trilinear-filtered parameters as one lobe (wrap it in LobeMixtureBsdf to shade).
-ParamTexel filter_params(const ParamPyramid& pyramid, const Footprint& footprint, int max_probes = kMaxProbes);
+// With `specular`, also the same filter's mean of the specular layer (the material's when it is plain).
+ParamTexel filter_params(const ParamPyramid& pyramid, const Footprint& footprint, int max_probes = kMaxProbes,
+                         SpecularLayer* specular = nullptr);
 Lobe lookup_param(const ParamPyramid& pyramid, const Footprint& footprint,
                   TextureFilter filter = TextureFilter::param, int max_probes = kMaxProbes);
 

@@ -11,10 +11,10 @@
 
 namespace svbrdf {
 
-Lobe param_lobe(const ParamTexel& t, TextureFilter filter) {
+Lobe param_lobe(const ParamTexel& t, TextureFilter filter, const SpecularLayer& layer) {
   const float r = std::min(1.0f, glm::length(t.normal));
   const glm::vec3 n = r > 0 ? t.normal / glm::length(t.normal) : glm::vec3(0, 0, 1);
-  Lobe l = lobe_from_texel(t.base_color, t.metallic, t.roughness, n);
+  Lobe l = lobe_from_texel(t.base_color, t.metallic, t.roughness, n, 1.0f, layer);
   // r == 1 (flat) widens nothing; r → 0 (normals cancel) widens to the roughest lobe.
   float widen = 0.0f;
   if (filter == TextureFilter::toksvig) {
@@ -61,6 +61,31 @@ std::vector<ParamTexel> level_from_below(Extent level0, int level, const std::ve
   return out;
 }
 
+// The specular layer's means, as level_from_below takes the parameters'.
+std::vector<ParamSpecular> specular_from_below(Extent level0, int level, const std::vector<ParamSpecular>& fine) {
+  const Extent e = level_extent(level0, level), fe = level_extent(level0, level - 1);
+  std::vector<ParamSpecular> out(static_cast<std::size_t>(e.width) * e.height);
+  tbb::parallel_for(tbb::blocked_range<int>(0, e.height), [&](const tbb::blocked_range<int>& r) {
+    for (int j = r.begin(); j < r.end(); ++j)
+      for (int i = 0; i < e.width; ++i) {
+        const Span cx = child_span(level0.width, level, i), cy = child_span(level0.height, level, j);
+        double total = 0, s = 0;
+        glm::dvec3 c(0);
+        for (int y = cy.begin; y < cy.end; ++y)
+          for (int x = cx.begin; x < cx.end; ++x) {
+            const double w = static_cast<double>(level0_span(level0.width, level - 1, x).size()) *
+                             level0_span(level0.height, level - 1, y).size();
+            const ParamSpecular& t = fine[static_cast<std::size_t>(y) * fe.width + x];
+            total += w;
+            s += w * t.specular;
+            c += w * glm::dvec3(t.color);
+          }
+        out[static_cast<std::size_t>(j) * e.width + i] = {static_cast<float>(s / total), glm::vec3(c / total)};
+      }
+  });
+  return out;
+}
+
 }  // namespace
 
 ParamPyramid ParamPyramid::build(const MaterialTexels& m) {
@@ -77,12 +102,24 @@ ParamPyramid ParamPyramid::level0_only(const MaterialTexels& m) {
   for (std::size_t k = 0; k < m.size(); ++k)
     base[k] = {m.base_color[k], m.metallic[k], m.roughness[k], m.normal[k]};
   p.levels_.push_back(std::move(base));
+  p.ior_ = m.ior;
+  if (!m.specular.empty() || !m.specular_color.empty() || m.specular_factor != 1.0f ||
+      m.specular_color_factor != glm::vec3(1.0f)) {
+    std::vector<ParamSpecular> spec(m.size());
+    for (std::size_t k = 0; k < m.size(); ++k) {
+      const SpecularLayer l = m.specular_layer(k);
+      spec[k] = {l.specular, l.color};
+    }
+    p.specular_.push_back(std::move(spec));
+  }
   return p;
 }
 
 void ParamPyramid::build_coarse_levels() {
-  for (int level = levels(); level > 0 && level < level_count(level0_); ++level)
+  for (int level = levels(); level > 0 && level < level_count(level0_); ++level) {
     levels_.push_back(level_from_below(level0_, level, levels_.back()));
+    if (!specular_.empty()) specular_.push_back(specular_from_below(level0_, level, specular_.back()));
+  }
 }
 
 MaterialTexels ParamPyramid::level0_texels() const {
@@ -94,10 +131,18 @@ MaterialTexels ParamPyramid::level0_texels() const {
     m.base_color[k] = t.base_color, m.metallic[k] = t.metallic;
     m.roughness[k] = t.roughness, m.normal[k] = t.normal;
   }
+  m.ior = ior_;
+  if (!specular_.empty()) {
+    m.specular.resize(base.size());
+    m.specular_color.resize(base.size());
+    for (std::size_t k = 0; k < base.size(); ++k)
+      m.specular[k] = specular_.front()[k].specular, m.specular_color[k] = specular_.front()[k].color;
+  }
   return m;
 }
 
-ParamPyramid ParamPyramid::from_levels(Extent level0, std::vector<std::vector<ParamTexel>> levels) {
+ParamPyramid ParamPyramid::from_levels(Extent level0, std::vector<std::vector<ParamTexel>> levels,
+                                       std::vector<std::vector<ParamSpecular>> specular, float ior) {
   if (static_cast<int>(levels.size()) != level_count(level0))
     throw Error("parameter pyramid: " + std::to_string(levels.size()) + " levels for a " +
                 std::to_string(level0.width) + "x" + std::to_string(level0.height) + " level 0 (expected " +
@@ -106,10 +151,14 @@ ParamPyramid ParamPyramid::from_levels(Extent level0, std::vector<std::vector<Pa
     const Extent e = level_extent(level0, static_cast<int>(l));
     if (levels[l].size() != static_cast<std::size_t>(e.width) * e.height)
       throw Error("parameter pyramid: level " + std::to_string(l) + " has the wrong size");
+    if (!specular.empty() && (specular.size() != levels.size() || specular[l].size() != levels[l].size()))
+      throw Error("parameter pyramid: the specular layer's level " + std::to_string(l) + " has the wrong size");
   }
   ParamPyramid p;
   p.level0_ = level0;
   p.levels_ = std::move(levels);
+  p.specular_ = std::move(specular);
+  p.ior_ = ior;
   return p;
 }
 

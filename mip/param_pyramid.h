@@ -31,11 +31,18 @@ struct ParamTexel {
   glm::vec3 normal{0, 0, 1};   // mean of unit normals, unnormalized (length ≤ 1)
 };
 
+// A texel's mean specular layer (KHR_materials_specular; textures/material_texels.h): the mean weight s and
+// the mean specular colour, beside the ParamTexel of a material whose layer is not plain.
+struct ParamSpecular {
+  float specular = 1.0f;
+  glm::vec3 color{1.0f};
+};
+
 // The single lobe a parameter texel stands for under a filter that reads this pyramid (param,
 // toksvig, vmf; texture_filter.h): f_eff of one glTF texel with the mean parameters and normal =
 // normalize(mean normal) (weight 1, unit normal), α widened for the engine baselines. Any other
-// filter reads as param (no widening).
-Lobe param_lobe(const ParamTexel& t, TextureFilter filter);
+// filter reads as param (no widening). `layer` is the texel's specular layer (plain by default).
+Lobe param_lobe(const ParamTexel& t, TextureFilter filter, const SpecularLayer& layer = {});
 
 class ParamPyramid {
  public:
@@ -48,8 +55,10 @@ class ParamPyramid {
   bool complete() const { return levels() == level_count(level0_); }
   // Level 0 as MaterialTexels (the form the BRDF build reads): the same floats.
   MaterialTexels level0_texels() const;
-  // From stored levels (the MIP file); throws svbrdf::Error when the shapes do not form a pyramid.
-  static ParamPyramid from_levels(Extent level0, std::vector<std::vector<ParamTexel>> levels);
+  // From stored levels (the MIP file), and the specular layer's (empty for a plain layer) and ior;
+  // throws svbrdf::Error when the shapes do not form a pyramid.
+  static ParamPyramid from_levels(Extent level0, std::vector<std::vector<ParamTexel>> levels,
+                                  std::vector<std::vector<ParamSpecular>> specular = {}, float ior = 1.5f);
 
   int levels() const { return static_cast<int>(levels_.size()); }
   Extent level0() const { return level0_; }
@@ -60,9 +69,26 @@ class ParamPyramid {
   }
   static constexpr int kBytesPerTexel = 8 * 4;  // 8 floats
 
+  // The specular layer, held apart so that the plain material's texel stays in half a cache line: a
+  // pyramid of its means beside the parameters' when it is not plain, and the material's ior.
+  bool plain_specular() const { return specular_.empty() && ior_ == 1.5f; }
+  float ior() const { return ior_; }
+  std::span<const ParamSpecular> specular_level(int level) const {
+    return specular_.empty() ? std::span<const ParamSpecular>() : specular_[static_cast<std::size_t>(level)];
+  }
+  SpecularLayer specular(int level, int i, int j) const {
+    if (specular_.empty()) return {1.0f, glm::vec3(1.0f), ior_};
+    const ParamSpecular& s =
+        specular_[static_cast<std::size_t>(level)][static_cast<std::size_t>(j) * extent(level).width + i];
+    return {s.specular, s.color, ior_};
+  }
+  static constexpr int kBytesPerSpecularTexel = 4 * 4;  // 4 floats, where the layer is not plain
+
  private:
   Extent level0_{};
   std::vector<std::vector<ParamTexel>> levels_;
+  std::vector<std::vector<ParamSpecular>> specular_;  // empty: a plain layer (factors 1)
+  float ior_ = 1.5f;
 };
 
 }  // namespace svbrdf

@@ -77,7 +77,9 @@ void round_to_stored(Lobe& lobe) {
   for (int c = 0; c < 3; ++c) {
     lobe.diffuse[c] = to_half(lobe.diffuse[c]);
     lobe.f0[c] = to_half(lobe.f0[c]);
+    lobe.diffuse90[c] = to_half(lobe.diffuse90[c]);
   }
+  lobe.f90 = to_half(lobe.f90);
   lobe.normal = round_normal(lobe.normal);
   const float skirt_code = lobe_skirt_code(lobe);
   set_lobe_shape_code(lobe, lobe_shape_code(lobe));

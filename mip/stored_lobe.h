@@ -31,5 +31,7 @@ void round_to_stored(Lobe& lobe);
 // Bytes a stored lobe takes: the normal's direction as a 32-bit code (stored_normal.h); weight, ρ (3),
 // F0 (3), the normal's length deficit, α, the shape code and the skirt as half floats.
 inline constexpr int kBytesPerLobe = 4 + 11 * 2;
+// What the specular layer adds to a stored lobe (ρ90 and F90 as four halves; mip_file.h).
+inline constexpr int kBytesPerSpecularLayer = 4 * 2;
 
 }  // namespace svbrdf

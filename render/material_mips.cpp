@@ -6,6 +6,7 @@
 #include <tbb/parallel_for.h>
 
 #include "render/mip_cache_key.h"
+#include "mip/gltf_material.h"
 #include "render/texel_inputs.h"
 #include "textures/material_loader.h"
 
@@ -32,10 +33,6 @@ std::string label(const MaterialDesc& m) { return m.where + (m.name.empty() ? ""
 // Why the lobes cannot stand for this material's BRDF (empty: they can).
 std::string unsupported(const MaterialDesc& m) {
   if (m.unlit) return "KHR_materials_unlit (no BRDF to filter)";
-  if (m.ior != 1.5f) return "KHR_materials_ior (the MIP lobes model F0 = 0.04)";
-  if (m.specular != 1.0f || m.specular_texture.present() || m.specular_color != Rgb(1.0f) ||
-      m.specular_color_texture.present())
-    return "KHR_materials_specular (the MIP lobes model the plain glTF BRDF)";
   if (m.transmission > 0.0f || m.transmission_texture.present()) return "KHR_materials_transmission";
   if (m.diffuse_roughness > 0.0f || m.diffuse_roughness_texture.present())
     return "KHR_materials_diffuse_roughness (the MIP lobes are Lambertian)";
@@ -53,17 +50,20 @@ SceneMips::SceneMips(const Scene& scene, const TextureSet& textures)
     : scene_(scene), textures_(textures), slot_(scene.materials.size(), -1) {
   for (std::size_t i = 0; i < scene.materials.size(); ++i) {
     const MaterialDesc& m = scene.materials[i];
-    const TextureRef* refs[3] = {&m.base_color_texture, &m.metallic_roughness_texture, &m.normal_texture};
-    const char* names[3] = {"baseColorTexture", "metallicRoughnessTexture", "normalTexture"};
+    constexpr int kRefs = 5;
+    const TextureRef* refs[kRefs] = {&m.base_color_texture, &m.metallic_roughness_texture, &m.normal_texture,
+                                     &m.specular_texture, &m.specular_color_texture};
+    const char* names[kRefs] = {"baseColorTexture", "metallicRoughnessTexture", "normalTexture", "specularTexture",
+                                "specularColorTexture"};
     int first = -1;
-    for (int k = 0; k < 3 && first < 0; ++k)
+    for (int k = 0; k < kRefs && first < 0; ++k)
       if (refs[k]->present()) first = k;
     if (first < 0) continue;  // untextured: nothing to filter
     std::string why = unsupported(m);
     const TextureRef& g = *refs[first];
     const Sampler& gs = textures.sampler(g);
     Extent e{0, 0};
-    for (int k = 0; k < 3 && why.empty(); ++k) {
+    for (int k = 0; k < kRefs && why.empty(); ++k) {
       if (!refs[k]->present()) continue;
       const TextureRef& r = *refs[k];
       const Sampler& rs = textures.sampler(r);
@@ -75,7 +75,7 @@ SceneMips::SceneMips(const Scene& scene, const TextureSet& textures)
       const glm::ivec2 size = textures.size(r);
       e.width = std::max(e.width, size.x), e.height = std::max(e.height, size.y);
     }
-    for (int k = 0; k < 3 && why.empty(); ++k) {
+    for (int k = 0; k < kRefs && why.empty(); ++k) {
       if (!refs[k]->present()) continue;
       const glm::ivec2 size = textures.size(*refs[k]);
       if (e.width % size.x != 0 || e.height % size.y != 0)
@@ -196,27 +196,16 @@ void SceneMips::build(std::size_t i, TextureFilter filter) {
   // The images as TextureSet holds them (base color already scene-linear: decoded once), smaller
   // ones replicated onto the grid.
   std::vector<Image> replicas;
-  replicas.reserve(3);
-  auto image_for = [&](const TextureRef& r, bool color) -> const Image* {
-    if (!r.present()) return nullptr;
+  replicas.reserve(5);
+  auto image_for = [&](const TextureRef& r, bool color) -> SlotImage {
     const Image& im = textures_.image(r, color);
-    if (im.width == mip.extent_.width && im.height == mip.extent_.height) return &im;
+    const bool linear = color && textures_.linearized(r);
+    if (im.width == mip.extent_.width && im.height == mip.extent_.height) return {&im, linear};
     replicas.push_back(replicate(im, mip.extent_));
-    return &replicas.back();
+    return {&replicas.back(), linear};
   };
   // decode_material_texels' arguments: what render/texel_inputs.h lists.
-  MaterialImages in;
-  in.base_color = image_for(m.base_color_texture, true);
-  in.base_color_is_linear = m.base_color_texture.present() && textures_.linearized(m.base_color_texture);
-  in.base_color_name = m.where + ".pbrMetallicRoughness.baseColorTexture";
-  in.base_color_factor = glm::vec4(m.base_color, m.base_alpha);
-  in.metallic_roughness = image_for(m.metallic_roughness_texture, false);
-  in.metallic_roughness_name = m.where + ".pbrMetallicRoughness.metallicRoughnessTexture";
-  in.metallic_factor = m.metallic;
-  in.roughness_factor = m.roughness;
-  in.normal = image_for(m.normal_texture, false);
-  in.normal_name = m.where + ".normalTexture";
-  in.normal_scale = m.normal_texture.scale;
+  const MaterialImages in = material_images(m, image_for);
   mip.texture_.emplace(decode_material_texels(in), mip.sampler_.wrap_s, mip.sampler_.wrap_t, filter);
 }
 

@@ -5,12 +5,14 @@
 // built from them, looked up in the uv its textures read.
 //
 // Which materials take part ("active"): those whose BRDF the lobes model — the glTF metallic-
-// roughness BRDF with KHR_materials_ior/specular/transmission/diffuse_roughness at their defaults and
-// not unlit — and that have at least one of the three textures. Every other material is shaded by
+// roughness BRDF with its KHR_materials_specular and KHR_materials_ior layer (lobe.h), with
+// KHR_materials_transmission/diffuse_roughness at their defaults and not unlit — and that have at
+// least one of the five textures (base color, metallic-roughness, normal, specular, specular
+// color). Every other material is shaded by
 // SurfaceBsdf with level0 lookups under every filter (an untextured one has nothing to filter); a
 // textured one that is left out gets one warning saying why.
 //
-// One texel grid per material: the three textures must share their uv set, KHR_texture_transform
+// One texel grid per material: the five textures must share their uv set, KHR_texture_transform
 // and wrap modes. Their sizes may differ by integer factors along each axis: the smaller ones are
 // replicated (nearest) onto the largest grid, which is exact — the texel of the small texture that
 // contains a uv is the one whose replica contains it. Anything else (different uv sets, transforms,
@@ -57,7 +59,7 @@ class MaterialMip {
   friend class SceneMips;
   TextureRef grid_;  // the slot whose uv set and transform the grid follows
   Sampler sampler_;  // the grid's wrap modes
-  Extent extent_{};  // the grid's size: the largest of the three textures
+  Extent extent_{};  // the grid's size: the largest of its textures
   std::optional<MipTexture> texture_;
 };
 

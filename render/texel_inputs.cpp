@@ -26,6 +26,12 @@ std::vector<TexelInput> texel_inputs(const MaterialDesc& m) {
       {"metallicFactor", nullptr, false, {m.metallic}},
       {"roughnessFactor", nullptr, false, {m.roughness}},
       {"normalTexture.scale", nullptr, false, {m.normal_texture.scale}},
+      // KHR_materials_specular and KHR_materials_ior (MaterialTexels::specular_layer).
+      {"specularTexture", &m.specular_texture, false, {}},
+      {"specularColorTexture", &m.specular_color_texture, true, {}},
+      {"specularFactor", nullptr, false, {m.specular}},
+      {"specularColorFactor", nullptr, false, {m.specular_color.r, m.specular_color.g, m.specular_color.b}},
+      {"ior", nullptr, false, {m.ior}},
   };
 }
 

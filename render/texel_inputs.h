@@ -5,9 +5,9 @@
 // cache's key hashes the list (render/mip_cache_key.h), so the two cannot disagree about what makes
 // two builds the same.
 //
-// A new input of the texels — a factor or a texture that the decode reads, e.g. KHR_materials_specular's
-// or KHR_materials_ior's once MaterialTexels holds them — is one more entry in texel_inputs()
-// (texel_inputs.cpp); the sharing and the cache key follow it.
+// A new input of the texels — a factor or a texture that the decode reads (mip/gltf_material.h
+// material_images maps the material to them) — is one more entry in texel_inputs() (texel_inputs.cpp);
+// the sharing and the cache key follow it.
 #include <string>
 #include <vector>
 

@@ -32,6 +32,9 @@ MaterialTexels decode_material_texels(const MaterialImages& in, const ColorConfi
   check_factor(in.metallic_factor, true, "metallic factor");
   check_factor(in.roughness_factor, true, "roughness factor");
   if (!std::isfinite(in.normal_scale)) throw input_error("normal scale", "must be finite");
+  check_factor(in.specular_factor, true, "specular factor");
+  for (int c = 0; c < 3; ++c) check_factor(in.specular_color_factor[c], false, "specular color factor");
+  if (!std::isfinite(in.ior) || in.ior < 0.0f) throw input_error("ior", "must be finite and ≥ 0, got " + std::to_string(in.ior));
 
   // The common size: the first present image sets it, every other must match it.
   const Image* first = nullptr;
@@ -50,6 +53,8 @@ MaterialTexels decode_material_texels(const MaterialImages& in, const ColorConfi
   take(in.base_color, in.base_color_name);
   take(in.metallic_roughness, in.metallic_roughness_name);
   take(in.normal, in.normal_name);
+  take(in.specular, in.specular_name);
+  take(in.specular_color, in.specular_color_name);
   if (in.normal && in.normal->channels < 3)
     throw input_error(in.normal_name, "a normal map needs RGB channels, this image has " + std::to_string(in.normal->channels));
 
@@ -84,6 +89,27 @@ MaterialTexels decode_material_texels(const MaterialImages& in, const ColorConfi
     const Image& nm = *in.normal;
     for_rows(out.height, out.width, [&](int j) {
       for (int i = 0; i < out.width; ++i) out.normal[out.index(i, j)] = decode_normal(glm::vec3(texel(nm, i, j)), in.normal_scale);
+    });
+  }
+
+  // The specular layer: per texel only where a texture makes it vary.
+  out.ior = in.ior;
+  out.specular_factor = in.specular_factor;
+  out.specular_color_factor = in.specular_color_factor;
+  if (in.specular) {
+    out.specular.resize(out.size());
+    for_rows(out.height, out.width, [&](int j) {
+      for (int i = 0; i < out.width; ++i)
+        out.specular[out.index(i, j)] = std::clamp(texel(*in.specular, i, j).a * in.specular_factor, 0.0f, 1.0f);
+    });
+  }
+  if (in.specular_color) {
+    Image linear = *in.specular_color;
+    if (!in.specular_color_is_linear) color.srgb_texture_to_linear(linear);
+    out.specular_color.resize(out.size());
+    for_rows(out.height, out.width, [&](int j) {
+      for (int i = 0; i < out.width; ++i)
+        out.specular_color[out.index(i, j)] = glm::vec3(texel(linear, i, j)) * in.specular_color_factor;
     });
   }
   return out;

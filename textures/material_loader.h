@@ -5,6 +5,7 @@
 //   metallic   = metallicRoughnessTexture.b · metallicFactor       (glTF: metal in B)
 //   roughness  = metallicRoughnessTexture.g · roughnessFactor      (glTF: roughness in G)
 //   normal     = normalize((2·normalTexture.rgb − 1)·(s, s, 1)), s = normalTexture.scale
+// and the specular layer of KHR_materials_specular and _ior (MaterialImages below).
 // A missing texture contributes its factor alone (normal: (0, 0, 1)). All present textures must
 // have the same size, which is the result's size (1×1 when there is none). Texels are read at
 // their own (i, j): no filtering, no texture transform (the level-0 texel grid is the image's).
@@ -34,6 +35,17 @@ struct MaterialImages {
   const Image* normal = nullptr;
   std::string normal_name = "normal texture";
   float normal_scale = 1.0f;
+  // KHR_materials_specular and KHR_materials_ior (MaterialTexels::specular_layer):
+  //   specular       = specularTexture.a · specularFactor, clamped to [0, 1] as the renderer shades it
+  //   specular color = sRGB→linear(specularColorTexture.rgb) · specularColorFactor
+  const Image* specular = nullptr;
+  std::string specular_name = "specular texture";
+  float specular_factor = 1.0f;
+  const Image* specular_color = nullptr;
+  std::string specular_color_name = "specular color texture";
+  bool specular_color_is_linear = false;  // as base_color_is_linear
+  glm::vec3 specular_color_factor{1.0f};
+  float ior = 1.5f;
 };
 
 // Throws svbrdf::Error naming the image for different sizes or a normal map with fewer than three

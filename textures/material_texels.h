@@ -11,6 +11,17 @@
 
 namespace svbrdf {
 
+// The dielectric's specular layer at a texel (KHR_materials_specular and KHR_materials_ior): the
+// specular weight s (specularFactor · specularTexture.a), the specular colour (specularColorFactor ·
+// specularColorTexture.rgb, linear) and the ior. The plain glTF BRDF is s = 1, colour 1, ior 1.5.
+struct SpecularLayer {
+  float specular = 1.0f;
+  glm::vec3 color{1.0f};
+  float ior = 1.5f;
+
+  bool plain() const { return specular == 1.0f && color == glm::vec3(1.0f) && ior == 1.5f; }
+};
+
 struct MaterialTexels {
   int width = 0;
   int height = 0;
@@ -18,6 +29,13 @@ struct MaterialTexels {
   std::vector<float> metallic;
   std::vector<float> roughness;       // perceptual; α = roughness²
   std::vector<glm::vec3> normal;      // unit, tangent space, z up
+  // The specular layer, per texel where it varies: `specular` and `specular_color` are empty for a
+  // material whose factor holds everywhere (specular_factor, specular_color_factor); ior has no texture.
+  std::vector<float> specular;
+  std::vector<glm::vec3> specular_color;  // linear Rec.709
+  float specular_factor = 1.0f;
+  glm::vec3 specular_color_factor{1.0f};
+  float ior = 1.5f;
 
   MaterialTexels() = default;
   MaterialTexels(int w, int h)
@@ -31,6 +49,15 @@ struct MaterialTexels {
   // Texel (i, j): column i, row j counted from the top row of the stored image.
   std::size_t index(int i, int j) const { return std::size_t(j) * width + i; }
   std::size_t size() const { return std::size_t(width) * height; }
+  // Texel k's specular layer, and whether every texel has the plain one.
+  SpecularLayer specular_layer(std::size_t k) const {
+    return {specular.empty() ? specular_factor : specular[k],
+            specular_color.empty() ? specular_color_factor : specular_color[k], ior};
+  }
+  bool plain_specular() const {
+    return specular.empty() && specular_color.empty() &&
+           SpecularLayer{specular_factor, specular_color_factor, ior}.plain();
+  }
 };
 
 }  // namespace svbrdf

@@ -14,6 +14,7 @@
 
 #include "appearance/frame.h"
 #include "appearance/gltf.h"
+#include "appearance/gltf_surface_bsdf.h"
 #include "appearance/rng.h"
 #include "render/material_mips.h"
 #include "render/surface.h"
@@ -44,6 +45,10 @@ const TexelSpec kA{{0.8f, 0.25f, 0.1f}, 0.0f, 0.6f, tilted(20, 0)};
 const TexelSpec kB{{0.9f, 0.75f, 0.35f}, 1.0f, 0.35f, tilted(20, 180)};
 const TexelSpec kC{{0.15f, 0.4f, 0.85f}, 0.0f, 0.45f, tilted(20, 90)};
 const TexelSpec kD{{0.95f, 0.95f, 0.95f}, 1.0f, 0.25f, tilted(20, 270)};
+// The specular layer of A B C D for the specular tests: specularTexture.a and specularColorTexture
+// (sRGB-encoded).
+constexpr float kSpecularWeight[4] = {1.0f, 0.05f, 0.2f, 0.8f};
+const glm::vec3 kSpecularSrgb[4] = {{1.0f, 1.0f, 1.0f}, {0.9f, 0.5f, 0.2f}, {0.3f, 0.8f, 0.9f}, {0.7f, 0.7f, 0.7f}};
 // A plain texel for the other squares of the checkerboard.
 const TexelSpec kE{{0.5f, 0.6f, 0.4f}, 0.0f, 0.7f, {0, 0, 1}};
 
@@ -377,6 +382,84 @@ TEST(MipFilters, VertexColorTint) {
   EXPECT_NEAR(pl.diffuse.z, 0.25f * pw.diffuse.z, 1e-6f);
 }
 
+// KHR_materials_specular and KHR_materials_ior take part in every filter: on the periodic quad with a
+// specular texture (A and D glossy, B and C nearly matte) and a specular colour texture (sRGB, as glTF
+// stores it) and ior 1.6, a level-3 texel under `brdf` is the mean f_eff of the four texels as the
+// renderer's glTF surface BSDF (appearance/gltf_surface_bsdf.h) shades them, and `param` is that
+// BSDF with the four texels' mean parameters, mean specular weight and mean linear specular colour.
+Scene specular_quad() {
+  Scene s = periodic_quad();
+  const int size = 256;
+  Image spec(size, size, 4), color(size, size, 3);
+  for (int j = 0; j < size; ++j)
+    for (int i = 0; i < size; ++i) {
+      const int k = (j % 2) * 2 + i % 2;  // A B / C D
+      for (int c = 0; c < 3; ++c) spec.at(i, j, c) = 0.5f, color.at(i, j, c) = kSpecularSrgb[k][c];
+      spec.at(i, j, 3) = kSpecularWeight[k];
+    }
+  for (Image* im : {&spec, &color}) {
+    ImageDesc d;
+    d.pixels = std::move(*im);
+    d.where = "images[" + std::to_string(s.images.size()) + "]";
+    s.images.push_back(std::move(d));
+    TextureDesc t;
+    t.image = int(s.images.size()) - 1;
+    s.textures.push_back(t);
+  }
+  MaterialDesc& m = s.materials[0];
+  m.specular_texture.texture = 3;
+  m.specular_color_texture.texture = 4;
+  m.specular = 0.9f;
+  m.specular_color = Rgb(1.0f, 1.2f, 0.8f);
+  m.ior = 1.6f;
+  return s;
+}
+
+glm::dvec3 specular_f_eff(int k, const TexelSpec& t, const glm::vec3& wi, const glm::vec3& wo) {
+  const glm::vec3 n = stored_normal(t.normal);
+  if (glm::dot(n, wi) <= 0 || glm::dot(n, wo) <= 0) return glm::dvec3(0);
+  ShadingParams p;
+  p.base_color = linear(t.srgb), p.metallic = t.metallic, p.roughness = t.roughness, p.ior = 1.6f;
+  p.specular = 0.9f * kSpecularWeight[k];
+  p.specular_color = Rgb(1.0f, 1.2f, 0.8f) * linear(kSpecularSrgb[k]);
+  const Frame f = Frame::from_normal(n);
+  return glm::dvec3(SurfaceBsdf(p).eval(f.to_local(wi), f.to_local(wo))) * double(glm::dot(n, wi)) / double(wi.z);
+}
+
+TEST(MipFilters, SpecularLayerIsFiltered) {
+  {
+    Prepared p(specular_quad());
+    EXPECT_NE(p.mips->find(0), nullptr);
+    EXPECT_TRUE(p.mips->warnings(TextureFilter::brdf).empty());
+  }
+  const TexelSpec texels[4] = {kA, kB, kC, kD};
+  for (const glm::vec3& wo : {glm::vec3(0, 0, 1), tilted(70, 200)}) {
+    glm::dvec3 mean(0);
+    for (int k = 0; k < 4; ++k) mean += specular_f_eff(k, texels[k], kWi, wo) / 4.0;
+    const Image im = render_quad(specular_quad(), TextureFilter::brdf, 16, wo).radiance();
+    expect_rgb_near(image_mean(im), kE0 * double(kWi.z) * mean, 5e-3, "brdf, view z " + std::to_string(wo.z));
+    // param: one texel of the mean parameters (normal: the normalized mean).
+    ShadingParams q;
+    q.base_color = Rgb(0.0f), q.metallic = q.roughness = q.specular = 0.0f;
+    glm::vec3 n(0);
+    for (int k = 0; k < 4; ++k) {
+      const TexelSpec& t = texels[k];
+      q.base_color += linear(t.srgb) / 4.0f, q.metallic += t.metallic / 4, q.roughness += t.roughness / 4;
+      q.specular += 0.9f * kSpecularWeight[k] / 4, n += stored_normal(t.normal);
+    }
+    q.specular_color = Rgb(0.0f);
+    for (int k = 0; k < 4; ++k) q.specular_color += Rgb(1.0f, 1.2f, 0.8f) * linear(kSpecularSrgb[k]) / 4.0f;
+    q.ior = 1.6f;
+    n = glm::normalize(n);
+    const Frame f = Frame::from_normal(n);
+    const glm::dvec3 param = glm::dvec3(SurfaceBsdf(q).eval(f.to_local(kWi), f.to_local(wo))) * double(glm::dot(n, kWi)) / double(kWi.z);
+    const Image pm = render_quad(specular_quad(), TextureFilter::param, 4, wo).radiance();
+    expect_rgb_near(image_mean(pm), kE0 * double(kWi.z) * param, 2e-3, "param, view z " + std::to_string(wo.z));
+    // The two differ here by more than the tolerances (the premise).
+    EXPECT_GT(glm::length(mean - param), 0.02 * glm::length(mean));
+  }
+}
+
 // One texel grid per material: a smaller texture whose size divides the largest is replicated
 // (the nearest texel at any uv is unchanged); other mismatches and unmodelled extensions leave the
 // material to level0 with one warning naming why.
@@ -433,8 +516,8 @@ TEST(MipFilters, TextureGridRules) {
   }
   {
     Scene s = periodic_quad(8);
-    s.materials[0].specular = 0.5f;
-    warned(std::move(s), "KHR_materials_specular");
+    s.materials[0].transmission = 0.5f;
+    warned(std::move(s), "KHR_materials_transmission");
   }
   {
     // A tinted COLOR_0 keeps brdf at level0 on that primitive (exact for the other filters): said once.
