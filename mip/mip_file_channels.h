@@ -1,0 +1,108 @@
+#pragma once
+// Private to mip/ (mip_file.cpp): the channels of the MIP file as mip_file.h lists them — the
+// parameters', the lobes' by role, the specular layer's — and a lobe packed into them and unpacked.
+#include <OpenImageIO/typedesc.h>
+
+#include <array>
+#include <cstdint>
+#include <iterator>
+#include <vector>
+
+#include "mip/lobe.h"
+#include "mip/stored_lobe.h"
+#include "mip/stored_normal.h"
+
+namespace svbrdf::mip_file_channels {
+
+inline constexpr const char* kParamChannels[8] = {"param.R",         "param.G",   "param.B",   "param.metallic",
+                                                  "param.roughness", "param.N.X", "param.N.Y", "param.N.Z"};
+// The specular layer's means, where the material's layer is not plain (mip_file.h).
+inline constexpr const char* kParamSpecularChannels[4] = {"param.specular", "param.specular.R", "param.specular.G",
+                                                          "param.specular.B"};
+inline constexpr const char* kIor = "svbrdf:ior";
+
+// What a lobe channel holds.
+enum class Role {
+  weight, diffuse_r, diffuse_g, diffuse_b, f0_r, f0_g, f0_b,
+  normal_direction, normal_deficit,  // stored_normal.h
+  alpha, shape, skirt,               // stored_lobe.h
+  diffuse90_r, diffuse90_g, diffuse90_b, f90,  // the specular layer's (kSpecularLobeChannels)
+  count
+};
+struct LobeChannel {
+  const char* suffix;
+  Role role;
+  OIIO::TypeDesc::BASETYPE format;
+};
+
+// A lobe's channels, 26 bytes (kBytesPerLobe): halves but for the normal's octahedral code.
+constexpr OIIO::TypeDesc::BASETYPE kHalf = OIIO::TypeDesc::HALF;
+constexpr LobeChannel kLobeChannels[] = {
+    {"weight", Role::weight, kHalf},
+    {"diffuse.R", Role::diffuse_r, kHalf},
+    {"diffuse.G", Role::diffuse_g, kHalf},
+    {"diffuse.B", Role::diffuse_b, kHalf},
+    {"F0.R", Role::f0_r, kHalf},
+    {"F0.G", Role::f0_g, kHalf},
+    {"F0.B", Role::f0_b, kHalf},
+    {"N.dir", Role::normal_direction, OIIO::TypeDesc::UINT},
+    {"N.deficit", Role::normal_deficit, kHalf},
+    {"alpha", Role::alpha, kHalf},
+    {"shape", Role::shape, kHalf},
+    {"skirt", Role::skirt, kHalf},
+};
+// A lobe's channels of the specular layer, 8 bytes (kBytesPerSpecularLayer), in levels where some
+// lobe has ρ90 ≠ 0 or F90 ≠ 1.
+constexpr LobeChannel kSpecularLobeChannels[] = {
+    {"diffuse90.R", Role::diffuse90_r, kHalf},
+    {"diffuse90.G", Role::diffuse90_g, kHalf},
+    {"diffuse90.B", Role::diffuse90_b, kHalf},
+    {"F90", Role::f90, kHalf},
+};
+// The channels of a level's lobe slots, without or with the specular layer's.
+inline std::vector<LobeChannel> lobe_channels(bool specular) {
+  std::vector<LobeChannel> c(std::begin(kLobeChannels), std::end(kLobeChannels));
+  if (specular) c.insert(c.end(), std::begin(kSpecularLobeChannels), std::end(kSpecularLobeChannels));
+  return c;
+}
+
+
+
+// One texel's channel values by role: floats, and the normal's code.
+struct LobeValues {
+  std::array<float, static_cast<std::size_t>(Role::count)> v{};
+  std::uint32_t direction = 0;
+  float& operator[](Role r) { return v[static_cast<std::size_t>(r)]; }
+  float operator[](Role r) const { return v[static_cast<std::size_t>(r)]; }
+};
+
+inline LobeValues pack_lobe(const Lobe& l) {
+  LobeValues out;
+  out[Role::weight] = l.weight;
+  out[Role::diffuse_r] = l.diffuse.r, out[Role::diffuse_g] = l.diffuse.g, out[Role::diffuse_b] = l.diffuse.b;
+  out[Role::f0_r] = l.f0.r, out[Role::f0_g] = l.f0.g, out[Role::f0_b] = l.f0.b;
+  out[Role::diffuse90_r] = l.diffuse90.r, out[Role::diffuse90_g] = l.diffuse90.g, out[Role::diffuse90_b] = l.diffuse90.b;
+  out[Role::f90] = l.f90;
+  const StoredNormal n = store_normal(l.normal);  // exact: the pyramid's normals are decoded codes
+  out.direction = n.direction;
+  out[Role::normal_deficit] = n.deficit;
+  out[Role::alpha] = std::sqrt(l.alpha2);  // exact: a stored α² is the square of a half (round_to_stored)
+  out[Role::shape] = lobe_shape_code(l);
+  out[Role::skirt] = lobe_skirt_code(l);
+  return out;
+}
+inline Lobe unpack_lobe(const LobeValues& in) {
+  Lobe l;
+  l.weight = in[Role::weight];
+  l.diffuse = {in[Role::diffuse_r], in[Role::diffuse_g], in[Role::diffuse_b]};
+  l.f0 = {in[Role::f0_r], in[Role::f0_g], in[Role::f0_b]};
+  l.diffuse90 = {in[Role::diffuse90_r], in[Role::diffuse90_g], in[Role::diffuse90_b]};
+  l.f90 = in[Role::f90];
+  l.normal = load_normal(StoredNormal{in.direction, in[Role::normal_deficit]});
+  l.alpha2 = in[Role::alpha] * in[Role::alpha];
+  set_lobe_shape_code(l, in[Role::shape]);
+  set_lobe_skirt_code(l, in[Role::skirt]);
+  return l;
+}
+
+}  // namespace svbrdf::mip_file_channels
