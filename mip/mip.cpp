@@ -54,10 +54,11 @@ void MipTexture::write(const std::filesystem::path& path, const std::string& cac
 std::string mip_build_identity() {
   // The options MipTexture::prepare builds with (BrdfPyramid::build's defaults).
   const BrdfBuildOptions o;
-  char text[256];
-  std::snprintf(text, sizeof text, "mip file %d; lobes %d; tolerance %a; spread %a; radial %d; recentre %d", kMipFileVersion,
-                o.reduction.max_lobes, double(o.reduction.tolerance), double(o.reduction.spread_scale),
-                int(o.radial_correction), int(o.recentre));
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "mip file %d; lobes %d; tolerance %a; spread %a; peak weight %a; lean share %a; radial %d; recentre %d",
+                kMipFileVersion, o.reduction.max_lobes, double(o.reduction.tolerance), double(o.reduction.spread_scale),
+                o.reduction.peak_weight, o.reduction.lean_peak_share_spread, int(o.radial_correction), int(o.recentre));
   return text;
 }
 
