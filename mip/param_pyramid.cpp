@@ -29,61 +29,57 @@ Lobe param_lobe(const ParamTexel& t, TextureFilter filter, const SpecularLayer& 
 
 namespace {
 
-std::vector<ParamTexel> level_from_below(Extent level0, int level, const std::vector<ParamTexel>& fine) {
+// Each texel of `level` from its children in `fine`: mean(children) gets a function that calls its
+// argument with each child and the child's weight, the level-0 texels it covers.
+template <class T, class Mean>
+std::vector<T> level_from_below(Extent level0, int level, const std::vector<T>& fine, const Mean& mean) {
   const Extent e = level_extent(level0, level), fe = level_extent(level0, level - 1);
-  std::vector<ParamTexel> out(static_cast<std::size_t>(e.width) * e.height);
+  std::vector<T> out(static_cast<std::size_t>(e.width) * e.height);
   tbb::parallel_for(tbb::blocked_range<int>(0, e.height), [&](const tbb::blocked_range<int>& r) {
     for (int j = r.begin(); j < r.end(); ++j)
       for (int i = 0; i < e.width; ++i) {
         const Span cx = child_span(level0.width, level, i), cy = child_span(level0.height, level, j);
-        double total = 0;
-        glm::dvec3 c(0), n(0);
-        double m = 0, rough = 0;
-        for (int y = cy.begin; y < cy.end; ++y)
-          for (int x = cx.begin; x < cx.end; ++x) {
-            // The child's weight: the level-0 texels it covers.
-            const double w = static_cast<double>(level0_span(level0.width, level - 1, x).size()) *
-                             level0_span(level0.height, level - 1, y).size();
-            const ParamTexel& t = fine[static_cast<std::size_t>(y) * fe.width + x];
-            total += w;
-            c += w * glm::dvec3(t.base_color);
-            m += w * t.metallic;
-            rough += w * t.roughness;
-            n += w * glm::dvec3(t.normal);
-          }
-        ParamTexel& o = out[static_cast<std::size_t>(j) * e.width + i];
-        o.base_color = glm::vec3(c / total);
-        o.metallic = static_cast<float>(m / total);
-        o.roughness = static_cast<float>(rough / total);
-        o.normal = glm::vec3(n / total);
+        const auto children = [&](const auto& add) {
+          for (int y = cy.begin; y < cy.end; ++y)
+            for (int x = cx.begin; x < cx.end; ++x)
+              add(static_cast<double>(level0_span(level0.width, level - 1, x).size()) *
+                      level0_span(level0.height, level - 1, y).size(),
+                  fine[static_cast<std::size_t>(y) * fe.width + x]);
+        };
+        out[static_cast<std::size_t>(j) * e.width + i] = mean(children);
       }
   });
   return out;
 }
 
-// The specular layer's means, as level_from_below takes the parameters'.
-std::vector<ParamSpecular> specular_from_below(Extent level0, int level, const std::vector<ParamSpecular>& fine) {
-  const Extent e = level_extent(level0, level), fe = level_extent(level0, level - 1);
-  std::vector<ParamSpecular> out(static_cast<std::size_t>(e.width) * e.height);
-  tbb::parallel_for(tbb::blocked_range<int>(0, e.height), [&](const tbb::blocked_range<int>& r) {
-    for (int j = r.begin(); j < r.end(); ++j)
-      for (int i = 0; i < e.width; ++i) {
-        const Span cx = child_span(level0.width, level, i), cy = child_span(level0.height, level, j);
-        double total = 0, s = 0;
-        glm::dvec3 c(0);
-        for (int y = cy.begin; y < cy.end; ++y)
-          for (int x = cx.begin; x < cx.end; ++x) {
-            const double w = static_cast<double>(level0_span(level0.width, level - 1, x).size()) *
-                             level0_span(level0.height, level - 1, y).size();
-            const ParamSpecular& t = fine[static_cast<std::size_t>(y) * fe.width + x];
-            total += w;
-            s += w * t.specular;
-            c += w * glm::dvec3(t.color);
-          }
-        out[static_cast<std::size_t>(j) * e.width + i] = {static_cast<float>(s / total), glm::vec3(c / total)};
-      }
+std::vector<ParamTexel> params_from_below(Extent level0, int level, const std::vector<ParamTexel>& fine) {
+  return level_from_below(level0, level, fine, [](const auto& children) {
+    double total = 0, m = 0, rough = 0;
+    glm::dvec3 c(0), n(0);
+    children([&](double w, const ParamTexel& t) {
+      total += w;
+      c += w * glm::dvec3(t.base_color);
+      m += w * t.metallic;
+      rough += w * t.roughness;
+      n += w * glm::dvec3(t.normal);
+    });
+    return ParamTexel{glm::vec3(c / total), static_cast<float>(m / total), static_cast<float>(rough / total),
+                      glm::vec3(n / total)};
   });
-  return out;
+}
+
+// The specular layer's means, as params_from_below takes the parameters'.
+std::vector<ParamSpecular> specular_from_below(Extent level0, int level, const std::vector<ParamSpecular>& fine) {
+  return level_from_below(level0, level, fine, [](const auto& children) {
+    double total = 0, s = 0;
+    glm::dvec3 c(0);
+    children([&](double w, const ParamSpecular& t) {
+      total += w;
+      s += w * t.specular;
+      c += w * glm::dvec3(t.color);
+    });
+    return ParamSpecular{static_cast<float>(s / total), glm::vec3(c / total)};
+  });
 }
 
 }  // namespace
@@ -117,7 +113,7 @@ ParamPyramid ParamPyramid::level0_only(const MaterialTexels& m) {
 
 void ParamPyramid::build_coarse_levels() {
   for (int level = levels(); level > 0 && level < level_count(level0_); ++level) {
-    levels_.push_back(level_from_below(level0_, level, levels_.back()));
+    levels_.push_back(params_from_below(level0_, level, levels_.back()));
     if (!specular_.empty()) specular_.push_back(specular_from_below(level0_, level, specular_.back()));
   }
 }

@@ -103,15 +103,7 @@ Scene textured_quad(int size, At at) {
       for (int c = 0; c < 3; ++c) base.at(i, j, c) = t.srgb[c], normal.at(i, j, c) = enc[c];
       mr.at(i, j, 0) = 1.0f, mr.at(i, j, 1) = t.roughness, mr.at(i, j, 2) = t.metallic;
     }
-  for (Image* im : {&base, &mr, &normal}) {
-    ImageDesc d;
-    d.pixels = std::move(*im);
-    d.where = "images[" + std::to_string(s.images.size()) + "]";
-    s.images.push_back(std::move(d));
-    TextureDesc t;
-    t.image = int(s.images.size()) - 1;
-    s.textures.push_back(t);
-  }
+  for (Image* im : {&base, &mr, &normal}) test::add_image_texture(s, std::move(*im));
   MaterialDesc m;
   m.where = "materials[0]";
   m.base_color_texture.texture = 0;
@@ -397,18 +389,9 @@ Scene specular_quad() {
       for (int c = 0; c < 3; ++c) spec.at(i, j, c) = 0.5f, color.at(i, j, c) = kSpecularSrgb[k][c];
       spec.at(i, j, 3) = kSpecularWeight[k];
     }
-  for (Image* im : {&spec, &color}) {
-    ImageDesc d;
-    d.pixels = std::move(*im);
-    d.where = "images[" + std::to_string(s.images.size()) + "]";
-    s.images.push_back(std::move(d));
-    TextureDesc t;
-    t.image = int(s.images.size()) - 1;
-    s.textures.push_back(t);
-  }
   MaterialDesc& m = s.materials[0];
-  m.specular_texture.texture = 3;
-  m.specular_color_texture.texture = 4;
+  m.specular_texture.texture = test::add_image_texture(s, std::move(spec));
+  m.specular_color_texture.texture = test::add_image_texture(s, std::move(color));
   m.specular = 0.9f;
   m.specular_color = Rgb(1.0f, 1.2f, 0.8f);
   m.ior = 1.6f;

@@ -89,6 +89,7 @@ inline CameraDesc perspective_camera(const glm::vec3& eye, const glm::vec3& targ
 inline int add_image_texture(Scene& s, Image pixels) {
   ImageDesc im;
   im.pixels = std::move(pixels);
+  im.where = "images[" + std::to_string(s.images.size()) + "]";
   s.images.push_back(std::move(im));
   TextureDesc t;
   t.image = int(s.images.size()) - 1;
