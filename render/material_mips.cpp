@@ -50,36 +50,34 @@ SceneMips::SceneMips(const Scene& scene, const TextureSet& textures)
     : scene_(scene), textures_(textures), slot_(scene.materials.size(), -1) {
   for (std::size_t i = 0; i < scene.materials.size(); ++i) {
     const MaterialDesc& m = scene.materials[i];
-    constexpr int kRefs = 5;
-    const TextureRef* refs[kRefs] = {&m.base_color_texture, &m.metallic_roughness_texture, &m.normal_texture,
-                                     &m.specular_texture, &m.specular_color_texture};
-    const char* names[kRefs] = {"baseColorTexture", "metallicRoughnessTexture", "normalTexture", "specularTexture",
-                                "specularColorTexture"};
-    int first = -1;
-    for (int k = 0; k < kRefs && first < 0; ++k)
-      if (refs[k]->present()) first = k;
-    if (first < 0) continue;  // untextured: nothing to filter
+    // The texture slots the texels read (render/texel_inputs.h), those the material fills.
+    const std::vector<TexelInput> inputs = texel_inputs(m);
+    std::vector<const TexelInput*> slots;
+    for (const TexelInput& in : inputs)
+      if (in.texture && in.texture->present()) slots.push_back(&in);
+    if (slots.empty()) continue;  // untextured: nothing to filter
     std::string why = unsupported(m);
-    const TextureRef& g = *refs[first];
+    const TexelInput& first = *slots.front();
+    const TextureRef& g = *first.texture;
     const Sampler& gs = textures.sampler(g);
     Extent e{0, 0};
-    for (int k = 0; k < kRefs && why.empty(); ++k) {
-      if (!refs[k]->present()) continue;
-      const TextureRef& r = *refs[k];
+    for (const TexelInput* in : slots) {
+      if (!why.empty()) break;
+      const TextureRef& r = *in->texture;
       const Sampler& rs = textures.sampler(r);
-      const std::string pair = std::string(names[k]) + " and " + names[first];
+      const std::string pair = in->name + " and " + first.name;
       if (r.uv_set() != g.uv_set()) why = pair + " read different TEXCOORD sets";
       else if (!same_transform(r.transform, g.transform)) why = pair + " have different KHR_texture_transforms";
       else if (rs.wrap_s != gs.wrap_s || rs.wrap_t != gs.wrap_t) why = pair + " have different wrap modes";
-      else if (k == 2 && textures.image(r, false).channels < 3) why = "its normal map has fewer than three channels";
+      else if (&r == &m.normal_texture && textures.image(r, false).channels < 3) why = "its normal map has fewer than three channels";
       const glm::ivec2 size = textures.size(r);
       e.width = std::max(e.width, size.x), e.height = std::max(e.height, size.y);
     }
-    for (int k = 0; k < kRefs && why.empty(); ++k) {
-      if (!refs[k]->present()) continue;
-      const glm::ivec2 size = textures.size(*refs[k]);
+    for (const TexelInput* in : slots) {
+      if (!why.empty()) break;
+      const glm::ivec2 size = textures.size(*in->texture);
       if (e.width % size.x != 0 || e.height % size.y != 0)
-        why = std::string(names[k]) + " (" + std::to_string(size.x) + "x" + std::to_string(size.y) +
+        why = in->name + " (" + std::to_string(size.x) + "x" + std::to_string(size.y) +
               ") does not divide the largest texture (" + std::to_string(e.width) + "x" + std::to_string(e.height) + ")";
     }
     if (!why.empty()) {

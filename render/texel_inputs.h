@@ -1,13 +1,14 @@
 #pragma once
 // What enters one material's level-0 texels (MaterialTexels, decoded by decode_material_texels from
 // the material's images and factors, textures/material_loader.h), listed in one place. SceneMips
-// shares one build between materials whose lists are equal (render/material_mips.h), and the MIP
+// puts the listed textures on one texel grid and shares one build between materials whose lists are
+// equal (render/material_mips.h), and the MIP
 // cache's key hashes the list (render/mip_cache_key.h), so the two cannot disagree about what makes
 // two builds the same.
 //
 // A new input of the texels — a factor or a texture that the decode reads (mip/gltf_material.h
 // material_images maps the material to them) — is one more entry in texel_inputs() (texel_inputs.cpp);
-// the sharing and the cache key follow it.
+// the grid, the sharing and the cache key follow it.
 #include <string>
 #include <vector>
 
