@@ -18,6 +18,7 @@
 #include "appearance/mirror.h"
 #include "appearance/mixture.h"
 #include "appearance/oren_nayar.h"
+#include "appearance/sheen.h"
 #include "appearance/phong.h"
 #include "base/error.h"
 
@@ -236,6 +237,10 @@ std::unique_ptr<Bsdf> build(const std::string& name, ParamReader& r) {
     p.roughness = r.number("roughness", p.roughness, kUnit);
     return std::make_unique<GltfBsdf>(p);
   }
+  if (name == "sheen") {
+    const Rgb color = r.rgb("color", Rgb(1.0f), kUnit);
+    return std::make_unique<Sheen>(color, r.number("roughness", 0.5f, kUnit));
+  }
   if (name == "measured") return std::make_unique<Measured>(std::make_shared<MerlTable>(MerlTable::read(r.text("file"))));
   if (name == "mirror") return std::make_unique<Mirror>(r.rgb("rho", Rgb(1.0f), kUnit));
   if (name == "dielectric") return std::make_unique<Dielectric>(r.number("ior", 1.5f, kPositive));
@@ -263,7 +268,8 @@ Rgb parse_rgb(const std::string& text, const std::string& where) {
 const std::vector<std::string>& model_names() {
   static const std::vector<std::string> names = {"lambert",     "phong",      "blinn-phong", "lafortune",
                                                  "microfacet",  "cook-torrance", "oren-nayar", "gltf",
-                                                 "measured",    "mirror",     "dielectric",  "conductor-mirror"};
+                                                 "sheen",       "measured",   "mirror",      "dielectric",
+                                                 "conductor-mirror"};
   return names;
 }
 
@@ -278,6 +284,7 @@ std::string models_help() {
          "cook-torrance: microfacet with distribution=beckmann masking=vgroove\n"
          "oren-nayar: albedo=0.5 [0,1] sigma=0.3 [0,pi/2] (radians)\n"
          "gltf: base_color=0.8 metallic=0 roughness=0.5 [0,1]\n"
+         "sheen: color=1 roughness=0.5 [0,1] (KHR_materials_sheen's Charlie lobe alone)\n"
          "measured: file=PATH (MERL binary layout)\n"
          "mirror: rho=1 [0,1]\n"
          "dielectric: ior=1.5 (>0)\n"

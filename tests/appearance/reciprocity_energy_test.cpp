@@ -37,6 +37,7 @@ std::vector<ModelCase> finite_grid() {
   for (const char* m : {"0", "1"})
     for (const char* r : {"0", "0.3", "1"})
       g.push_back({"gltf", {"base_color=0.9,0.5,0.1", std::string("metallic=") + m, std::string("roughness=") + r}});
+  for (const char* r : {"0", "0.4", "1"}) g.push_back({"sheen", {"color=0.9,0.6,0.3", std::string("roughness=") + r}});
   g.push_back({"measured", {"file=" + gltf_merl_path()}});
   return g;
 }
@@ -107,6 +108,7 @@ TEST(Energy, ConservingModelsStayAtOrBelowOne) {
     for (const char* f : {"fresnel=none", "f0=1", "fresnel=conductor", "fresnel=dielectric"})
       for (const char* a : {"0.02", "0.1", "0.3", "0.6", "1"})
         grid.push_back({"microfacet", {std::string("distribution=") + d, f, std::string("alpha=") + a}});
+  for (const char* r : {"0", "0.3", "0.6", "1"}) grid.push_back({"sheen", {"color=1", std::string("roughness=") + r}});
   for (const ModelCase& mc : grid) {
     const auto bsdf = mc.build();
     const Peak p = max_albedo(*bsdf);
