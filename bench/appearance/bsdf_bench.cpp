@@ -12,6 +12,8 @@
 #include "appearance/mixture.h"
 #include "appearance/registry.h"
 #include "appearance/rng.h"
+#include "appearance/sheen.h"
+#include "appearance/thin_film.h"
 
 namespace {
 
@@ -68,6 +70,27 @@ void pdf_bench(benchmark::State& state, std::shared_ptr<const Bsdf> bsdf) {
   }
 }
 
+// The glTF extension building blocks as the surface BSDF calls them, per shading query: the sheen
+// albedo scaling (two table lookups) and the thin-film Fresnel at wo·h (random cosines, thickness
+// 100–400 nm, the extension's default range, and a metal-like F0).
+void sheen_scaling_bench(benchmark::State& state) {
+  const Inputs& in = inputs();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(sheen_albedo_scaling(in.wi[i], in.wo[i], Rgb(0.9f, 0.6f, 0.3f), 0.5f));
+    i = (i + 1) & (kN - 1);
+  }
+}
+
+void thin_film_bench(benchmark::State& state) {
+  const Inputs& in = inputs();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(iridescence_fresnel(in.wo[i].z, 100.0f + 300.0f * in.u[i].x, 1.3f, Rgb(0.9f, 0.6f, 0.3f)));
+    i = (i + 1) & (kN - 1);
+  }
+}
+
 // A two-lobe mixture of gltf lobes on the stack, as the MIP lookup builds per shading point.
 class TwoGltfLobes final : public Bsdf {
  public:
@@ -100,6 +123,7 @@ struct Registrar {
         {"microfacet/ggx-conductor", "microfacet", {"fresnel=conductor"}, {}},
         {"cook-torrance", "cook-torrance", {}, {}},
         {"oren-nayar", "oren-nayar", {}, {}},
+        {"sheen", "sheen", {"color=0.9,0.6,0.3", "roughness=0.5"}, {}},
         {"gltf", "gltf", {}, {}},
         {"mirror", "mirror", {}, {}},
         {"dielectric", "dielectric", {}, {}},
@@ -112,6 +136,9 @@ struct Registrar {
     g.roughness = 0.4f;
     models.push_back({"measured", std::make_shared<Measured>(std::make_shared<MerlTable>(MerlTable::tabulate(GltfBsdf(g))))});
     models.push_back({"mixture/2-gltf-lobes", std::make_shared<TwoGltfLobes>()});
+    sheen_albedo(0.5f, 0.5f);  // the albedo table is built on first use, not inside the timing
+    benchmark::RegisterBenchmark("sheen_albedo_scaling", sheen_scaling_bench);
+    benchmark::RegisterBenchmark("iridescence_fresnel", thin_film_bench);
     for (const auto& [label, bsdf] : models) {
       benchmark::RegisterBenchmark(("eval/" + label).c_str(), eval_bench, bsdf);
       benchmark::RegisterBenchmark(("sample/" + label).c_str(), sample_bench, bsdf);
