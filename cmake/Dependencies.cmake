@@ -8,6 +8,16 @@ find_package(embree 3 CONFIG REQUIRED)
 find_package(TinyGLTF CONFIG REQUIRED)
 find_package(CLI11 CONFIG REQUIRED)
 find_package(nlohmann_json 3 CONFIG REQUIRED)
+# KHR_draco_mesh_compression and EXT_meshopt_compression (Debian libdraco-dev, libmeshoptimizer-dev;
+# both ship CMake configs in /usr/lib/x86_64-linux-gnu/cmake).
+find_package(draco CONFIG REQUIRED)
+find_package(meshoptimizer CONFIG REQUIRED)
+# Debian's libdraco 1.5.5 carries its own copy of tinygltf (another version, for Draco's glTF
+# transcoder) and of stb, and exports both: wherever libdraco.so or the archive member holding them
+# comes into a link, the reader's tinygltf calls can bind to that copy, whose Model has another layout
+# (a double free at the first file loaded; the static archive is pulled in for libtinygltf's stbi_*
+# symbols). So Draco lives only inside gltf/'s svbrdf_draco, a shared library linked with the static
+# archive and every archive symbol kept local (gltf/CMakeLists.txt).
 find_package(Threads REQUIRED)
 
 # Pitfall 1: OpenImageIO's exported target names /usr/include/opencv4 even where OpenCV is absent;
@@ -36,7 +46,8 @@ endif()
 
 # Third-party headers are SYSTEM so their warnings never mix with ours.
 foreach(_t glm::glm TBB::tbb OpenImageIO::OpenImageIO OpenImageIO::OpenImageIO_Util embree
-           TinyGLTF::TinyGLTF CLI11::CLI11 OpenColorIO::OpenColorIO nlohmann_json::nlohmann_json)
+           TinyGLTF::TinyGLTF CLI11::CLI11 OpenColorIO::OpenColorIO nlohmann_json::nlohmann_json
+           draco::draco_static meshoptimizer::meshoptimizer)
   if(TARGET ${_t})
     get_target_property(_inc ${_t} INTERFACE_INCLUDE_DIRECTORIES)
     if(_inc)

@@ -190,23 +190,29 @@ std::size_t element_count(const tinygltf::Model& model, int index, const std::st
   return accessor_at(model, index, where).count;
 }
 
-std::vector<float> read_floats(const tinygltf::Model& m, int index, const AccessorShape& shape,
-                               const std::string& where, int* components_out) {
+int accessor_components(const tinygltf::Model& m, int index, const AccessorShape& shape, const std::string& where) {
   const tinygltf::Accessor& a = accessor_at(m, index, where);
   if (std::find(shape.types.begin(), shape.types.end(), a.type) == shape.types.end()) {
     std::string allowed;
     for (int t : shape.types) allowed += (allowed.empty() ? "" : " or ") + type_name(t);
     throw input_error(where, acc_name(index) + " is " + type_name(a.type) + ", expected " + allowed);
   }
-  const int csz = component_size(a.componentType);
-  if (csz == 0) throw input_error(where, acc_name(index) + " has component type " + std::to_string(a.componentType));
+  if (component_size(a.componentType) == 0)
+    throw input_error(where, acc_name(index) + " has component type " + std::to_string(a.componentType));
   if (!shape.component_types.empty() &&
       std::find(shape.component_types.begin(), shape.component_types.end(), a.componentType) ==
           shape.component_types.end())
     throw input_error(where, acc_name(index) + " has component type " + std::to_string(a.componentType) +
                                  ", which glTF does not allow here");
   check_count(a, index, where);
-  const int comps = type_components(a.type);
+  return type_components(a.type);
+}
+
+std::vector<float> read_floats(const tinygltf::Model& m, int index, const AccessorShape& shape,
+                               const std::string& where, int* components_out) {
+  const int comps = accessor_components(m, index, shape, where);
+  const tinygltf::Accessor& a = m.accessors[static_cast<std::size_t>(index)];
+  const int csz = component_size(a.componentType);
   if (components_out) *components_out = comps;
   // The bytes are checked present before the output is allocated, so a count of 10^9 in a small
   // file is refused rather than allocated; an accessor with no buffer view (zeros, §3.6.2.2) is held

@@ -21,6 +21,11 @@ struct AccessorShape {
   std::vector<int> component_types;
 };
 
+// The components per element of accessor `index` (3 for VEC3), after checking that it exists, has one
+// of `shape`'s types and component types and a count within [1, 2^32). For data that does not come
+// from the accessor's own buffer view (a KHR_draco_mesh_compression primitive's, decoded elsewhere).
+int accessor_components(const tinygltf::Model& model, int index, const AccessorShape& shape, const std::string& where);
+
 // Reads accessor `index` as floats, `count × components` of them, components per element taken
 // from its type. Normalized integers map to [0, 1] / [−1, 1] as glTF §3.11 says; other integers
 // convert to their value. Throws svbrdf::Error "where: ..." on any violation.

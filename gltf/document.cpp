@@ -18,7 +18,9 @@
 #include "base/checked_number.h"
 #include "base/error.h"
 #include "base/resource_limits.h"
+#include "gltf/draco_decode.h"
 #include "gltf/json_scan.h"
+#include "gltf/meshopt_decode.h"
 
 namespace svbrdf::gltf {
 
@@ -168,8 +170,21 @@ class Reader {
     // A text file was scanned as it was read; a .glb's JSON chunk is scanned here.
     if (binary)
       if (auto why = scan_json(json)) fail("", "not a glTF file: " + *why);
-    check_declared_ranges(json);
-    parse(bytes, binary, binary ? glb_length_ : bytes.size());
+    nlohmann::json document = check_declared_ranges(json);
+    // Two kinds of compressed geometry are written in ways tinygltf 2.7 refuses: EXT_meshopt_compression's
+    // fallback buffers with no bytes (gltf/meshopt_decode.h) and KHR_draco_mesh_compression's index
+    // accessors with no bufferView (gltf/draco_decode.h). tinygltf is then given a copy of the JSON with
+    // placeholders, taken back after.
+    const MeshoptPlan meshopt = plan_meshopt(document, binary, path_);
+    const std::vector<int> lent = lend_draco_index_views(document);
+    if (meshopt.fallback_buffers.empty() && lent.empty()) {
+      parse(bytes, binary, binary ? glb_length_ : bytes.size());
+    } else {
+      const std::string rewritten = binary ? glb_with_json(bytes, document.dump()) : document.dump();
+      parse(rewritten, binary, rewritten.size());
+    }
+    return_draco_index_views(lent, doc_.model);
+    decode_meshopt(meshopt, doc_.model, path_);
     doc_.images.resize(doc_.model.images.size());
     // An image file refused by read_whole_file: say why rather than only that it is missing.
     const fs::path base = path_.has_parent_path() ? path_.parent_path() : fs::path(".");
@@ -231,13 +246,32 @@ class Reader {
     if (!range_inside(20, json_length, length))
       fail("", "the JSON chunk's length " + std::to_string(json_length) + " runs past the file's " +
                    std::to_string(length) + " bytes");
+    glb_json_end_ = 20 + json_length;
     return std::string_view(b.data() + 20, json_length);
+  }
+
+  // The .glb `b` with its JSON chunk replaced by `json` and every later chunk kept as it was.
+  std::string glb_with_json(const std::string& b, std::string json) const {
+    while (json.size() % 4 != 0) json += ' ';  // glTF 2.0 §4.4.3.2: the JSON chunk is padded with spaces
+    const std::string_view rest(b.data() + glb_json_end_, glb_length_ - glb_json_end_);
+    const std::uint64_t total = 20 + json.size() + rest.size();
+    if (total > std::numeric_limits<std::uint32_t>::max()) fail("", "a binary glTF of 4 GiB or more");
+    std::string out;
+    auto u32 = [&](std::uint64_t v) {
+      for (int i = 0; i < 4; ++i) out += static_cast<char>((v >> (8 * i)) & 0xFF);
+    };
+    out += "glTF";
+    u32(2), u32(total), u32(json.size());
+    out += "JSON";
+    out += json;
+    out += rest;
+    return out;
   }
 
   // Buffer views against the byteLength of their buffers, and each buffer's file against the size it
   // must have, from the JSON itself: tinygltf 2.7 forms &buffer.data[view.byteOffset] for an image
-  // before any check, and reads a buffer's file whole before comparing its size.
-  void check_declared_ranges(std::string_view text) {
+  // before any check, and reads a buffer's file whole before comparing its size. Returns the JSON.
+  nlohmann::json check_declared_ranges(std::string_view text) {
     nlohmann::json j;
     try {
       j = nlohmann::json::parse(text.begin(), text.end());
@@ -279,6 +313,7 @@ class Reader {
                       std::to_string(*buffer) + "], which has " + std::to_string(*have) + " bytes");
       }
     }
+    return j;
   }
 
   // tinygltf 2.7 stores indices (bufferView, material, texture, node, ...) and every integer inside
@@ -360,6 +395,7 @@ class Reader {
 
   fs::path path_;
   std::uint64_t glb_length_ = 0;
+  std::uint64_t glb_json_end_ = 0;  // where a .glb's JSON chunk ends: the next chunk's header
   Document doc_;
   FileRules rules_;
 };

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <span>
 #include <sstream>
 
@@ -14,6 +15,7 @@
 #include "base/error.h"
 #include "gltf/document.h"
 #include "gltf/accessor.h"
+#include "gltf/draco_decode.h"
 #include "gltf/material_reader.h"
 #include "gltf/tangents.h"
 #include "base/math.h"
@@ -89,7 +91,16 @@ class Loader {
     if (it == p.attributes.end()) return {};
     const std::string w = where + ".attributes." + name;
     int comps = 0;
-    const std::vector<float> f = gltf::read_floats(model_, it->second, AccessorShape{types, {}}, path_.string() + ": " + w, &comps);
+    std::vector<float> f;
+    const auto decoded = draco_ ? draco_->attributes.find(name) : decltype(draco_->attributes.end()){};
+    if (draco_ && decoded != draco_->attributes.end()) {
+      // KHR_draco_mesh_compression README, "Conformance": the accessor describes the decoded data; its
+      // bufferView, if any, is ignored.
+      comps = gltf::accessor_components(model_, it->second, AccessorShape{types, {}}, path_.string() + ": " + w);
+      f = std::move(decoded->second.values);
+    } else {
+      f = gltf::read_floats(model_, it->second, AccessorShape{types, {}}, path_.string() + ": " + w, &comps);
+    }
     const std::size_t n = f.size() / std::size_t(comps);
     if (vertex_count != 0 && n != vertex_count)
       fail(w, json_index("accessors", it->second) + " has " + std::to_string(n) + " elements, POSITION has " +
@@ -118,7 +129,12 @@ class Loader {
 
   // False for primitives that are not surfaces (points, lines): skipped with a warning.
   bool read_primitive(const tinygltf::Primitive& p, const std::string& where, MeshPrimitive& prim) {
-    const int mode = p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
+    draco_.reset();
+    if (const auto ext = p.extensions.find("KHR_draco_mesh_compression"); ext != p.extensions.end())
+      draco_ = gltf::decode_draco(model_, p, ext->second, path_, where);
+    // A Draco mesh decodes to a list of triangles whichever mode the primitive names (decode_draco
+    // allows only TRIANGLES and TRIANGLE_STRIP).
+    const int mode = draco_ ? TINYGLTF_MODE_TRIANGLES : p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
     if (mode == TINYGLTF_MODE_POINTS || mode == TINYGLTF_MODE_LINE || mode == TINYGLTF_MODE_LINE_LOOP ||
         mode == TINYGLTF_MODE_LINE_STRIP) {
       scene_.warnings.push_back(path_.string() + ": " + where + ": points and lines are not surfaces; skipped");
@@ -148,19 +164,21 @@ class Loader {
     prim.colors = read_attribute<glm::vec4>(p, "COLOR_0", {TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4}, where, nv);
 
     std::vector<std::uint32_t> idxs;
-    if (p.indices >= 0) {
-      idxs = gltf::read_indices(model_, p.indices, path_.string() + ": " + where + ".indices");
+    if (draco_ || p.indices >= 0) {
+      const std::string wi = where + (draco_ ? ".extensions.KHR_draco_mesh_compression" : ".indices");
+      idxs = draco_ ? std::move(draco_->indices) : gltf::read_indices(model_, p.indices, path_.string() + ": " + wi);
+      if (idxs.empty()) fail(wi, "decodes to no triangles");
       for (std::size_t k = 0; k < idxs.size(); ++k)
         if (idxs[k] >= nv)
-          fail(where + ".indices", "index " + std::to_string(idxs[k]) + " (element " + std::to_string(k) +
-                                       ") is past the " + std::to_string(nv) + " vertices of POSITION");
+          fail(wi, "index " + std::to_string(idxs[k]) + " (element " + std::to_string(k) + ") is past the " +
+                       std::to_string(nv) + " vertices of POSITION");
     } else {
       idxs.resize(nv);
       for (std::size_t k = 0; k < nv; ++k) idxs[k] = static_cast<std::uint32_t>(k);
     }
     if (mode == TINYGLTF_MODE_TRIANGLES) {
       if (idxs.size() % 3 != 0)
-        fail(where + (p.indices >= 0 ? ".indices" : ".attributes.POSITION"),
+        fail(where + (draco_ ? ".extensions.KHR_draco_mesh_compression" : p.indices >= 0 ? ".indices" : ".attributes.POSITION"),
              std::to_string(idxs.size()) + " vertices do not make whole triangles");
       prim.indices = std::move(idxs);
     } else {
@@ -412,6 +430,7 @@ class Loader {
   tinygltf::Model& model_ = doc_.model;  // the document's, read by every step
   Scene scene_;
   std::vector<LightDesc> light_templates_;
+  std::optional<gltf::DracoPrimitive> draco_;  // the primitive being read, when Draco-compressed
   std::size_t degenerate_triangles_ = 0;
   std::string first_degenerate_;
   bool warned_skin_ = false;

@@ -6,7 +6,8 @@
 //
 // What is read: the default scene's node hierarchy (matrix or TRS), triangle primitives (indexed or
 // not; strips and fans become lists), POSITION, NORMAL, TANGENT, TEXCOORD_0/1, COLOR_0; cameras;
-// KHR_lights_punctual; images, textures and materials through gltf/material_reader.h. Missing normals
+// KHR_lights_punctual; images, textures and materials through gltf/material_reader.h; compressed
+// geometry (KHR_draco_mesh_compression, EXT_meshopt_compression). Missing normals
 // are generated flat, missing tangents (where a normal map needs them) MikkTSpace-compatible. An
 // unsupported extension in extensionsRequired is an error; one only in extensionsUsed is a warning.
 // Not read: animations and morph targets (the static pose is drawn), skins (meshes drawn in their
