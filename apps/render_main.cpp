@@ -99,7 +99,7 @@ int main(int argc, char** argv) {
 
   CLI::App app{"svbrdf-render: path-trace a textured glTF 2.0 scene"};
   std::string scene_file, out = "", png, res, camera, env, sun, filter = "brdf", light_sampling = "mis", ocio,
-      light_units = "photometric", normal_mapping = "shading";
+      light_units = "photometric", normal_mapping = "shading", variant;
   int spp = 64, threads = 0, max_depth = 16;
   std::uint64_t seed = 0, max_texels = svbrdf::resource_limits().max_texels;
   double time_limit = 0.0;
@@ -129,6 +129,8 @@ int main(int argc, char** argv) {
                  "how the file's KHR_lights_punctual intensities are read: photometric (the specification's lux and "
                  "candela, divided by 683 lm/W) | radiometric (W/m^2 and W/sr as written)")
       ->check(CLI::IsMember({"photometric", "radiometric"}));
+  app.add_option("--variant", variant,
+                 "KHR_materials_variants: the material variant to render (default: each primitive's own material)");
   const std::vector<std::string> filters = svbrdf::filter_names();
   std::string filter_help = "texture filter:";
   for (const std::string& f : filters) filter_help += (f == filters.front() ? " " : " | ") + f;
@@ -190,6 +192,7 @@ int main(int argc, char** argv) {
         svbrdf::ColorConfig::resolve(ocio.empty() ? std::nullopt : std::optional<fs::path>(ocio));
     svbrdf::LoadOptions load;
     load.light_units = light_units == "radiometric" ? svbrdf::LightUnits::radiometric : svbrdf::LightUnits::photometric;
+    load.variant = variant;
     svbrdf::SetupProgress setup_progress("svbrdf-render", quiet);
     setup.progress = &setup_progress;
     // The brdf filter's builds are the ones worth keeping (render/mip_cache.h).

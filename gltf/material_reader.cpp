@@ -251,7 +251,7 @@ const std::vector<std::string>& supported_extensions() {
       "KHR_texture_transform",        "KHR_materials_emissive_strength", "KHR_materials_ior",
       "KHR_materials_specular",       "KHR_materials_transmission",      "KHR_materials_diffuse_roughness",
       "KHR_materials_unlit",          "KHR_lights_punctual",             "KHR_mesh_quantization",
-      "KHR_draco_mesh_compression",   "EXT_meshopt_compression"};
+      "KHR_draco_mesh_compression",   "EXT_meshopt_compression",         "KHR_materials_variants"};
   return k;
 }
 

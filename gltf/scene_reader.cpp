@@ -39,6 +39,7 @@ class Loader {
     read_model();
     check_extensions();
     read_appearance();
+    read_variants();
     read_meshes();
     read_lights();
     read_nodes();
@@ -70,6 +71,70 @@ class Loader {
     scene_.images = std::move(m.images);
     scene_.textures = std::move(m.textures);
     scene_.materials = std::move(m.materials);
+  }
+
+  // KHR_materials_variants README: the root extension's `variants` name the variants; a primitive's
+  // `mappings` say which material each variant gives it. The variant --variant names is looked up here;
+  // the primitives' mappings are applied as each is read (apply_variant).
+  void read_variants() {
+    const std::string w = "extensions.KHR_materials_variants";
+    const auto it = model_.extensions.find("KHR_materials_variants");
+    if (it != model_.extensions.end()) {
+      if (!it->second.IsObject() || !it->second.Has("variants") || !it->second.Get("variants").IsArray())
+        fail(w, "has no variants array");
+      const tinygltf::Value& list = it->second.Get("variants");
+      for (std::size_t i = 0; i < list.ArrayLen(); ++i) {
+        const tinygltf::Value& v = list.Get(int(i));
+        if (!v.IsObject() || !v.Has("name") || !v.Get("name").IsString())
+          fail(w + ".variants[" + std::to_string(i) + "]", "has no name");
+        variant_names_.push_back(v.Get("name").Get<std::string>());
+      }
+    }
+    if (options_.variant.empty()) return;
+    const auto found = std::find(variant_names_.begin(), variant_names_.end(), options_.variant);
+    if (found == variant_names_.end()) {
+      std::string names;
+      for (const std::string& n : variant_names_) names += (names.empty() ? "'" : ", '") + n + "'";
+      throw input_error("--variant '" + options_.variant + "'",
+                        variant_names_.empty() ? path_.string() + " has no material variants (KHR_materials_variants)"
+                                               : "is not a variant of " + path_.string() + "; its variants: " + names);
+    }
+    variant_ = int(found - variant_names_.begin());
+  }
+
+  // The material the selected variant maps primitive `p` to, or its own. Every mapping is checked,
+  // whichever variant is selected.
+  int apply_variant(const tinygltf::Primitive& p, const std::string& where, int material) const {
+    const auto it = p.extensions.find("KHR_materials_variants");
+    if (it == p.extensions.end()) return material;
+    const std::string w = where + ".extensions.KHR_materials_variants.mappings";
+    if (!it->second.IsObject() || !it->second.Has("mappings") || !it->second.Get("mappings").IsArray())
+      fail(w, "must be an array");
+    const tinygltf::Value& mappings = it->second.Get("mappings");
+    int chosen = material;
+    for (std::size_t m = 0; m < mappings.ArrayLen(); ++m) {
+      const std::string wm = w + "[" + std::to_string(m) + "]";
+      const tinygltf::Value& mapping = mappings.Get(int(m));
+      const int mat = mapping_material(mapping, wm);
+      if (!mapping.Has("variants") || !mapping.Get("variants").IsArray())
+        fail(wm + ".variants", "must be an array of variant indices");
+      const tinygltf::Value& vs = mapping.Get("variants");
+      for (std::size_t k = 0; k < vs.ArrayLen(); ++k) {
+        const int v = gltf::whole_index(vs.Get(int(k))).value_or(-1);
+        if (v < 0 || static_cast<std::size_t>(v) >= variant_names_.size())
+          fail(wm + ".variants[" + std::to_string(k) + "]",
+               "must name one of the file's " + std::to_string(variant_names_.size()) + " variants");
+        if (v == variant_) chosen = mat;
+      }
+    }
+    return chosen;
+  }
+
+  int mapping_material(const tinygltf::Value& mapping, const std::string& wm) const {
+    const int mat = mapping.IsObject() && mapping.Has("material") ? gltf::whole_index(mapping.Get("material")).value_or(-1) : -1;
+    if (mat < 0 || static_cast<std::size_t>(mat) >= scene_.materials.size())
+      fail(wm + ".material", "must name one of the file's " + std::to_string(scene_.materials.size()) + " materials");
+    return mat;
   }
 
   void check_extensions() {
@@ -149,6 +214,7 @@ class Loader {
                                       std::to_string(scene_.materials.size()) + " materials");
       prim.material = p.material;
     }
+    prim.material = apply_variant(p, where, prim.material);
     if (!p.attributes.count("POSITION")) fail(where + ".attributes", "has no POSITION");
     prim.positions = read_attribute<glm::vec3>(p, "POSITION", {TINYGLTF_TYPE_VEC3}, where, 0);
     const std::size_t nv = prim.positions.size();
@@ -430,6 +496,8 @@ class Loader {
   tinygltf::Model& model_ = doc_.model;  // the document's, read by every step
   Scene scene_;
   std::vector<LightDesc> light_templates_;
+  std::vector<std::string> variant_names_;  // KHR_materials_variants, in the file's order
+  int variant_ = -1;                         // the one --variant selects; −1: none
   std::optional<gltf::DracoPrimitive> draco_;  // the primitive being read, when Draco-compressed
   std::size_t degenerate_triangles_ = 0;
   std::string first_degenerate_;

@@ -7,7 +7,8 @@
 // What is read: the default scene's node hierarchy (matrix or TRS), triangle primitives (indexed or
 // not; strips and fans become lists), POSITION, NORMAL, TANGENT, TEXCOORD_0/1, COLOR_0; cameras;
 // KHR_lights_punctual; images, textures and materials through gltf/material_reader.h; compressed
-// geometry (KHR_draco_mesh_compression, EXT_meshopt_compression). Missing normals
+// geometry (KHR_draco_mesh_compression, EXT_meshopt_compression) and material variants
+// (KHR_materials_variants). Missing normals
 // are generated flat, missing tangents (where a normal map needs them) MikkTSpace-compatible. An
 // unsupported extension in extensionsRequired is an error; one only in extensionsUsed is a warning.
 // Not read: animations and morph targets (the static pose is drawn), skins (meshes drawn in their
@@ -33,6 +34,9 @@ enum class LightUnits { photometric, radiometric };
 
 struct LoadOptions {
   LightUnits light_units = LightUnits::photometric;
+  // KHR_materials_variants: the variant whose materials the primitives take; empty: each primitive's
+  // own material. A name the file does not have is an input error listing the file's variants.
+  std::string variant;
 };
 
 Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options = {});
