@@ -3,34 +3,24 @@
 #include <algorithm>
 #include <cmath>
 
+#include "appearance/eon.h"
+#include "appearance/frame.h"
 #include "appearance/gltf.h"
 #include "appearance/microfacet_distribution.h"
 #include "appearance/sampling.h"
 
 namespace svbrdf {
 
-float eon_fon_albedo(float mu, float r) {
-  constexpr float c1 = 0.5f - 2.0f / (3.0f * kPi);
-  const float mc = 1.0f - mu;
-  const float g_over_pi = mc * (0.0571085289f + mc * (0.491881867f + mc * (-0.332181442f + mc * 0.0714429953f)));
-  return (1.0f + r * g_over_pi) / (1.0f + c1 * r);
-}
+namespace {
 
-Rgb eon_eval(const Rgb& rho, float r, const glm::vec3& wi, const glm::vec3& wo) {
-  constexpr float c1 = 0.5f - 2.0f / (3.0f * kPi);
-  constexpr float c2 = 2.0f / 3.0f - 28.0f / (15.0f * kPi);
-  const float mi = wi.z, mo = wo.z;
-  const float s = glm::dot(wi, wo) - mi * mo;
-  const float s_over_t = s > 0.0f ? s / std::max(mi, mo) : s;
-  const float af = 1.0f / (1.0f + c1 * r);
-  const Rgb f_ss = rho * kInvPi * (af * (1.0f + r * s_over_t));
-  const float avg = af * (1.0f + c2 * r);
-  const Rgb rho_ms = rho * rho * avg / (Rgb(1.0f) - rho * (1.0f - avg));
-  const float e_o = eon_fon_albedo(mo, r), e_i = eon_fon_albedo(mi, r);
-  const float eps = 1e-7f;
-  const Rgb f_ms = rho_ms * kInvPi *
-                   (std::max(eps, 1.0f - e_o) * std::max(eps, 1.0f - e_i) / std::max(eps, 1.0f - avg));
-  return f_ss + f_ms;
+// KHR_materials_clearcoat fixes the coat's ior at 1.5: F0 = ((1.5 − 1)/(1.5 + 1))² = 0.04.
+constexpr float kCoatF0 = 0.04f;
+
+}  // namespace
+
+float clearcoat_blend(float clearcoat, float cos_view) {
+  if (!(clearcoat > 0.0f)) return 0.0f;
+  return clearcoat * (kCoatF0 + (1.0f - kCoatF0) * schlick_weight(std::min(std::abs(cos_view), 1.0f)));
 }
 
 SurfaceBsdf::SurfaceBsdf(const ShadingParams& p) : p_(p) {
@@ -40,7 +30,34 @@ SurfaceBsdf::SurfaceBsdf(const ShadingParams& p) : p_(p) {
   p_.metallic = std::clamp(p.metallic, 0.0f, 1.0f);
   p_.transmission = std::clamp(p.transmission, 0.0f, 1.0f);
   p_.specular = std::clamp(p.specular, 0.0f, 1.0f);
+  p_.anisotropy = std::clamp(p.anisotropy, 0.0f, 1.0f);
+  p_.clearcoat = std::clamp(p.clearcoat, 0.0f, 1.0f);
+  // KHR_materials_anisotropy: the direction of increased roughness gets mix(α, 1, strength²).
+  anisotropic_ = p_.anisotropy > 0.0f;
+  const float s2 = p_.anisotropy * p_.anisotropy;
+  alpha_aniso_ = glm::vec2(alpha_ + (1.0f - alpha_) * s2, alpha_);
+  const float dl = glm::length(p.anisotropy_direction);
+  p_.anisotropy_direction = dl > 0.0f && std::isfinite(dl) ? p.anisotropy_direction / dl : glm::vec2(1.0f, 0.0f);
+  coat_alpha_ = gltf_alpha(std::clamp(p.clearcoat_roughness, 0.0f, 1.0f));
+  const float nl = glm::length(p.clearcoat_normal);
+  p_.clearcoat_normal = nl > 0.0f && std::isfinite(nl) ? p.clearcoat_normal / nl : glm::vec3(0.0f, 0.0f, 1.0f);
+  const Frame cf = Frame::from_normal(p_.clearcoat_normal);
+  coat_t_ = cf.s, coat_b_ = cf.t;
   transmission_weight_ = (1.0f - p_.metallic) * p_.transmission * max_channel(p_.base_color);
+}
+
+glm::vec3 SurfaceBsdf::to_anisotropy(const glm::vec3& w) const {
+  const glm::vec2 d = p_.anisotropy_direction;
+  return {d.x * w.x + d.y * w.y, -d.y * w.x + d.x * w.y, w.z};
+}
+
+glm::vec3 SurfaceBsdf::from_anisotropy(const glm::vec3& w) const {
+  const glm::vec2 d = p_.anisotropy_direction;
+  return {d.x * w.x - d.y * w.y, d.y * w.x + d.x * w.y, w.z};
+}
+
+float SurfaceBsdf::coat_blend(const glm::vec3& wo) const {
+  return clearcoat_blend(p_.clearcoat, glm::dot(wo, p_.clearcoat_normal));
 }
 
 Rgb SurfaceBsdf::diffuse_f(const glm::vec3& wi, const glm::vec3& wo) const {
@@ -48,46 +65,94 @@ Rgb SurfaceBsdf::diffuse_f(const glm::vec3& wi, const glm::vec3& wo) const {
   return p_.base_color * kInvPi;
 }
 
-Rgb SurfaceBsdf::eval(const glm::vec3& wi, const glm::vec3& wo) const {
-  if (wi.z <= 0.0f || wo.z <= 0.0f) return Rgb(0.0f);
+float SurfaceBsdf::specular_vd(const glm::vec3& wi, const glm::vec3& wo, const glm::vec3& h) const {
+  if (!anisotropic_) return smith_ggx_visibility(alpha_ * alpha_, wi.z, wo.z) * ggx_d(alpha_, h);
+  return ggx_visibility(alpha_aniso_, to_anisotropy(wi), to_anisotropy(wo)) * ggx_d(alpha_aniso_, to_anisotropy(h));
+}
+
+float SurfaceBsdf::specular_pdf(const glm::vec3& wi, const glm::vec3& wo) const {
+  // Visible-normal density D_wo(h) = G1(wo)·max(0, wo·h)·D(h)/wo.z, over the reflection Jacobian 4·(wo·h).
   const glm::vec3 h = glm::normalize(wi + wo);
-  const float a2 = alpha_ * alpha_;
-  const float s = smith_ggx_visibility(a2, wi.z, wo.z) * ggx_d(alpha_, h);
+  if (!anisotropic_) return (1.0f / (1.0f + ggx_lambda(alpha_, wo))) * ggx_d(alpha_, h) / (4.0f * wo.z);
+  return ggx_d(alpha_aniso_, to_anisotropy(h)) / ((1.0f + ggx_lambda(alpha_aniso_, to_anisotropy(wo))) * 4.0f * wo.z);
+}
+
+glm::vec3 SurfaceBsdf::sample_specular_normal(const glm::vec3& wo, const glm::vec2& u) const {
+  if (!anisotropic_) return sample_ggx_visible(alpha_, wo, u);
+  return from_anisotropy(sample_ggx_visible(alpha_aniso_, to_anisotropy(wo), u));
+}
+
+float SurfaceBsdf::coat_vd(const glm::vec3& wi, const glm::vec3& wo) const {
+  const glm::vec3& n = p_.clearcoat_normal;
+  const float ci = glm::dot(wi, n), co = glm::dot(wo, n);
+  if (ci <= 0.0f || co <= 0.0f) return 0.0f;
+  const glm::vec3 h = wi + wo;
+  const glm::vec3 hc(glm::dot(h, coat_t_), glm::dot(h, coat_b_), glm::dot(h, n));
+  return smith_ggx_visibility(coat_alpha_ * coat_alpha_, ci, co) * ggx_d(coat_alpha_, hc);
+}
+
+float SurfaceBsdf::coat_pdf(const glm::vec3& wi, const glm::vec3& wo) const {
+  const glm::vec3& n = p_.clearcoat_normal;
+  const float ci = glm::dot(wi, n), co = glm::dot(wo, n);
+  if (ci <= 0.0f || co <= 0.0f) return 0.0f;
+  const glm::vec3 h = wi + wo;
+  const glm::vec3 hc(glm::dot(h, coat_t_), glm::dot(h, coat_b_), glm::dot(h, n));
+  const glm::vec3 woc(glm::dot(wo, coat_t_), glm::dot(wo, coat_b_), co);
+  return ggx_d(coat_alpha_, hc) / ((1.0f + ggx_lambda(coat_alpha_, woc)) * 4.0f * co);
+}
+
+Rgb SurfaceBsdf::base_f(const glm::vec3& wi, const glm::vec3& wo) const {
+  const glm::vec3 h = glm::normalize(wi + wo);
+  const float s = specular_vd(wi, wo, h);
   const float w = schlick_weight(std::abs(glm::dot(wo, h)));
   const Rgb fr = f0_ + (Rgb(1.0f) - f0_) * w;
   const Rgb base = (1.0f - p_.transmission) * diffuse_f(wi, wo);
   return gltf_layers(p_.base_color, p_.metallic, base, fr, p_.specular, s, w);
 }
 
-Rgb SurfaceBsdf::transmission_magnitude(float cos_o) const {
-  const Rgb fr = f0_ + (Rgb(1.0f) - f0_) * schlick_weight(std::abs(cos_o));
-  return (1.0f - p_.metallic) * p_.transmission * (1.0f - p_.specular * max_channel(fr)) * p_.base_color;
+Rgb SurfaceBsdf::eval(const glm::vec3& wi, const glm::vec3& wo) const {
+  // The whole BSDF, coat included, vanishes below the shading horizon: the integrator's cosine is
+  // the shading normal's, and a coat normal tilted off it would otherwise reflect with a negative one.
+  if (wi.z <= 0.0f || wo.z <= 0.0f) return Rgb(0.0f);
+  if (p_.clearcoat <= 0.0f) return base_f(wi, wo);
+  const float blend = coat_blend(wo);
+  return blend * coat_vd(wi, wo) + (1.0f - blend) * base_f(wi, wo);
+}
+
+Rgb SurfaceBsdf::transmission_magnitude(const glm::vec3& w) const {
+  const Rgb fr = f0_ + (Rgb(1.0f) - f0_) * schlick_weight(std::abs(w.z));
+  return (1.0f - coat_blend(w)) * (1.0f - p_.metallic) * p_.transmission * (1.0f - p_.specular * max_channel(fr)) *
+         p_.base_color;
 }
 
 Impulses SurfaceBsdf::impulses_in(const glm::vec3& wo) const {
   Impulses im;
-  if (transmission_weight_ > 0.0f) im.add(-wo, transmission_magnitude(wo.z));
+  if (transmission_weight_ > 0.0f) im.add(-wo, transmission_magnitude(wo));
   return im;
 }
 
 Impulses SurfaceBsdf::impulses_out(const glm::vec3& wi) const {
   Impulses im;
-  if (transmission_weight_ > 0.0f) im.add(-wi, transmission_magnitude(wi.z));
+  if (transmission_weight_ > 0.0f) im.add(-wi, transmission_magnitude(wi));
   return im;
 }
 
 SurfaceBsdf::LobeChoice SurfaceBsdf::choose(const glm::vec3& wo) const {
   // Probabilities proportional to each lobe's approximate weight at wo (Fresnel at n·wo).
-  const float fr = max_channel(f0_ + (Rgb(1.0f) - f0_) * schlick_weight(std::clamp(wo.z, 0.0f, 1.0f)));
-  const float spec_d = p_.specular * fr;
-  const float rest = (1.0f - p_.metallic) * (1.0f - spec_d) * max_channel(p_.base_color);
   LobeChoice c;
-  c.specular = p_.metallic + (1.0f - p_.metallic) * spec_d;
-  c.diffuse = rest * (1.0f - p_.transmission);
-  c.transmission = rest * p_.transmission;
-  const float sum = c.specular + c.diffuse + c.transmission;
+  if (wo.z > 0.0f) {
+    c.coat = coat_blend(wo);
+    const float under = 1.0f - c.coat;
+    const float fr = max_channel(f0_ + (Rgb(1.0f) - f0_) * schlick_weight(std::min(wo.z, 1.0f)));
+    const float spec_d = p_.specular * fr;
+    const float rest = under * (1.0f - p_.metallic) * (1.0f - spec_d) * max_channel(p_.base_color);
+    c.specular = under * (p_.metallic + (1.0f - p_.metallic) * spec_d);
+    c.diffuse = rest * (1.0f - p_.transmission);
+    c.transmission = rest * p_.transmission;
+  }
+  const float sum = c.coat + c.specular + c.diffuse + c.transmission;
   if (!(sum > 0.0f)) return LobeChoice{};
-  c.specular /= sum, c.diffuse /= sum, c.transmission /= sum;
+  c.coat /= sum, c.specular /= sum, c.diffuse /= sum, c.transmission /= sum;
   return c;
 }
 
@@ -95,29 +160,29 @@ float SurfaceBsdf::pdf(const glm::vec3& wi, const glm::vec3& wo) const {
   if (wi.z <= 0.0f || wo.z <= 0.0f) return 0.0f;
   const LobeChoice c = choose(wo);
   float p = c.diffuse * wi.z * kInvPi;
-  if (c.specular > 0.0f) {
-    const glm::vec3 h = glm::normalize(wi + wo);
-    // Visible-normal density D_wo(h) = G1(wo)·max(0, wo·h)·D(h)/wo.z, over the reflection Jacobian 4·(wo·h).
-    p += c.specular * (1.0f / (1.0f + ggx_lambda(alpha_, wo))) * ggx_d(alpha_, h) / (4.0f * wo.z);
-  }
+  if (c.specular > 0.0f) p += c.specular * specular_pdf(wi, wo);
+  if (c.coat > 0.0f) p += c.coat * coat_pdf(wi, wo);
   return p;
 }
 
 BsdfSample SurfaceBsdf::sample(const glm::vec3& wo, const SampleU& u) const {
   BsdfSample out;
-  if (wo.z <= 0.0f) return out;
   const LobeChoice c = choose(wo);
   const glm::vec2 uv(u.y, u.z);
   glm::vec3 wi;
   if (u.x < c.transmission) {
     out.wi = -wo;
     out.pdf = c.transmission;
-    out.weight = transmission_magnitude(wo.z) / c.transmission;
+    out.weight = transmission_magnitude(wo) / c.transmission;
     out.kind = SampleKind::impulse;
     return out;
-  } else if (u.x < c.transmission + c.specular) {
-    const glm::vec3 h = sample_ggx_visible(alpha_, wo, uv);
-    wi = 2.0f * glm::dot(wo, h) * h - wo;
+  } else if (u.x < c.transmission + c.coat) {
+    const glm::vec3& n = p_.clearcoat_normal;
+    const glm::vec3 woc(glm::dot(wo, coat_t_), glm::dot(wo, coat_b_), glm::dot(wo, n));
+    const glm::vec3 hc = sample_ggx_visible(coat_alpha_, woc, uv);
+    wi = reflect_about(wo, hc.x * coat_t_ + hc.y * coat_b_ + hc.z * n);
+  } else if (u.x < c.transmission + c.coat + c.specular) {
+    wi = reflect_about(wo, sample_specular_normal(wo, uv));
   } else if (c.diffuse > 0.0f) {
     wi = sample_cosine_hemisphere(uv);
   } else {

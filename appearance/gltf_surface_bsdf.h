@@ -1,17 +1,26 @@
 #pragma once
 // The scattering of a glTF material at one point, behind the §27.14 interface (appearance/bsdf.h),
-// in the local shading frame. The finite part is the glTF metallic-roughness BRDF of
-// ../shared/spec/brdf-models.md (appearance/gltf.h's gltf_eval) generalized by the extensions:
+// in the local shading frame (z = the base's shading normal, x = the glTF tangent made orthogonal
+// to it, y = N × T). The finite part is the glTF metallic-roughness BRDF of
+// ../shared/spec/brdf-models.md (appearance/gltf.h's gltf_eval) with the layers of the extensions,
+// composed as their specifications compose them, inside out:
 //   KHR_materials_ior, KHR_materials_specular — the dielectric Fresnel term of fresnel_mix:
 //     F0 = min(((ior − 1)/(ior + 1))²·specular_color, 1), fr = F0 + (1 − F0)·(1 − |wo·h|)^5,
 //     dielectric = (1 − specular·max(fr))·base + specular·fr·V·D;
 //   KHR_materials_diffuse_roughness — base's Lambertian ρ/π becomes the energy-preserving
-//     Oren–Nayar (EON, Portsmouth, Kutz & Hill 2024) with roughness σ;
-//   KHR_materials_transmission — a fraction `transmission` of base becomes a transmission impulse.
-// With the extensions at their defaults (ior 1.5, specular 1, color 1, σ 0, transmission 0) it is
-// gltf_eval exactly. Transmission is thin-walled (no KHR_materials_volume): the impulse continues
-// straight through (wi = −wo) with magnitude (1 − metallic)·transmission·(1 − specular·max(fr))·
-// base_color, fr at h = n; a rough transmissive surface is treated as smooth (documented limit).
+//     Oren–Nayar (EON, appearance/eon.h) with roughness σ;
+//   KHR_materials_transmission — a fraction `transmission` of base becomes a transmission impulse;
+//   KHR_materials_anisotropy — the specular V·D of both the dielectric and the metal becomes
+//     anisotropic GGX: α along the anisotropy direction mix(α, 1, strength²), α across it;
+//   KHR_materials_clearcoat — fresnel_coat: mix(material, coat V·D, clearcoat·Fc) with
+//     Fc = 0.04 + 0.96·(1 − |wo·Nc|)^5 on the coat's own normal Nc (the extension's text: the
+//     view's cosine to Nc, not wo·h, which keeps the layering energy-conserving; this makes the coat
+//     non-reciprocal exactly as the specification defines it), α_c = clearcoatRoughness².
+// With the extensions at their defaults (ior 1.5, specular 1, color 1, σ 0, transmission 0, no
+// anisotropy, no coat) it is gltf_eval exactly. Transmission is thin-walled (no KHR_materials_volume):
+// the impulse continues straight through (wi = −wo) with magnitude (1 − metallic)·transmission·
+// (1 − specular·max(fr))·base_color, fr at h = n, under the coat's (1 − clearcoat·Fc); a rough
+// transmissive surface is treated as smooth (documented limit).
 #include "appearance/bsdf.h"
 
 namespace svbrdf {
@@ -22,14 +31,28 @@ struct ShadingParams {
   Rgb base_color{1.0f};  // linear
   float metallic = 0.0f;
   float roughness = 1.0f;  // perceptual
-  Rgb emission{0.0f};      // radiance
+  Rgb emission{0.0f};      // radiance, before the coat darkens it (coat_transmittance)
   float ior = 1.5f;
   float specular = 1.0f;
   Rgb specular_color{1.0f};
   float transmission = 0.0f;
   float diffuse_roughness = 0.0f;
   bool unlit = false;
+  // KHR_materials_anisotropy: strength in [0, 1] and the unit direction of increased roughness in
+  // the shading frame's x–y plane (the texture's direction, rotated by anisotropyRotation).
+  float anisotropy = 0.0f;
+  glm::vec2 anisotropy_direction{1.0f, 0.0f};
+  // KHR_materials_clearcoat: the layer's weight, perceptual roughness and unit normal in the
+  // shading frame (the surface's normal before the base's normal map, or the coat's own map).
+  float clearcoat = 0.0f;
+  float clearcoat_roughness = 0.0f;
+  glm::vec3 clearcoat_normal{0.0f, 0.0f, 1.0f};
 };
+
+// The clear coat's Fresnel weight clearcoat·Fc for a view at cosine `cos_view` to the coat's normal
+// (KHR_materials_clearcoat, fresnel_coat with ior 1.5): what the coat reflects of the view, and
+// 1 minus what it lets through of everything below it, emission included.
+float clearcoat_blend(float clearcoat, float cos_view);
 
 class SurfaceBsdf final : public Bsdf {
  public:
@@ -45,21 +68,34 @@ class SurfaceBsdf final : public Bsdf {
 
  private:
   struct LobeChoice {
-    float specular = 0, diffuse = 0, transmission = 0;  // probabilities, summing to 1 (or all 0)
+    // probabilities, summing to 1 (or all 0)
+    float coat = 0, specular = 0, diffuse = 0, transmission = 0;
   };
   LobeChoice choose(const glm::vec3& wo) const;
-  Rgb transmission_magnitude(float cos_o) const;
+  Rgb transmission_magnitude(const glm::vec3& wo) const;
   Rgb diffuse_f(const glm::vec3& wi, const glm::vec3& wo) const;
+  // The base material (everything under the coat) for both directions above the base's horizon.
+  Rgb base_f(const glm::vec3& wi, const glm::vec3& wo) const;
+  // The coat's V·D (no Fresnel) and the density of its sampler, in the shading frame.
+  float coat_vd(const glm::vec3& wi, const glm::vec3& wo) const;
+  float coat_pdf(const glm::vec3& wi, const glm::vec3& wo) const;
+  // The base's specular V·D and the density of its sampler (isotropic or anisotropic GGX).
+  float specular_vd(const glm::vec3& wi, const glm::vec3& wo, const glm::vec3& h) const;
+  float specular_pdf(const glm::vec3& wi, const glm::vec3& wo) const;
+  glm::vec3 sample_specular_normal(const glm::vec3& wo, const glm::vec2& u) const;
+  // Directions in the anisotropy frame (x = the direction of increased roughness) and back.
+  glm::vec3 to_anisotropy(const glm::vec3& w) const;
+  glm::vec3 from_anisotropy(const glm::vec3& w) const;
+  float coat_blend(const glm::vec3& wo) const;
 
   ShadingParams p_;
   float alpha_;
+  glm::vec2 alpha_aniso_;  // (along, across) the anisotropy direction; used when anisotropic_
+  bool anisotropic_;
+  float coat_alpha_;
+  glm::vec3 coat_t_, coat_b_;  // a tangent frame around the coat normal (the coat is isotropic)
   Rgb f0_;
   float transmission_weight_;
 };
-
-// EON's directional albedo of its single-scattering (FON) part, the fitted form of the paper's
-// Listing 1 (error < 0.1 %), and the full EON BRDF.
-float eon_fon_albedo(float mu, float r);
-Rgb eon_eval(const Rgb& rho, float r, const glm::vec3& wi, const glm::vec3& wo);
 
 }  // namespace svbrdf

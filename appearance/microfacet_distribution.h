@@ -60,13 +60,37 @@ inline float vgroove_g(const glm::vec3& wi, const glm::vec3& wo, const glm::vec3
 // configuration, where the visible normals are those of a hemisphere: h_s = wo_s + a uniform
 // direction on the spherical cap z > −wo_s.z (Dupuy & Benyoub 2023, "Sampling Visible GGX
 // Normals with Spherical Caps"), then unstretch. Density: ggx_visible_pdf.
-inline glm::vec3 sample_ggx_visible(float alpha, const glm::vec3& wo, const glm::vec2& u) {
-  const glm::vec3 ws = glm::normalize(glm::vec3(alpha * wo.x, alpha * wo.y, wo.z));
+// The stretch is per axis, so the same construction samples anisotropic GGX (αx, αy).
+inline glm::vec3 sample_ggx_visible(const glm::vec2& alpha, const glm::vec3& wo, const glm::vec2& u) {
+  const glm::vec3 ws = glm::normalize(glm::vec3(alpha.x * wo.x, alpha.y * wo.y, wo.z));
   const float z = (1.0f - u.x) * (1.0f + ws.z) - ws.z;
   const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
   const float phi = kTwoPi * u.y;
   const glm::vec3 hs = glm::vec3(r * std::cos(phi), r * std::sin(phi), z) + ws;
-  return glm::normalize(glm::vec3(alpha * hs.x, alpha * hs.y, std::max(hs.z, 1e-9f)));
+  return glm::normalize(glm::vec3(alpha.x * hs.x, alpha.y * hs.y, std::max(hs.z, 1e-9f)));
+}
+inline glm::vec3 sample_ggx_visible(float alpha, const glm::vec3& wo, const glm::vec2& u) {
+  return sample_ggx_visible(glm::vec2(alpha), wo, u);
+}
+
+// Anisotropic GGX with roughnesses α = (αx, αy) along the frame's x and y (KHR_materials_anisotropy;
+// Heitz 2014, eq. 85 and 86): D = 1 / (π αx αy (hx²/αx² + hy²/αy² + hz²)²) for unit h, and
+// Λ(w) = (−1 + √(1 + (αx² wx² + αy² wy²)/wz²)) / 2. With αx = αy they are ggx_d and ggx_lambda.
+inline float ggx_d(const glm::vec2& alpha, const glm::vec3& h) {
+  if (h.z <= 0) return 0.0f;
+  const float x = h.x / alpha.x, y = h.y / alpha.y;
+  const float q = (x * x + y * y + h.z * h.z) / glm::dot(h, h);
+  return kInvPi / (alpha.x * alpha.y * q * q);
+}
+inline float ggx_lambda(const glm::vec2& alpha, const glm::vec3& w) {
+  if (w.z <= 0) return INFINITY;
+  const float x = alpha.x * w.x, y = alpha.y * w.y;
+  return 0.5f * (std::sqrt(1.0f + (x * x + y * y) / (w.z * w.z)) - 1.0f);
+}
+// The height-correlated visibility G2 / (4 cosθi cosθo) = 1 / (4 cosθi cosθo (1 + Λ(wi) + Λ(wo))),
+// both directions above the horizon.
+inline float ggx_visibility(const glm::vec2& alpha, const glm::vec3& wi, const glm::vec3& wo) {
+  return 0.25f / (wi.z * wo.z * (1.0f + ggx_lambda(alpha, wi) + ggx_lambda(alpha, wo)));
 }
 
 // The density of a visible normal: D_wo(h) = G1(wo) max(0, wo·h) D(h) / wo.z (Heitz 2014, eq. 2).

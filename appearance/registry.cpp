@@ -11,6 +11,7 @@
 #include "appearance/cook_torrance.h"
 #include "appearance/dielectric.h"
 #include "appearance/gltf_bsdf.h"
+#include "appearance/gltf_surface_bsdf.h"
 #include "appearance/lafortune.h"
 #include "appearance/lambert.h"
 #include "appearance/measured.h"
@@ -241,6 +242,24 @@ std::unique_ptr<Bsdf> build(const std::string& name, ParamReader& r) {
     const Rgb color = r.rgb("color", Rgb(1.0f), kUnit);
     return std::make_unique<Sheen>(color, r.number("roughness", 0.5f, kUnit));
   }
+  if (name == "gltf-surface") {
+    // The renderer's glTF surface with its extension layers (gltf_surface_bsdf.h), in the shading frame.
+    ShadingParams p;
+    p.base_color = r.rgb("base_color", Rgb(0.8f), kUnit);
+    p.metallic = r.number("metallic", 0.0f, kUnit);
+    p.roughness = r.number("roughness", 0.5f, kUnit);
+    p.ior = r.number("ior", 1.5f, Range{1.0f, 1e3f});
+    p.specular = r.number("specular", 1.0f, kUnit);
+    p.specular_color = r.rgb("specular_color", Rgb(1.0f), kNonNegative);
+    p.diffuse_roughness = r.number("diffuse_roughness", 0.0f, kUnit);
+    p.transmission = r.number("transmission", 0.0f, kUnit);
+    p.anisotropy = r.number("anisotropy", 0.0f, kUnit);
+    const float rotation = r.number("anisotropy_rotation", 0.0f, Range{-1e3f, 1e3f});
+    p.anisotropy_direction = glm::vec2(std::cos(rotation), std::sin(rotation));
+    p.clearcoat = r.number("clearcoat", 0.0f, kUnit);
+    p.clearcoat_roughness = r.number("clearcoat_roughness", 0.0f, kUnit);
+    return std::make_unique<SurfaceBsdf>(p);
+  }
   if (name == "measured") return std::make_unique<Measured>(std::make_shared<MerlTable>(MerlTable::read(r.text("file"))));
   if (name == "mirror") return std::make_unique<Mirror>(r.rgb("rho", Rgb(1.0f), kUnit));
   if (name == "dielectric") return std::make_unique<Dielectric>(r.number("ior", 1.5f, kPositive));
@@ -268,8 +287,8 @@ Rgb parse_rgb(const std::string& text, const std::string& where) {
 const std::vector<std::string>& model_names() {
   static const std::vector<std::string> names = {"lambert",     "phong",      "blinn-phong", "lafortune",
                                                  "microfacet",  "cook-torrance", "oren-nayar", "gltf",
-                                                 "sheen",       "measured",   "mirror",      "dielectric",
-                                                 "conductor-mirror"};
+                                                 "gltf-surface", "sheen",     "measured",   "mirror",
+                                                 "dielectric",  "conductor-mirror"};
   return names;
 }
 
@@ -285,6 +304,9 @@ std::string models_help() {
          "oren-nayar: albedo=0.5 [0,1] sigma=0.3 [0,pi/2] (radians)\n"
          "gltf: base_color=0.8 metallic=0 roughness=0.5 [0,1]\n"
          "sheen: color=1 roughness=0.5 [0,1] (KHR_materials_sheen's Charlie lobe alone)\n"
+         "gltf-surface: gltf's parameters with the glTF extensions' layers: ior=1.5 [1,1e3] specular=1\n"
+         "  specular_color=1 diffuse_roughness=0 transmission=0 anisotropy=0 anisotropy_rotation=0 (radians)\n"
+         "  clearcoat=0 clearcoat_roughness=0 [0,1]\n"
          "measured: file=PATH (MERL binary layout)\n"
          "mirror: rho=1 [0,1]\n"
          "dielectric: ior=1.5 (>0)\n"

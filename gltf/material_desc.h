@@ -3,6 +3,8 @@
 // factors, and for every texture slot a reference to a texture with its uv set and
 // KHR_texture_transform. Nothing here is decoded yet; textures are sampled at shading time.
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -64,6 +66,50 @@ struct MaterialDesc {
   TextureRef diffuse_roughness_texture;  // R channel
 
   bool unlit = false;  // KHR_materials_unlit
+
+  // KHR_materials_clearcoat: the layer's weight (texture R) and roughness (texture G), and its own
+  // normal map (none: the surface's normal before the base's normal map).
+  float clearcoat = 0.0f;
+  TextureRef clearcoat_texture;
+  float clearcoat_roughness = 0.0f;
+  TextureRef clearcoat_roughness_texture;
+  TextureRef clearcoat_normal_texture;  // scale in TextureRef::scale
+
+  // KHR_materials_anisotropy: strength (× texture B), the rotation of the direction (radians,
+  // counter-clockwise from the tangent), and the texture's direction (RG, [0, 1] → [−1, 1]).
+  float anisotropy_strength = 0.0f;
+  float anisotropy_rotation = 0.0f;
+  TextureRef anisotropy_texture;
+
+  // Every texture slot with its glTF name (relative to the material), for the checks that concern
+  // them all (the TEXCOORD sets a primitive must have).
+  std::vector<std::pair<const char*, const TextureRef*>> texture_slots() const {
+    return {{"pbrMetallicRoughness.baseColorTexture", &base_color_texture},
+            {"pbrMetallicRoughness.metallicRoughnessTexture", &metallic_roughness_texture},
+            {"normalTexture", &normal_texture},
+            {"occlusionTexture", &occlusion_texture},
+            {"emissiveTexture", &emissive_texture},
+            {"KHR_materials_specular.specularTexture", &specular_texture},
+            {"KHR_materials_specular.specularColorTexture", &specular_color_texture},
+            {"KHR_materials_transmission.transmissionTexture", &transmission_texture},
+            {"KHR_materials_diffuse_roughness.diffuseRoughnessTexture", &diffuse_roughness_texture},
+            {"KHR_materials_clearcoat.clearcoatTexture", &clearcoat_texture},
+            {"KHR_materials_clearcoat.clearcoatRoughnessTexture", &clearcoat_roughness_texture},
+            {"KHR_materials_clearcoat.clearcoatNormalTexture", &clearcoat_normal_texture},
+            {"KHR_materials_anisotropy.anisotropyTexture", &anisotropy_texture}};
+  }
+
+  // Whether the shading frame needs a tangent space (a normal map, the coat's normal map, or the
+  // anisotropy direction), and the TEXCOORD set it comes from (the first of those textures'; with
+  // anisotropy and no texture, TEXCOORD_0).
+  bool needs_tangents() const {
+    return normal_texture.present() || clearcoat_normal_texture.present() || anisotropy_strength > 0.0f;
+  }
+  int tangent_uv_set() const {
+    for (const TextureRef* r : {&normal_texture, &clearcoat_normal_texture, &anisotropy_texture})
+      if (r->present()) return r->uv_set();
+    return 0;
+  }
 
   // Does any texture slot that changes the surface's shape (alpha) need sampling at intersection time?
   bool alpha_tested() const { return alpha_mode != AlphaMode::opaque; }

@@ -221,6 +221,26 @@ class MaterialReader {
       d.diffuse_roughness_texture = texture_ref(*e, "diffuseRoughnessTexture", wr);
     }
     if (get("KHR_materials_unlit")) d.unlit = true;
+    if (const auto* e = get("KHR_materials_clearcoat")) {
+      const std::string wc = w + "KHR_materials_clearcoat";
+      d.clearcoat = checked(number_or(*e, "clearcoatFactor", 0.0), 0, 1, wc + ".clearcoatFactor");
+      d.clearcoat_texture = texture_ref(*e, "clearcoatTexture", wc);
+      d.clearcoat_roughness =
+          checked(number_or(*e, "clearcoatRoughnessFactor", 0.0), 0, 1, wc + ".clearcoatRoughnessFactor");
+      d.clearcoat_roughness_texture = texture_ref(*e, "clearcoatRoughnessTexture", wc);
+      d.clearcoat_normal_texture = texture_ref(*e, "clearcoatNormalTexture", wc);
+      if (d.clearcoat_normal_texture.present()) {
+        const double scale = number_or(e->Get("clearcoatNormalTexture"), "scale", 1.0);
+        if (!std::isfinite(scale)) fail(wc + ".clearcoatNormalTexture.scale", "is not finite");
+        d.clearcoat_normal_texture.scale = float(scale);
+      }
+    }
+    if (const auto* e = get("KHR_materials_anisotropy")) {
+      const std::string wa = w + "KHR_materials_anisotropy";
+      d.anisotropy_strength = checked(number_or(*e, "anisotropyStrength", 0.0), 0, 1, wa + ".anisotropyStrength");
+      d.anisotropy_rotation = checked(number_or(*e, "anisotropyRotation", 0.0), -1e6, 1e6, wa + ".anisotropyRotation");
+      d.anisotropy_texture = texture_ref(*e, "anisotropyTexture", wa);
+    }
   }
 
   const Document& doc_;
@@ -251,7 +271,8 @@ const std::vector<std::string>& supported_extensions() {
       "KHR_texture_transform",        "KHR_materials_emissive_strength", "KHR_materials_ior",
       "KHR_materials_specular",       "KHR_materials_transmission",      "KHR_materials_diffuse_roughness",
       "KHR_materials_unlit",          "KHR_lights_punctual",             "KHR_mesh_quantization",
-      "KHR_draco_mesh_compression",   "EXT_meshopt_compression",         "KHR_materials_variants"};
+      "KHR_draco_mesh_compression",   "EXT_meshopt_compression",         "KHR_materials_variants",
+      "KHR_materials_clearcoat",      "KHR_materials_anisotropy"};
   return k;
 }
 

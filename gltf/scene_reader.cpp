@@ -267,23 +267,18 @@ class Loader {
     }
 
     const MaterialDesc& mat = scene_.material_of(prim);
-    for (int s = 0; s < 2; ++s) {
-      const bool used = (mat.base_color_texture.present() && mat.base_color_texture.uv_set() == s) ||
-                        (mat.metallic_roughness_texture.present() && mat.metallic_roughness_texture.uv_set() == s) ||
-                        (mat.normal_texture.present() && mat.normal_texture.uv_set() == s) ||
-                        (mat.emissive_texture.present() && mat.emissive_texture.uv_set() == s) ||
-                        (mat.specular_texture.present() && mat.specular_texture.uv_set() == s) ||
-                        (mat.specular_color_texture.present() && mat.specular_color_texture.uv_set() == s) ||
-                        (mat.transmission_texture.present() && mat.transmission_texture.uv_set() == s) ||
-                        (mat.diffuse_roughness_texture.present() && mat.diffuse_roughness_texture.uv_set() == s);
-      if (used && prim.texcoords[s].empty())
-        fail(where + ".attributes", mat.where + " samples a texture with TEXCOORD_" + std::to_string(s) +
+    for (const auto& [slot, ref] : mat.texture_slots()) {
+      if (!ref->present() || ref == &mat.occlusion_texture) continue;  // occlusion is never read
+      const int set = ref->uv_set();
+      if (prim.texcoords[set].empty())
+        fail(where + ".attributes", mat.where + "." + slot + " samples TEXCOORD_" + std::to_string(set) +
                                         ", which this primitive does not have");
     }
     if (prim.normals.empty()) {
       make_flat_normals(prim);
     }
-    if (prim.tangents.empty() && mat.normal_texture.present()) generate_tangents(prim, mat.normal_texture.uv_set());
+    if (prim.tangents.empty() && mat.needs_tangents() && !prim.texcoords[mat.tangent_uv_set()].empty())
+      generate_tangents(prim, mat.tangent_uv_set());
     return true;
   }
 

@@ -30,6 +30,8 @@ MaterialTexels load_gltf_material_texels(const std::filesystem::path& path, cons
     if (mi < 0) throw input_error("--material", file + " has no material named \"" + material + "\"");
   }
   const MaterialDesc& d = m.materials[static_cast<std::size_t>(mi)];
+  const std::string why = mip_unsupported(d);
+  if (!why.empty()) throw input_error(file + ": " + d.where, "has " + why + ", which the MIP lobes do not carry");
   // The image behind a texture slot, decoded once (stored encoded: colour slots are decoded from sRGB).
   auto image_of = [&](const TextureRef& r, bool) -> SlotImage {
     const auto image = static_cast<std::size_t>(m.textures[static_cast<std::size_t>(r.texture)].image);
@@ -38,6 +40,16 @@ MaterialTexels load_gltf_material_texels(const std::filesystem::path& path, cons
   };
   const MaterialImages in = material_images(d, image_of, file + ": ");
   return decode_material_texels(in, color);
+}
+
+std::string mip_unsupported(const MaterialDesc& m) {
+  if (m.unlit) return "KHR_materials_unlit (no BRDF to filter)";
+  if (m.transmission > 0.0f || m.transmission_texture.present()) return "KHR_materials_transmission";
+  if (m.diffuse_roughness > 0.0f || m.diffuse_roughness_texture.present())
+    return "KHR_materials_diffuse_roughness (the MIP lobes are Lambertian)";
+  if (m.clearcoat > 0.0f) return "KHR_materials_clearcoat (the MIP lobes have no coat)";
+  if (m.anisotropy_strength > 0.0f) return "KHR_materials_anisotropy (the MIP lobes are isotropic)";
+  return {};
 }
 
 MaterialImages material_images(const MaterialDesc& d, const std::function<SlotImage(const TextureRef&, bool color)>& image_of,

@@ -19,6 +19,11 @@ namespace svbrdf {
 // returns the image of a present slot and whether it is already scene-linear; `color` says the slot
 // holds sRGB-encoded colour) and its factors, each image named `prefix` + its JSON path. The one
 // mapping of a glTF material to MIP texels, for the renderer (render/material_mips.h) and the bake.
+// Why the MIP's lobes cannot stand for this material's BRDF, naming the extension (empty: they
+// can). The renderer shades such a material with level-0 lookups under every filter and says so;
+// the bake refuses it.
+std::string mip_unsupported(const MaterialDesc& m);
+
 struct SlotImage {
   const Image* image = nullptr;
   bool linear = false;

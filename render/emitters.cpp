@@ -79,7 +79,7 @@ Emitters::Emitters(const Scene& scene, const EmbreeScene& bvh, const TextureSet&
         t.two_sided = mat.double_sided;
         Rgb mean(0.0f);
         if (mat.emissive_texture.present() || mat.alpha_mode != AlphaMode::opaque) {
-          for (const glm::vec2& b12 : points) mean += emitted(t, b12.x, b12.y);
+          for (const glm::vec2& b12 : points) mean += emitted(t, b12.x, b12.y, 1.0f);
           mean /= float(points.size());
         } else {
           mean = mat.emissive * mat.emissive_strength;
@@ -100,7 +100,7 @@ Emitters::Emitters(const Scene& scene, const EmbreeScene& bvh, const TextureSet&
   for (std::size_t k = 0; k < triangles_.size(); ++k) triangles_[k].probability = float(table_.probability(k));
 }
 
-Rgb Emitters::emitted(const Triangle& t, float b1, float b2) const {
+Rgb Emitters::emitted(const Triangle& t, float b1, float b2, float cos_view) const {
   const MeshPrimitive& prim = *t.geometry.prim;
   const MaterialDesc& mat = *t.geometry.material;
   const std::uint32_t* ix = &prim.indices[3 * std::size_t(t.index)];
@@ -109,7 +109,7 @@ Rgb Emitters::emitted(const Triangle& t, float b1, float b2) const {
   for (int s = 0; s < 2; ++s)
     if (!prim.texcoords[s].empty())
       uv[s] = b0 * prim.texcoords[s][ix[0]] + b1 * prim.texcoords[s][ix[1]] + b2 * prim.texcoords[s][ix[2]];
-  Rgb e = emission_at(mat, uv, *t.geometry.textures);
+  Rgb e = emission_at(mat, uv, *t.geometry.textures, cos_view);
   if (mat.alpha_mode != AlphaMode::opaque) {
     // The surface's presence at the point: MASK keeps it or cuts it; BLEND is there with probability
     // alpha, as the intersection filter decides for a ray (embree_scene.h).
@@ -140,7 +140,7 @@ EmitterSample Emitters::sample(const glm::vec3& x, const glm::vec3& u) const {
     s.pdf = 0.0f;
     return s;
   }
-  if (cos_light > 0.0f || t.two_sided) s.radiance = emitted(t, b.x, b.y);
+  if (cos_light > 0.0f || t.two_sided) s.radiance = emitted(t, b.x, b.y, cos_light);
   return s;
 }
 

@@ -62,8 +62,9 @@ class Emitters {
     unsigned index = 0;        // the triangle in its primitive
     bool two_sided = false;
   };
-  // Emission at barycentrics (b1, b2) of triangle t, before the side test, alpha included.
-  Rgb emitted(const Triangle& t, float b1, float b2) const;
+  // Emission at barycentrics (b1, b2) of triangle t seen at cosine cos_view to its normal (the
+  // clear coat darkens it), before the side test, alpha included.
+  Rgb emitted(const Triangle& t, float b1, float b2, float cos_view) const;
 
   std::vector<Triangle> triangles_;
   AliasTable table_;

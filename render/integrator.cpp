@@ -172,7 +172,7 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
     Rgb emission(0.0f);
     if (mip) {
       frame = geometric_frame(sp);
-      emission = emission_at(sp, *w.textures);
+      emission = emission_at(sp, *w.textures, -ray.dir);
       mip->texture().lookup(choice, lobe_bsdf);
       bsdf = &lobe_bsdf;
       if (depth == 0 && s.aovs) {
@@ -198,7 +198,8 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
         add(beta * sh.base_color, depth - 1);
         break;
       }
-      emission = sh.emission;
+      // The clear coat darkens what is under it, emission included (surface.h, emission_at).
+      emission = sh.emission * (1.0f - clearcoat_blend(sh.clearcoat, glm::dot(-ray.dir, sp.ng)));
       bsdf = &surface_bsdf.emplace(sh);
       frame = sp.shading;
       if (microfacet) {

@@ -30,15 +30,6 @@ Image replicate(const Image& im, Extent e) {
 
 std::string label(const MaterialDesc& m) { return m.where + (m.name.empty() ? "" : " '" + m.name + "'"); }
 
-// Why the lobes cannot stand for this material's BRDF (empty: they can).
-std::string unsupported(const MaterialDesc& m) {
-  if (m.unlit) return "KHR_materials_unlit (no BRDF to filter)";
-  if (m.transmission > 0.0f || m.transmission_texture.present()) return "KHR_materials_transmission";
-  if (m.diffuse_roughness > 0.0f || m.diffuse_roughness_texture.present())
-    return "KHR_materials_diffuse_roughness (the MIP lobes are Lambertian)";
-  return {};
-}
-
 }  // namespace
 
 Footprint MaterialMip::to_texture(const Footprint& f) const {
@@ -56,7 +47,7 @@ SceneMips::SceneMips(const Scene& scene, const TextureSet& textures)
     for (const TexelInput& in : inputs)
       if (in.texture && in.texture->present()) slots.push_back(&in);
     if (slots.empty()) continue;  // untextured: nothing to filter
-    std::string why = unsupported(m);
+    std::string why = mip_unsupported(m);
     const TexelInput& first = *slots.front();
     const TextureRef& g = *first.texture;
     const Sampler& gs = textures.sampler(g);

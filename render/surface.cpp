@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "appearance/shading.h"
 #include "textures/normal_map.h"
 
 namespace svbrdf {
@@ -85,25 +86,47 @@ SurfacePoint make_surface_point(const EmbreeScene& bvh, const RayHit& hit, const
   glm::vec3 ns = same_side(ns_front, ng_front), ng = ng_front;
   if (!sp.front) ns = -ns, ng = -ng;
   sp.ng = ng;
+  sp.ns = ns;
   sp.shading = Frame::from_normal_tangent(ns, normalize_or(tangent_hint, glm::vec3(0.0f)));
   return sp;
 }
 
-void apply_normal_map(SurfacePoint& sp, const TextureSet& textures) {
-  const MaterialDesc& m = *sp.material;
-  if (!m.normal_texture.present()) return;
-  const MeshPrimitive& prim = *sp.geom->prim;
-  if (prim.tangents.empty()) return;  // the loader makes tangents wherever a normal map is used
-  const glm::vec3 rgb = glm::vec3(textures.lookup(m.normal_texture, sp.uv[m.normal_texture.uv_set()], false));
-  const glm::vec3 t = decode_normal(rgb, m.normal_texture.scale);
+namespace {
+
+// The normal a tangent-space normal map `map` makes of the surface's interpolated normal at the hit
+// (glTF §3.9.3: +Y up, the map's scale), on the side the ray came from; sp.ns where the primitive
+// has no tangent space.
+glm::vec3 mapped_normal(const SurfacePoint& sp, const TextureRef& map, const TextureSet& textures) {
+  if (sp.geom->prim->tangents.empty()) return sp.ns;  // the loader makes tangents wherever a map is used
+  const glm::vec3 rgb = glm::vec3(textures.lookup(map, sp.uv[map.uv_set()], false));
+  const glm::vec3 t = decode_normal(rgb, map.scale);
   // The tangent frame of the front face (a back face mirrors the mapped normal with it).
-  const glm::vec3 n = sp.front ? sp.shading.n : -sp.shading.n;
+  const glm::vec3 n = sp.front ? sp.ns : -sp.ns;
   const glm::vec3 tan = normalize_or(sp.tangent - n * glm::dot(n, sp.tangent), sp.shading.s);
   const glm::vec3 b = sp.bitangent_sign * glm::cross(n, tan);
   glm::vec3 mapped = normalize_or(t.x * tan + t.y * b + t.z * n, n);
   if (!sp.front) mapped = -mapped;
-  mapped = same_side(mapped, sp.ng);
-  sp.shading = Frame::from_normal_tangent(mapped, sp.shading.s);
+  return same_side(mapped, sp.ng);
+}
+
+// The unit direction (dx, dy) of the front face's tangent space (T, B = sign·N×T) in sp.shading's
+// frame, projected on its tangent plane.
+glm::vec2 tangent_space_direction(const SurfacePoint& sp, const glm::vec2& d) {
+  const glm::vec3 n = sp.front ? sp.ns : -sp.ns;
+  const glm::vec3 tan = normalize_or(sp.tangent - n * glm::dot(n, sp.tangent), sp.shading.s);
+  const glm::vec3 b = sp.bitangent_sign * glm::cross(n, tan);
+  const glm::vec3 local = sp.shading.to_local(d.x * tan + d.y * b);
+  const glm::vec2 xy(local.x, local.y);
+  const float len = glm::length(xy);
+  return len > 1e-12f && std::isfinite(len) ? xy / len : glm::vec2(1.0f, 0.0f);
+}
+
+}  // namespace
+
+void apply_normal_map(SurfacePoint& sp, const TextureSet& textures) {
+  const MaterialDesc& m = *sp.material;
+  if (!m.normal_texture.present()) return;
+  sp.shading = Frame::from_normal_tangent(mapped_normal(sp, m.normal_texture, textures), sp.shading.s);
 }
 
 void keep_reflection_above(SurfacePoint& sp, const glm::vec3& wo) {
@@ -152,14 +175,46 @@ ShadingParams shading_params(const SurfacePoint& sp, const TextureSet& textures)
   sh.diffuse_roughness = m.diffuse_roughness;
   if (m.diffuse_roughness_texture.present()) sh.diffuse_roughness *= tex(m.diffuse_roughness_texture, false).r;
   sh.unlit = m.unlit;
+  // KHR_materials_clearcoat: weight × texture R, roughness × texture G, the coat's own normal map
+  // or, without one, the surface's normal before the base's map.
+  sh.clearcoat = m.clearcoat;
+  if (m.clearcoat_texture.present()) sh.clearcoat *= tex(m.clearcoat_texture, false).r;
+  if (sh.clearcoat > 0.0f) {
+    sh.clearcoat_roughness = m.clearcoat_roughness;
+    if (m.clearcoat_roughness_texture.present()) sh.clearcoat_roughness *= tex(m.clearcoat_roughness_texture, false).g;
+    const glm::vec3 nc =
+        m.clearcoat_normal_texture.present() ? mapped_normal(sp, m.clearcoat_normal_texture, textures) : sp.ns;
+    sh.clearcoat_normal = sp.shading.to_local(nc);
+  }
+  // KHR_materials_anisotropy: strength × texture B; the direction (cos, sin) of the rotation, or the
+  // texture's RG mapped to [−1, 1], normalized, and turned by the rotation.
+  sh.anisotropy = m.anisotropy_strength;
+  if (sh.anisotropy > 0.0f) {
+    const float c = std::cos(m.anisotropy_rotation), s = std::sin(m.anisotropy_rotation);
+    glm::vec2 d(c, s);
+    if (m.anisotropy_texture.present()) {
+      const glm::vec4 a = tex(m.anisotropy_texture, false);
+      const glm::vec2 t = normalize_or(glm::vec3(2.0f * a.r - 1.0f, 2.0f * a.g - 1.0f, 0.0f), glm::vec3(1, 0, 0));
+      d = glm::vec2(c * t.x - s * t.y, s * t.x + c * t.y);
+      sh.anisotropy *= a.b;
+    }
+    sh.anisotropy_direction = tangent_space_direction(sp, d);
+  }
   return sh;
 }
 
-Rgb emission_at(const SurfacePoint& sp, const TextureSet& textures) { return emission_at(*sp.material, sp.uv, textures); }
+Rgb emission_at(const SurfacePoint& sp, const TextureSet& textures, const glm::vec3& wo) {
+  return emission_at(*sp.material, sp.uv, textures, glm::dot(wo, sp.ng));
+}
 
-Rgb emission_at(const MaterialDesc& m, const glm::vec2 uv[2], const TextureSet& textures) {
+Rgb emission_at(const MaterialDesc& m, const glm::vec2 uv[2], const TextureSet& textures, float cos_view) {
   Rgb e = m.emissive * m.emissive_strength;
   if (reads_emission_texture(m)) e *= Rgb(textures.lookup(m.emissive_texture, uv[m.emissive_texture.uv_set()], true));
+  if (m.clearcoat > 0.0f && max_channel(e) > 0.0f) {
+    float c = m.clearcoat;
+    if (m.clearcoat_texture.present()) c *= textures.lookup(m.clearcoat_texture, uv[m.clearcoat_texture.uv_set()], false).r;
+    e *= 1.0f - clearcoat_blend(c, cos_view);
+  }
   return e;
 }
 

@@ -18,6 +18,7 @@ struct SurfacePoint {
   glm::vec2 uv[2]{};               // TEXCOORD_0/1 (zero when absent)
   glm::vec4 color{1.0f};           // COLOR_0
   glm::vec3 dpdu[2]{}, dpdv[2]{};  // world ∂p/∂(u, v) of TEXCOORD_0/1 (zero when absent)
+  glm::vec3 ns{0.0f, 0.0f, 1.0f};  // the interpolated normal before any normal map, same side as ng
   glm::vec3 tangent{0.0f};         // world TANGENT (or ∂p/∂u when absent), not normalized
   float bitangent_sign = 1.0f;     // B = sign·(N × T) in world space, N the front-face shading normal
   bool front = true;               // the ray hit the front face
@@ -37,12 +38,17 @@ void apply_normal_map(SurfacePoint& sp, const TextureSet& textures);
 // plane, as Cycles' ensure_valid_reflection turns it (found here by bisection).
 void keep_reflection_above(SurfacePoint& sp, const glm::vec3& wo);
 
+// The material's parameters at the hit, in the frame sp.shading (call after apply_normal_map): the
+// coat's normal and the anisotropy direction are expressed in it.
 ShadingParams shading_params(const SurfacePoint& sp, const TextureSet& textures);
 // The parts of shading_params that the MIP filters do not cover: emission, and the base color (for
-// the albedo AOV), both at level0.
-Rgb emission_at(const SurfacePoint& sp, const TextureSet& textures);
-// The same at texture coordinates uv[0], uv[1] of a material (emitters.h samples points this way).
-Rgb emission_at(const MaterialDesc& m, const glm::vec2 uv[2], const TextureSet& textures);
+// the albedo AOV), both at level0. Emission leaves toward `wo` (world, unit) through the clear coat,
+// which darkens it by 1 − clearcoat·Fc (KHR_materials_clearcoat, "Emission"); Fc is taken at the
+// geometric normal here and in light sampling alike, so both strategies see the same radiance.
+Rgb emission_at(const SurfacePoint& sp, const TextureSet& textures, const glm::vec3& wo);
+// The same at texture coordinates uv[0], uv[1] of a material (emitters.h samples points this way),
+// seen at cosine `cos_view` to the geometric normal.
+Rgb emission_at(const MaterialDesc& m, const glm::vec2 uv[2], const TextureSet& textures, float cos_view);
 // Prefetches the texel emission_at will read, if it reads one.
 void prefetch_emission(const SurfacePoint& sp, const TextureSet& textures);
 Rgb base_color_at(const SurfacePoint& sp, const TextureSet& textures);

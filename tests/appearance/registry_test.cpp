@@ -16,7 +16,7 @@ TEST(Registry, EveryModelBuildsWithItsDefaults) {
     ASSERT_NE(bsdf, nullptr) << name;
   }
   EXPECT_NE(make_model("measured", {"file=" + gltf_merl_path()}), nullptr);
-  EXPECT_EQ(model_names().size(), 13u);
+  EXPECT_EQ(model_names().size(), 14u);
 }
 
 void expect_error(const std::string& model, const std::vector<std::string>& params, const std::string& fragment,

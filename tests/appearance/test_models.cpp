@@ -48,6 +48,8 @@ const std::vector<ModelCase>& sampler_cases() {
       {"gltf", {"base_color=0.5", "metallic=0.5", "roughness=0.1"}},
       {"sheen", {"color=1", "roughness=0"}},
       {"sheen", {"color=0.9,0.6,0.3", "roughness=0.7"}},
+      {"gltf-surface", {"base_color=0.7,0.4,0.2", "metallic=0.3", "roughness=0.4", "anisotropy=0.6",
+                        "anisotropy_rotation=0.5", "clearcoat=1", "clearcoat_roughness=0.1"}},
       {"measured", {"file=" + gltf_merl_path()}},
       {"lambert", {"albedo=0.2"}, {"mirror:0.4"}},
       {"gltf", {"roughness=0.3", "metallic=1"}, {"dielectric:0.5"}},

@@ -85,15 +85,32 @@ INSTANTIATE_TEST_SUITE_P(Samples, GltfSample, ::testing::ValuesIn(kSamples),
                            return n;
                          });
 
-// TextureTransformMultiTest requires KHR_texture_transform (supported) and uses KHR_materials_clearcoat
-// (not supported): it loads, with exactly one warning naming the optional extension.
-TEST(GltfLoader, OptionalUnsupportedExtensionIsOneWarning) {
+// TextureTransformMultiTest requires KHR_texture_transform and uses KHR_materials_clearcoat with
+// transformed textures on both TEXCOORD sets: it loads without a warning, and each coat texture
+// keeps its set and its transform.
+TEST(GltfLoader, TextureTransformMultiTestReadsItsClearcoats) {
   const fs::path f = samples_dir() / "TextureTransformMultiTest/glTF/TextureTransformMultiTest.gltf";
   if (!fs::exists(f)) GTEST_SKIP() << "no glTF samples at " << samples_dir();
   const Scene s = load_gltf(f);
-  int clearcoat = 0;
-  for (const auto& w : s.warnings) clearcoat += w.find("KHR_materials_clearcoat") != std::string::npos;
-  EXPECT_EQ(clearcoat, 1);
+  for (const auto& w : s.warnings) ADD_FAILURE() << "warning: " << w;
+  auto named = [&](const std::string& n) -> const MaterialDesc& {
+    for (const MaterialDesc& m : s.materials)
+      if (m.name == n) return m;
+    throw std::runtime_error("no material " + n);
+  };
+  const MaterialDesc& t0 = named("ClearcoatTest0Mat");
+  EXPECT_FLOAT_EQ(t0.clearcoat, 1.0f);
+  EXPECT_NEAR(t0.clearcoat_roughness, 0.03f, 1e-6);
+  ASSERT_TRUE(t0.clearcoat_texture.present());
+  EXPECT_EQ(t0.clearcoat_texture.uv_set(), 0);
+  // The file's transform: scale 0.35, rotation 90°, offset (0.705, 0.285): (1, 0) → (0.705, −0.065).
+  const glm::vec2 t = t0.clearcoat_texture.transform.apply({1.0f, 0.0f});
+  EXPECT_NEAR(t.x, 0.705f, 1e-5);
+  EXPECT_NEAR(t.y, 0.285f - 0.35f, 1e-5);
+  EXPECT_EQ(named("ClearcoatTest1Mat").clearcoat_texture.uv_set(), 1);
+  EXPECT_TRUE(named("ClearcoatRoughTest0Mat").clearcoat_roughness_texture.present());
+  EXPECT_TRUE(named("ClearcoatNormalTest1Mat").clearcoat_normal_texture.present());
+  EXPECT_EQ(named("ClearcoatNormalTest1Mat").clearcoat_normal_texture.uv_set(), 1);
 }
 
 // ---- files the tests write -------------------------------------------------------------------
@@ -458,6 +475,53 @@ TEST(GltfLoader, MaterialExtensionsAndTextureTransform) {
   EXPECT_NEAR(t.y, -1.75f, 1e-6);
   ASSERT_EQ(s.images.size(), 1u);
   EXPECT_EQ(s.images[0].pixels.width, 1);
+}
+
+TEST(GltfLoader, ReadsClearcoatAndAnisotropy) {
+  TempDir dir;
+  GltfQuad q;
+  q.texcoords = {0, 0, 1, 0, 1, 1, 0, 1};
+  Image px(1, 1, 4);
+  write_image(dir.path() / "px.png", px, PixelFormat::uint8);
+  q.materials = R"([{"extensions": {
+       "KHR_materials_clearcoat": {"clearcoatFactor": 0.7, "clearcoatRoughnessFactor": 0.2,
+         "clearcoatTexture": {"index": 0}, "clearcoatNormalTexture": {"index": 0, "scale": 0.5}},
+       "KHR_materials_anisotropy": {"anisotropyStrength": 0.6, "anisotropyRotation": 1.25,
+         "anisotropyTexture": {"index": 0}}}},
+     {"extensions": {"KHR_materials_clearcoat": {}, "KHR_materials_anisotropy": {}}}])";
+  q.primitive_extra = R"(, "material": 0)";
+  q.top_extra = R"(, "textures": [{"source": 0}], "images": [{"uri": "px.png"}],
+      "extensionsUsed": ["KHR_materials_clearcoat", "KHR_materials_anisotropy"])";
+  const Scene s = load_gltf(dir.write("m.gltf", q.json()));
+  EXPECT_TRUE(s.warnings.empty());
+  ASSERT_EQ(s.materials.size(), 2u);
+  const MaterialDesc& m = s.materials[0];
+  EXPECT_FLOAT_EQ(m.clearcoat, 0.7f);
+  EXPECT_FLOAT_EQ(m.clearcoat_roughness, 0.2f);
+  EXPECT_TRUE(m.clearcoat_texture.present());
+  EXPECT_FALSE(m.clearcoat_roughness_texture.present());
+  EXPECT_FLOAT_EQ(m.clearcoat_normal_texture.scale, 0.5f);
+  EXPECT_FLOAT_EQ(m.anisotropy_strength, 0.6f);
+  EXPECT_FLOAT_EQ(m.anisotropy_rotation, 1.25f);
+  EXPECT_TRUE(m.anisotropy_texture.present());
+  // A normal map, a coat normal map or anisotropy needs a tangent space: the loader makes one.
+  EXPECT_FALSE(s.meshes[0].primitives[0].tangents.empty());
+  // The extensions' defaults (their schemas): no coat, no anisotropy.
+  EXPECT_FLOAT_EQ(s.materials[1].clearcoat, 0.0f);
+  EXPECT_FLOAT_EQ(s.materials[1].clearcoat_roughness, 0.0f);
+  EXPECT_FLOAT_EQ(s.materials[1].anisotropy_strength, 0.0f);
+}
+
+TEST(GltfLoader, ClearcoatAndAnisotropyOutOfRange) {
+  TempDir dir;
+  GltfQuad q;
+  q.primitive_extra = R"(, "material": 0)";
+  q.materials = R"([{"extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 1.5}}}])";
+  expect_error(dir.write("c.gltf", q.json()), "materials[0].extensions.KHR_materials_clearcoat.clearcoatFactor");
+  q.materials = R"([{"extensions": {"KHR_materials_anisotropy": {"anisotropyStrength": -0.1}}}])";
+  expect_error(dir.write("a.gltf", q.json()), "materials[0].extensions.KHR_materials_anisotropy.anisotropyStrength");
+  q.materials = R"([{"extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 1, "clearcoatTexture": {"index": 3}}}}])";
+  expect_error(dir.write("t.gltf", q.json()), "KHR_materials_clearcoat.clearcoatTexture.index");
 }
 
 TEST(GltfLoader, FactorOutOfRange) {

@@ -8,6 +8,7 @@
 
 #include "gltf_test_files.h"
 #include "appearance/gltf.h"
+#include "appearance/eon.h"
 #include "appearance/gltf_surface_bsdf.h"
 #include "render_test_scenes.h"
 #include "textures/image.h"
