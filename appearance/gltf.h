@@ -23,14 +23,14 @@ struct GltfParams {
 inline float gltf_alpha(float roughness) { return glm::max(roughness * roughness, 1e-3f); }
 
 // The metallic-roughness layering (glTF 2.0 Appendix B; the KHR_materials_specular form): the
-// dielectric's Fresnel fr = F0 + (1 − F0)·w weighted by `specular` over `base_layer` (what is below
-// the specular layer: Lambert's ρ/π, or more), and the metal's Schlick Fresnel on base_color; the
-// specular term s = V·D and Schlick's weight w. gltf_eval and the glTF surface BSDF
-// (gltf_surface_bsdf.h) both compose their layers here.
-inline Rgb gltf_layers(const Rgb& base_color, float metallic, const Rgb& base_layer, const Rgb& fr, float specular,
-                       float s, float w) {
+// dielectric's Fresnel fr weighted by `specular` over `base_layer` (what is below the specular
+// layer: Lambert's ρ/π, or more), mixed by metallic with the metal's Fresnel `metal_fresnel` (Schlick
+// on base_color, or KHR_materials_iridescence's), both times the specular term s = V·D. gltf_eval
+// and the glTF surface BSDF (gltf_surface_bsdf.h) both compose their layers here.
+inline Rgb gltf_layers(const Rgb& metal_fresnel, float metallic, const Rgb& base_layer, const Rgb& fr, float specular,
+                       float s) {
   const Rgb dielectric = (1.0f - specular * max_channel(fr)) * base_layer + specular * fr * s;
-  const Rgb metal = s * (base_color + (Rgb(1.0f) - base_color) * w);
+  const Rgb metal = s * metal_fresnel;
   return glm::mix(dielectric, metal, metallic);
 }
 
@@ -45,7 +45,7 @@ inline Rgb gltf_eval(const GltfParams& p, const glm::vec3& wi, const glm::vec3& 
   const float s = smith_ggx_visibility(a2, wi.z, wo.z) * d;
   const float w = schlick_weight(glm::abs(glm::dot(wo, h)));
   const float fd = 0.04f + 0.96f * w;
-  return gltf_layers(p.base_color, p.metallic, p.base_color * kInvPi, Rgb(fd), 1.0f, s, w);
+  return gltf_layers(p.base_color + (Rgb(1.0f) - p.base_color) * w, p.metallic, p.base_color * kInvPi, Rgb(fd), 1.0f, s);
 }
 
 }  // namespace svbrdf

@@ -8,6 +8,8 @@
 #include "appearance/gltf.h"
 #include "appearance/microfacet_distribution.h"
 #include "appearance/sampling.h"
+#include "appearance/sheen.h"
+#include "appearance/thin_film.h"
 
 namespace svbrdf {
 
@@ -101,13 +103,37 @@ float SurfaceBsdf::coat_pdf(const glm::vec3& wi, const glm::vec3& wo) const {
   return ggx_d(coat_alpha_, hc) / ((1.0f + ggx_lambda(coat_alpha_, woc)) * 4.0f * co);
 }
 
+Rgb SurfaceBsdf::dielectric_fresnel(float c, float w) const {
+  if (!p_.thin_walled && p_.eta < 1.0f) {
+    // Leaving the denser medium: Schlick's approximation holds at the angle on the rarer side.
+    const float sin2_t = std::max(0.0f, 1.0f - c * c) / (p_.eta * p_.eta);
+    if (sin2_t >= 1.0f) return Rgb(1.0f);  // total internal reflection
+    c = std::sqrt(1.0f - sin2_t);
+    w = schlick_weight(c);
+  }
+  const Rgb schlick = f0_ + (Rgb(1.0f) - f0_) * w;
+  if (!(p_.iridescence > 0.0f)) return schlick;
+  const Rgb film = iridescence_fresnel(c, p_.iridescence_thickness, p_.iridescence_ior, f0_);
+  return glm::mix(schlick, film, p_.iridescence);
+}
+
+Rgb SurfaceBsdf::metal_fresnel(float c, float w) const {
+  const Rgb schlick = p_.base_color + (Rgb(1.0f) - p_.base_color) * w;
+  if (!(p_.iridescence > 0.0f)) return schlick;
+  const Rgb film = iridescence_fresnel(c, p_.iridescence_thickness, p_.iridescence_ior, p_.base_color);
+  return glm::mix(schlick, film, p_.iridescence);
+}
+
 Rgb SurfaceBsdf::base_f(const glm::vec3& wi, const glm::vec3& wo) const {
   const glm::vec3 h = glm::normalize(wi + wo);
   const float s = specular_vd(wi, wo, h);
-  const float w = schlick_weight(std::abs(glm::dot(wo, h)));
-  const Rgb fr = f0_ + (Rgb(1.0f) - f0_) * w;
+  const float c = std::abs(glm::dot(wo, h));
+  const float w = schlick_weight(c);
   const Rgb base = (1.0f - p_.transmission) * diffuse_f(wi, wo);
-  return gltf_layers(p_.base_color, p_.metallic, base, fr, p_.specular, s, w);
+  const Rgb material = gltf_layers(metal_fresnel(c, w), p_.metallic, base, dielectric_fresnel(c, w), p_.specular, s);
+  if (!has_sheen()) return material;
+  return sheen_brdf(wi, wo, p_.sheen_color, p_.sheen_roughness) +
+         material * sheen_albedo_scaling(wi, wo, p_.sheen_color, p_.sheen_roughness);
 }
 
 Rgb SurfaceBsdf::eval(const glm::vec3& wi, const glm::vec3& wo) const {
@@ -120,39 +146,73 @@ Rgb SurfaceBsdf::eval(const glm::vec3& wi, const glm::vec3& wo) const {
 }
 
 Rgb SurfaceBsdf::transmission_magnitude(const glm::vec3& w) const {
-  const Rgb fr = f0_ + (Rgb(1.0f) - f0_) * schlick_weight(std::abs(w.z));
-  return (1.0f - coat_blend(w)) * (1.0f - p_.metallic) * p_.transmission * (1.0f - p_.specular * max_channel(fr)) *
-         p_.base_color;
+  const float c = std::min(std::abs(w.z), 1.0f);
+  const Rgb fr = dielectric_fresnel(c, schlick_weight(c));
+  Rgb m = (1.0f - coat_blend(w)) * (1.0f - p_.metallic) * p_.transmission * (1.0f - p_.specular * max_channel(fr)) *
+          p_.base_color;
+  // The sheen's albedo scaling at (w, −w), whose cosines are equal: 1 − max(sheenColor)·E(|w.z|).
+  if (has_sheen()) m *= std::clamp(1.0f - max_channel(p_.sheen_color) * sheen_albedo(c, p_.sheen_roughness), 0.0f, 1.0f);
+  return m;
+}
+
+bool SurfaceBsdf::transmitted(const glm::vec3& w, glm::vec3& wt, Rgb& magnitude) const {
+  if (!(transmission_weight_ > 0.0f)) return false;
+  if (p_.thin_walled) {
+    wt = -w;
+    magnitude = transmission_magnitude(w);
+    return true;
+  }
+  if (!refract_through(w, p_.eta, wt)) return false;
+  magnitude = transmission_magnitude(w) / (p_.eta * p_.eta);
+  return max_channel(magnitude) > 0.0f;
 }
 
 Impulses SurfaceBsdf::impulses_in(const glm::vec3& wo) const {
   Impulses im;
-  if (transmission_weight_ > 0.0f) im.add(-wo, transmission_magnitude(wo));
+  glm::vec3 wt;
+  Rgb m;
+  if (wo.z > 0.0f && transmitted(wo, wt, m)) im.add(wt, m);
   return im;
 }
 
 Impulses SurfaceBsdf::impulses_out(const glm::vec3& wi) const {
+  // Light from this side crosses as a view from it would (impulses_in); light from the far side
+  // (wi.z < 0) leaves toward this side along the reverse of that path, with its magnitude.
+  if (wi.z > 0.0f) return impulses_in(wi);
   Impulses im;
-  if (transmission_weight_ > 0.0f) im.add(-wi, transmission_magnitude(wi));
+  if (!(transmission_weight_ > 0.0f) || wi.z == 0.0f) return im;
+  glm::vec3 wo;
+  if (p_.thin_walled) wo = -wi;
+  else if (!refract_through(wi, 1.0f / p_.eta, wo)) return im;
+  glm::vec3 wt;
+  Rgb m;
+  if (transmitted(wo, wt, m)) im.add(wo, m);
   return im;
 }
 
 SurfaceBsdf::LobeChoice SurfaceBsdf::choose(const glm::vec3& wo) const {
-  // Probabilities proportional to each lobe's approximate weight at wo (Fresnel at n·wo).
+  // Probabilities proportional to each lobe's approximate weight at wo (Fresnel at n·wo; the
+  // sheen's and the coat's own albedo-like weights over what they cover).
   LobeChoice c;
   if (wo.z > 0.0f) {
     c.coat = coat_blend(wo);
-    const float under = 1.0f - c.coat;
-    const float fr = max_channel(f0_ + (Rgb(1.0f) - f0_) * schlick_weight(std::min(wo.z, 1.0f)));
+    float under = 1.0f - c.coat;
+    if (has_sheen()) {
+      const float e = max_channel(p_.sheen_color) * sheen_albedo(std::min(wo.z, 1.0f), p_.sheen_roughness);
+      c.sheen = under * std::clamp(e, 0.0f, 1.0f);
+      under *= std::clamp(1.0f - e, 0.0f, 1.0f);
+    }
+    const float cos_o = std::min(wo.z, 1.0f);
+    const float fr = max_channel(dielectric_fresnel(cos_o, schlick_weight(cos_o)));
     const float spec_d = p_.specular * fr;
     const float rest = under * (1.0f - p_.metallic) * (1.0f - spec_d) * max_channel(p_.base_color);
     c.specular = under * (p_.metallic + (1.0f - p_.metallic) * spec_d);
     c.diffuse = rest * (1.0f - p_.transmission);
     c.transmission = rest * p_.transmission;
   }
-  const float sum = c.coat + c.specular + c.diffuse + c.transmission;
+  const float sum = c.coat + c.specular + c.sheen + c.diffuse + c.transmission;
   if (!(sum > 0.0f)) return LobeChoice{};
-  c.coat /= sum, c.specular /= sum, c.diffuse /= sum, c.transmission /= sum;
+  c.coat /= sum, c.specular /= sum, c.sheen /= sum, c.diffuse /= sum, c.transmission /= sum;
   return c;
 }
 
@@ -162,6 +222,7 @@ float SurfaceBsdf::pdf(const glm::vec3& wi, const glm::vec3& wo) const {
   float p = c.diffuse * wi.z * kInvPi;
   if (c.specular > 0.0f) p += c.specular * specular_pdf(wi, wo);
   if (c.coat > 0.0f) p += c.coat * coat_pdf(wi, wo);
+  if (c.sheen > 0.0f) p += c.sheen * sheen_pdf(wi, wo);
   return p;
 }
 
@@ -171,9 +232,10 @@ BsdfSample SurfaceBsdf::sample(const glm::vec3& wo, const SampleU& u) const {
   const glm::vec2 uv(u.y, u.z);
   glm::vec3 wi;
   if (u.x < c.transmission) {
-    out.wi = -wo;
+    Rgb m;
+    if (!transmitted(wo, out.wi, m)) return out;
     out.pdf = c.transmission;
-    out.weight = transmission_magnitude(wo) / c.transmission;
+    out.weight = m / c.transmission;
     out.kind = SampleKind::impulse;
     return out;
   } else if (u.x < c.transmission + c.coat) {
@@ -183,6 +245,8 @@ BsdfSample SurfaceBsdf::sample(const glm::vec3& wo, const SampleU& u) const {
     wi = reflect_about(wo, hc.x * coat_t_ + hc.y * coat_b_ + hc.z * n);
   } else if (u.x < c.transmission + c.coat + c.specular) {
     wi = reflect_about(wo, sample_specular_normal(wo, uv));
+  } else if (u.x < c.transmission + c.coat + c.specular + c.sheen) {
+    wi = sample_sheen(uv);
   } else if (c.diffuse > 0.0f) {
     wi = sample_cosine_hemisphere(uv);
   } else {

@@ -12,16 +12,26 @@
 //   KHR_materials_transmission — a fraction `transmission` of base becomes a transmission impulse;
 //   KHR_materials_anisotropy — the specular V·D of both the dielectric and the metal becomes
 //     anisotropic GGX: α along the anisotropy direction mix(α, 1, strength²), α across it;
+//   KHR_materials_iridescence — both Fresnel terms (the dielectric's fr and the metal's Schlick on
+//     base_color) become mix(F_schlick, F_thin_film, iridescence) (appearance/thin_film.h), the
+//     film in air (outside ior 1);
+//   KHR_materials_sheen — the Charlie sheen over everything above (appearance/sheen.h):
+//     sheen_brdf + material·min(1 − max(sheenColor)·E(wo), 1 − max(sheenColor)·E(wi));
 //   KHR_materials_clearcoat — fresnel_coat: mix(material, coat V·D, clearcoat·Fc) with
 //     Fc = 0.04 + 0.96·(1 − |wo·Nc|)^5 on the coat's own normal Nc (the extension's text: the
 //     view's cosine to Nc, not wo·h, which keeps the layering energy-conserving; this makes the coat
 //     non-reciprocal exactly as the specification defines it), α_c = clearcoatRoughness².
+//   KHR_materials_volume — the transmission refracts into or out of the mesh (ShadingParams),
+//     its radiance scaled by 1/eta² as it crosses (CGPP §27.5; the factors cancel on a path that
+//     enters and leaves a volume); the integrator attenuates what travels inside.
 // With the extensions at their defaults (ior 1.5, specular 1, color 1, σ 0, transmission 0, no
-// anisotropy, no coat) it is gltf_eval exactly. Transmission is thin-walled (no KHR_materials_volume):
-// the impulse continues straight through (wi = −wo) with magnitude (1 − metallic)·transmission·
-// (1 − specular·max(fr))·base_color, fr at h = n, under the coat's (1 − clearcoat·Fc); a rough
-// transmissive surface is treated as smooth (documented limit).
+// anisotropy, iridescence, sheen or coat) it is gltf_eval exactly. Transmission is an impulse:
+// straight through (wi = −wo) when thin-walled, refracted with a volume, of magnitude
+// (1 − metallic)·transmission·(1 − specular·max(fr))·base_color, fr at h = n, under the sheen's
+// albedo scaling and the coat's (1 − clearcoat·Fc); a rough transmissive surface is treated as
+// smooth (documented limit).
 #include "appearance/bsdf.h"
+#include "appearance/shading.h"
 
 namespace svbrdf {
 
@@ -42,6 +52,19 @@ struct ShadingParams {
   // the shading frame's x–y plane (the texture's direction, rotated by anisotropyRotation).
   float anisotropy = 0.0f;
   glm::vec2 anisotropy_direction{1.0f, 0.0f};
+  // KHR_materials_sheen: the linear sheen color and its perceptual roughness.
+  Rgb sheen_color{0.0f};
+  float sheen_roughness = 0.0f;
+  // KHR_materials_iridescence: the film's weight, ior and thickness (nm).
+  float iridescence = 0.0f;
+  float iridescence_ior = 1.3f;
+  float iridescence_thickness = 400.0f;
+  // KHR_materials_volume: a material with a volume refracts its transmission into or out of the
+  // mesh (Snell, eta = n(beyond)/n(here), the ratio the integrator's medium stack knows) instead of
+  // passing it straight through; leaving a denser medium, the dielectric's Fresnel is Schlick's at
+  // the transmitted angle, and 1 past the critical angle (total internal reflection).
+  bool thin_walled = true;
+  float eta = 1.5f;
   // KHR_materials_clearcoat: the layer's weight, perceptual roughness and unit normal in the
   // shading frame (the surface's normal before the base's normal map, or the coat's own map).
   float clearcoat = 0.0f;
@@ -69,10 +92,13 @@ class SurfaceBsdf final : public Bsdf {
  private:
   struct LobeChoice {
     // probabilities, summing to 1 (or all 0)
-    float coat = 0, specular = 0, diffuse = 0, transmission = 0;
+    float coat = 0, specular = 0, sheen = 0, diffuse = 0, transmission = 0;
   };
   LobeChoice choose(const glm::vec3& wo) const;
   Rgb transmission_magnitude(const glm::vec3& wo) const;
+  // The transmitted direction for the view w (its side: z > 0) and the impulse's magnitude; false
+  // when nothing is transmitted (no transmission, or total internal reflection).
+  bool transmitted(const glm::vec3& w, glm::vec3& wt, Rgb& magnitude) const;
   Rgb diffuse_f(const glm::vec3& wi, const glm::vec3& wo) const;
   // The base material (everything under the coat) for both directions above the base's horizon.
   Rgb base_f(const glm::vec3& wi, const glm::vec3& wo) const;
@@ -87,6 +113,10 @@ class SurfaceBsdf final : public Bsdf {
   glm::vec3 to_anisotropy(const glm::vec3& w) const;
   glm::vec3 from_anisotropy(const glm::vec3& w) const;
   float coat_blend(const glm::vec3& wo) const;
+  // The dielectric's and the metal's Fresnel at cosine c = |wo·h| (Schlick weight w), with the film.
+  Rgb dielectric_fresnel(float c, float w) const;
+  Rgb metal_fresnel(float c, float w) const;
+  bool has_sheen() const { return max_channel(p_.sheen_color) > 0.0f; }
 
   ShadingParams p_;
   float alpha_;

@@ -256,6 +256,11 @@ std::unique_ptr<Bsdf> build(const std::string& name, ParamReader& r) {
     p.anisotropy = r.number("anisotropy", 0.0f, kUnit);
     const float rotation = r.number("anisotropy_rotation", 0.0f, Range{-1e3f, 1e3f});
     p.anisotropy_direction = glm::vec2(std::cos(rotation), std::sin(rotation));
+    p.sheen_color = r.rgb("sheen_color", Rgb(0.0f), kUnit);
+    p.sheen_roughness = r.number("sheen_roughness", 0.0f, kUnit);
+    p.iridescence = r.number("iridescence", 0.0f, kUnit);
+    p.iridescence_ior = r.number("iridescence_ior", 1.3f, Range{1.0f, 1e3f});
+    p.iridescence_thickness = r.number("iridescence_thickness", 400.0f, Range{0.0f, 1e6f});
     p.clearcoat = r.number("clearcoat", 0.0f, kUnit);
     p.clearcoat_roughness = r.number("clearcoat_roughness", 0.0f, kUnit);
     return std::make_unique<SurfaceBsdf>(p);
@@ -306,6 +311,7 @@ std::string models_help() {
          "sheen: color=1 roughness=0.5 [0,1] (KHR_materials_sheen's Charlie lobe alone)\n"
          "gltf-surface: gltf's parameters with the glTF extensions' layers: ior=1.5 [1,1e3] specular=1\n"
          "  specular_color=1 diffuse_roughness=0 transmission=0 anisotropy=0 anisotropy_rotation=0 (radians)\n"
+         "  sheen_color=0 sheen_roughness=0 iridescence=0 [0,1] iridescence_ior=1.3 iridescence_thickness=400 (nm)\n"
          "  clearcoat=0 clearcoat_roughness=0 [0,1]\n"
          "measured: file=PATH (MERL binary layout)\n"
          "mirror: rho=1 [0,1]\n"

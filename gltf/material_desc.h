@@ -2,6 +2,7 @@
 // A glTF material as the renderer reads it (DESIGN.md, "Data through the house", step 1): the
 // factors, and for every texture slot a reference to a texture with its uv set and
 // KHR_texture_transform. Nothing here is decoded yet; textures are sampled at shading time.
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -75,6 +76,30 @@ struct MaterialDesc {
   TextureRef clearcoat_roughness_texture;
   TextureRef clearcoat_normal_texture;  // scale in TextureRef::scale
 
+  // KHR_materials_sheen: the sheen color (× texture RGB, sRGB-encoded) and roughness (× texture A).
+  Rgb sheen_color{0.0f};
+  TextureRef sheen_color_texture;
+  float sheen_roughness = 0.0f;
+  TextureRef sheen_roughness_texture;
+
+  // KHR_materials_iridescence: the film's weight (× texture R), ior, and thickness in nm: the
+  // maximum, or mix(minimum, maximum, texture G) with the thickness texture.
+  float iridescence = 0.0f;
+  TextureRef iridescence_texture;
+  float iridescence_ior = 1.3f;
+  float iridescence_thickness_min = 100.0f;
+  float iridescence_thickness_max = 400.0f;
+  TextureRef iridescence_thickness_texture;
+
+  // KHR_materials_volume: thicknessFactor > 0 makes the mesh the boundary of a volume (0: thin-walled).
+  // A path tracer meets the real thickness along its rays, so thickness and its texture only
+  // decide which; attenuationColor is the transmittance after attenuationDistance (render/medium_stack.h).
+  float thickness = 0.0f;
+  TextureRef thickness_texture;  // G
+  float attenuation_distance = std::numeric_limits<float>::infinity();
+  Rgb attenuation_color{1.0f};
+  bool has_volume() const { return thickness > 0.0f; }
+
   // KHR_materials_anisotropy: strength (× texture B), the rotation of the direction (radians,
   // counter-clockwise from the tangent), and the texture's direction (RG, [0, 1] → [−1, 1]).
   float anisotropy_strength = 0.0f;
@@ -96,7 +121,12 @@ struct MaterialDesc {
             {"KHR_materials_clearcoat.clearcoatTexture", &clearcoat_texture},
             {"KHR_materials_clearcoat.clearcoatRoughnessTexture", &clearcoat_roughness_texture},
             {"KHR_materials_clearcoat.clearcoatNormalTexture", &clearcoat_normal_texture},
-            {"KHR_materials_anisotropy.anisotropyTexture", &anisotropy_texture}};
+            {"KHR_materials_anisotropy.anisotropyTexture", &anisotropy_texture},
+            {"KHR_materials_volume.thicknessTexture", &thickness_texture},
+            {"KHR_materials_sheen.sheenColorTexture", &sheen_color_texture},
+            {"KHR_materials_sheen.sheenRoughnessTexture", &sheen_roughness_texture},
+            {"KHR_materials_iridescence.iridescenceTexture", &iridescence_texture},
+            {"KHR_materials_iridescence.iridescenceThicknessTexture", &iridescence_thickness_texture}};
   }
 
   // Whether the shading frame needs a tangent space (a normal map, the coat's normal map, or the

@@ -182,6 +182,17 @@ class MaterialReader {
     }
   }
 
+  // An extension's RGB factor `key` of `ext` (at JSON path where.key), each component in [0, hi].
+  Rgb rgb_or(const tinygltf::Value& ext, const char* key, const Rgb& fallback, double hi, const std::string& where) const {
+    if (!ext.Has(key)) return fallback;
+    const std::string wk = where + "." + key;
+    const auto& a = ext.Get(key);
+    if (!a.IsArray() || a.ArrayLen() != 3) fail(wk, "must be three numbers");
+    Rgb c;
+    for (int i = 0; i < 3; ++i) c[i] = checked(a.Get(i).IsNumber() ? a.Get(i).GetNumberAsDouble() : std::nan(""), 0, hi, wk);
+    return c;
+  }
+
   void read_material_extensions(const tinygltf::ExtensionMap& ext, MaterialDesc& d) const {
     const std::string w = d.where + ".extensions.";
     auto get = [&](const char* name) -> const tinygltf::Value* {
@@ -201,13 +212,7 @@ class MaterialReader {
       const std::string ws = w + "KHR_materials_specular";
       d.specular = checked(number_or(*e, "specularFactor", 1.0), 0, 1, ws + ".specularFactor");
       d.specular_texture = texture_ref(*e, "specularTexture", ws);
-      if (e->Has("specularColorFactor")) {
-        const auto& a = e->Get("specularColorFactor");
-        if (!a.IsArray() || a.ArrayLen() != 3) fail(ws + ".specularColorFactor", "must be three numbers");
-        for (int c = 0; c < 3; ++c)
-          d.specular_color[c] = checked(a.Get(c).IsNumber() ? a.Get(c).GetNumberAsDouble() : std::nan(""), 0, 1e30,
-                                        ws + ".specularColorFactor");
-      }
+      d.specular_color = rgb_or(*e, "specularColorFactor", Rgb(1.0f), 1e30, ws);
       d.specular_color_texture = texture_ref(*e, "specularColorTexture", ws);
     }
     if (const auto* e = get("KHR_materials_transmission")) {
@@ -234,6 +239,35 @@ class MaterialReader {
         if (!std::isfinite(scale)) fail(wc + ".clearcoatNormalTexture.scale", "is not finite");
         d.clearcoat_normal_texture.scale = float(scale);
       }
+    }
+    if (const auto* e = get("KHR_materials_volume")) {
+      const std::string wv = w + "KHR_materials_volume";
+      d.thickness = checked(number_or(*e, "thicknessFactor", 0.0), 0, 1e30, wv + ".thicknessFactor");
+      d.thickness_texture = texture_ref(*e, "thicknessTexture", wv);
+      if (e->Has("attenuationDistance")) {
+        const double ad = number_or(*e, "attenuationDistance", 0.0);
+        if (!(ad > 0.0) || !std::isfinite(ad)) fail(wv + ".attenuationDistance", "must be a finite number > 0");
+        d.attenuation_distance = float(ad);
+      }
+      d.attenuation_color = rgb_or(*e, "attenuationColor", Rgb(1.0f), 1.0, wv);
+    }
+    if (const auto* e = get("KHR_materials_sheen")) {
+      const std::string ws = w + "KHR_materials_sheen";
+      d.sheen_color = rgb_or(*e, "sheenColorFactor", Rgb(0.0f), 1.0, ws);
+      d.sheen_color_texture = texture_ref(*e, "sheenColorTexture", ws);
+      d.sheen_roughness = checked(number_or(*e, "sheenRoughnessFactor", 0.0), 0, 1, ws + ".sheenRoughnessFactor");
+      d.sheen_roughness_texture = texture_ref(*e, "sheenRoughnessTexture", ws);
+    }
+    if (const auto* e = get("KHR_materials_iridescence")) {
+      const std::string wi = w + "KHR_materials_iridescence";
+      d.iridescence = checked(number_or(*e, "iridescenceFactor", 0.0), 0, 1, wi + ".iridescenceFactor");
+      d.iridescence_texture = texture_ref(*e, "iridescenceTexture", wi);
+      d.iridescence_ior = checked(number_or(*e, "iridescenceIor", 1.3), 1, 1e3, wi + ".iridescenceIor");
+      d.iridescence_thickness_min =
+          checked(number_or(*e, "iridescenceThicknessMinimum", 100.0), 0, 1e6, wi + ".iridescenceThicknessMinimum");
+      d.iridescence_thickness_max =
+          checked(number_or(*e, "iridescenceThicknessMaximum", 400.0), 0, 1e6, wi + ".iridescenceThicknessMaximum");
+      d.iridescence_thickness_texture = texture_ref(*e, "iridescenceThicknessTexture", wi);
     }
     if (const auto* e = get("KHR_materials_anisotropy")) {
       const std::string wa = w + "KHR_materials_anisotropy";
@@ -272,7 +306,8 @@ const std::vector<std::string>& supported_extensions() {
       "KHR_materials_specular",       "KHR_materials_transmission",      "KHR_materials_diffuse_roughness",
       "KHR_materials_unlit",          "KHR_lights_punctual",             "KHR_mesh_quantization",
       "KHR_draco_mesh_compression",   "EXT_meshopt_compression",         "KHR_materials_variants",
-      "KHR_materials_clearcoat",      "KHR_materials_anisotropy"};
+      "KHR_materials_clearcoat",      "KHR_materials_anisotropy",        "KHR_materials_sheen",
+      "KHR_materials_iridescence",    "KHR_materials_volume"};
   return k;
 }
 

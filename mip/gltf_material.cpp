@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 
+#include "appearance/shading.h"
 #include "base/error.h"
 #include "gltf/material_reader.h"
 #include "textures/image.h"
@@ -49,6 +50,8 @@ std::string mip_unsupported(const MaterialDesc& m) {
     return "KHR_materials_diffuse_roughness (the MIP lobes are Lambertian)";
   if (m.clearcoat > 0.0f) return "KHR_materials_clearcoat (the MIP lobes have no coat)";
   if (m.anisotropy_strength > 0.0f) return "KHR_materials_anisotropy (the MIP lobes are isotropic)";
+  if (max_channel(m.sheen_color) > 0.0f) return "KHR_materials_sheen (the MIP lobes have no sheen)";
+  if (m.iridescence > 0.0f) return "KHR_materials_iridescence (the MIP lobes' Fresnel is Schlick's)";
   return {};
 }
 

@@ -6,6 +6,7 @@
 
 #include "appearance/microfacet_normal_mapping.h"
 #include "appearance/shading.h"
+#include "render/medium_stack.h"
 #include "render/surface.h"
 #include "appearance/gltf_surface_bsdf.h"
 
@@ -82,6 +83,7 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
   const Emitters* emitters = w.emitters && !w.emitters->empty() ? w.emitters : nullptr;
 
   LobeMixtureBsdf lobe_bsdf;  // the hit's mixture under a MIP filter, reassigned at every hit
+  MediumStack media;          // the volumes (KHR_materials_volume) the path is inside
   RayHit hit = first_hit;
   for (int depth = 0;; ++depth) {
     if (depth > 0) {
@@ -89,6 +91,8 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
       if (w.ray_log) w.ray_log->record(ray.origin, ray.dir, ray.tnear, ray.tfar, hit_seed, false);
       hit = w.bvh->intersect(ray.origin, ray.dir, ray.tnear, ray.tfar, hit_seed);
       ++out.rays;
+      // Beer–Lambert inside a volume, along the segment to the next boundary (ray.dir is unit).
+      if (hit.found() && !media.empty()) beta *= media.transmittance(hit.t);
     }
     if (!hit.found()) {
       if (env_on) {
@@ -187,7 +191,14 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
       const Frame surface_frame = microfacet ? geometric_frame(sp) : Frame{};
       apply_normal_map(sp, *w.textures);
       if (s.normal_mapping == NormalMapping::shading) keep_reflection_above(sp, -ray.dir);
-      const ShadingParams sh = shading_params(sp, *w.textures);
+      ShadingParams sh = shading_params(sp, *w.textures);
+      if (sp.material->has_volume()) {
+        // Refraction between the medium the path is in and the one beyond this boundary.
+        sh.thin_walled = false;
+        const float n_here = sp.front ? media.ior() : sp.material->ior;
+        const float n_beyond = sp.front ? sp.material->ior : media.ior_outside(sp.material);
+        sh.eta = n_beyond / n_here;
+      }
       if (depth == 0) {
         out.albedo = sh.base_color;
         out.normal = sp.shading.n;
@@ -270,6 +281,12 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
     if (bs.kind == SampleKind::finite && glm::dot(wi_world, sp.ng) <= 0.0f) break;
     beta *= bs.weight;
     if (!(max_channel(beta) > 0.0f) || !std::isfinite(max_channel(beta))) break;
+    // A path that crosses a volume's boundary enters its medium through the front face and leaves
+    // it through the back.
+    if (bs.kind == SampleKind::impulse && sp.material->has_volume() && glm::dot(wi_world, sp.ng) < 0.0f) {
+      if (sp.front) media.enter(sp.material);
+      else media.leave(sp.material);
+    }
     last_impulse = bs.kind == SampleKind::impulse;
     last_pdf = bs.pdf;
     ray = Ray{offset_origin(sp.p, sp.ng, wi_world, w.scene_extent), glm::normalize(wi_world), 0.0f, kInfinity};

@@ -93,15 +93,15 @@ SurfacePoint make_surface_point(const EmbreeScene& bvh, const RayHit& hit, const
 
 namespace {
 
-// The normal a tangent-space normal map `map` makes of the surface's interpolated normal at the hit
-// (glTF §3.9.3: +Y up, the map's scale), on the side the ray came from; sp.ns where the primitive
+// The normal a tangent-space normal map `map` makes of the unmapped normal `ns` at the hit (glTF
+// §3.9.3: +Y up, the map's scale), both on the side the ray came from; ns itself where the primitive
 // has no tangent space.
-glm::vec3 mapped_normal(const SurfacePoint& sp, const TextureRef& map, const TextureSet& textures) {
-  if (sp.geom->prim->tangents.empty()) return sp.ns;  // the loader makes tangents wherever a map is used
+glm::vec3 mapped_normal(const SurfacePoint& sp, const glm::vec3& ns, const TextureRef& map, const TextureSet& textures) {
+  if (sp.geom->prim->tangents.empty()) return ns;  // the loader makes tangents wherever a map is used
   const glm::vec3 rgb = glm::vec3(textures.lookup(map, sp.uv[map.uv_set()], false));
   const glm::vec3 t = decode_normal(rgb, map.scale);
   // The tangent frame of the front face (a back face mirrors the mapped normal with it).
-  const glm::vec3 n = sp.front ? sp.ns : -sp.ns;
+  const glm::vec3 n = sp.front ? ns : -ns;
   const glm::vec3 tan = normalize_or(sp.tangent - n * glm::dot(n, sp.tangent), sp.shading.s);
   const glm::vec3 b = sp.bitangent_sign * glm::cross(n, tan);
   glm::vec3 mapped = normalize_or(t.x * tan + t.y * b + t.z * n, n);
@@ -126,7 +126,7 @@ glm::vec2 tangent_space_direction(const SurfacePoint& sp, const glm::vec2& d) {
 void apply_normal_map(SurfacePoint& sp, const TextureSet& textures) {
   const MaterialDesc& m = *sp.material;
   if (!m.normal_texture.present()) return;
-  sp.shading = Frame::from_normal_tangent(mapped_normal(sp, m.normal_texture, textures), sp.shading.s);
+  sp.shading = Frame::from_normal_tangent(mapped_normal(sp, sp.shading.n, m.normal_texture, textures), sp.shading.s);
 }
 
 void keep_reflection_above(SurfacePoint& sp, const glm::vec3& wo) {
@@ -175,6 +175,23 @@ ShadingParams shading_params(const SurfacePoint& sp, const TextureSet& textures)
   sh.diffuse_roughness = m.diffuse_roughness;
   if (m.diffuse_roughness_texture.present()) sh.diffuse_roughness *= tex(m.diffuse_roughness_texture, false).r;
   sh.unlit = m.unlit;
+  // KHR_materials_sheen: color × texture RGB (sRGB-encoded), roughness × texture A.
+  sh.sheen_color = m.sheen_color;
+  if (m.sheen_color_texture.present()) sh.sheen_color *= Rgb(tex(m.sheen_color_texture, true));
+  if (max_channel(sh.sheen_color) > 0.0f) {
+    sh.sheen_roughness = m.sheen_roughness;
+    if (m.sheen_roughness_texture.present()) sh.sheen_roughness *= tex(m.sheen_roughness_texture, false).a;
+  }
+  // KHR_materials_iridescence: weight × texture R; thickness mix(min, max, texture G), or max.
+  sh.iridescence = m.iridescence;
+  if (m.iridescence_texture.present()) sh.iridescence *= tex(m.iridescence_texture, false).r;
+  if (sh.iridescence > 0.0f) {
+    sh.iridescence_ior = m.iridescence_ior;
+    sh.iridescence_thickness = m.iridescence_thickness_max;
+    if (m.iridescence_thickness_texture.present())
+      sh.iridescence_thickness = glm::mix(m.iridescence_thickness_min, m.iridescence_thickness_max,
+                                          tex(m.iridescence_thickness_texture, false).g);
+  }
   // KHR_materials_clearcoat: weight × texture R, roughness × texture G, the coat's own normal map
   // or, without one, the surface's normal before the base's map.
   sh.clearcoat = m.clearcoat;
@@ -183,7 +200,7 @@ ShadingParams shading_params(const SurfacePoint& sp, const TextureSet& textures)
     sh.clearcoat_roughness = m.clearcoat_roughness;
     if (m.clearcoat_roughness_texture.present()) sh.clearcoat_roughness *= tex(m.clearcoat_roughness_texture, false).g;
     const glm::vec3 nc =
-        m.clearcoat_normal_texture.present() ? mapped_normal(sp, m.clearcoat_normal_texture, textures) : sp.ns;
+        m.clearcoat_normal_texture.present() ? mapped_normal(sp, sp.ns, m.clearcoat_normal_texture, textures) : sp.ns;
     sh.clearcoat_normal = sp.shading.to_local(nc);
   }
   // KHR_materials_anisotropy: strength × texture B; the direction (cos, sin) of the rotation, or the

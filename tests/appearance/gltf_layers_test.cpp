@@ -1,6 +1,8 @@
 // The glTF surface BSDF's extension layers (appearance/gltf_surface_bsdf.h) against what the
-// extensions' texts write, transcribed here in double: KHR_materials_clearcoat's fresnel_coat and
-// KHR_materials_anisotropy's D_GGX_anisotropic / V_GGX_anisotropic; with closed forms (a coat over
+// extensions' texts write, transcribed here in double: KHR_materials_clearcoat's fresnel_coat,
+// KHR_materials_anisotropy's D_GGX_anisotropic / V_GGX_anisotropic, KHR_materials_sheen's albedo
+// scaling and KHR_materials_iridescence's Fresnel mix (the sheen lobe and the film's Fresnel are
+// appearance/sheen.h's and thin_film.h's, checked on their own); with closed forms (a coat over
 // black at normal incidence reflects its F0 = 0.04), properties (reciprocity where the
 // specification keeps it, energy) and χ² of the sampler against its density.
 #include <gtest/gtest.h>
@@ -11,6 +13,8 @@
 #include "appearance/gltf_surface_bsdf.h"
 #include "appearance/microfacet_distribution.h"
 #include "appearance/rng.h"
+#include "appearance/sheen.h"
+#include "appearance/thin_film.h"
 #include "chi2.h"
 #include "test_models.h"
 
@@ -235,6 +239,115 @@ TEST(Anisotropy, SamplerMatchesItsDensity) {
     const testing::Chi2Result r = testing::chi2_test(b, direction_deg(theta, 120.0));
     EXPECT_GT(r.p_value, 1e-3) << "θo " << theta << ": worst bin " << r.worst;
   }
+}
+
+// KHR_materials_sheen: sheen_brdf + material·min(1 − max(color)·E(wo), 1 − max(color)·E(wi)), the
+// material being the glTF BRDF; E from the sheen's own albedo table.
+TEST(Sheen, EvalIsTheAlbedoScaledLayerOverTheGltfBrdf) {
+  ShadingParams p;
+  p.base_color = Rgb(0.2f, 0.5f, 0.7f);
+  p.metallic = 0.2f;
+  p.roughness = 0.6f;
+  p.sheen_color = Rgb(0.9f, 0.4f, 0.3f);
+  p.sheen_roughness = 0.5f;
+  const SurfaceBsdf b(p);
+  const GltfParams g{p.base_color, p.metallic, p.roughness};
+  for (const glm::vec3& wi : directions())
+    for (const glm::vec3& wo : directions()) {
+      const double scale = std::min(1.0 - 0.9 * sheen_albedo(wo.z, 0.5f), 1.0 - 0.9 * sheen_albedo(wi.z, 0.5f));
+      const dvec3 want = dvec3(sheen_brdf(wi, wo, p.sheen_color, 0.5f)) + scale * dvec3(gltf_eval(g, wi, wo));
+      const dvec3 got(b.eval(wi, wo));
+      for (int c = 0; c < 3; ++c) EXPECT_LT(rel_err(got[c], want[c]), 2e-5) << "channel " << c;
+    }
+}
+
+// Sheen over a white Lambertian base keeps a white furnace at or below one; its sampler matches
+// its density.
+TEST(Sheen, WhiteFurnaceAndSampler) {
+  ShadingParams p;
+  p.base_color = Rgb(1.0f);
+  p.specular = 0.0f;
+  p.sheen_color = Rgb(1.0f);
+  p.sheen_roughness = 0.4f;
+  const SurfaceBsdf b(p);
+  for (double theta : {0.0, 60.0, 85.0}) {
+    double se = 0;
+    EXPECT_LE(albedo(b, direction_deg(theta, 0.0), 200000, 13, &se), 1.0 + 0.005 + 3 * se) << theta;
+  }
+  for (double theta : {30.0, 75.0}) {
+    const testing::Chi2Result r = testing::chi2_test(b, direction_deg(theta, 0.0));
+    EXPECT_GT(r.p_value, 1e-3) << "θo " << theta << ": worst bin " << r.worst;
+  }
+}
+
+// KHR_materials_iridescence: both Fresnel terms become mix(Schlick, F_film, iridescence), the film
+// at |wo·h|, on the dielectric's F0 from ior and on the metal's base color.
+TEST(Iridescence, EvalMixesTheFilmIntoBothFresnelTerms) {
+  ShadingParams p;
+  p.base_color = Rgb(0.9f, 0.6f, 0.3f);
+  p.metallic = 0.5f;
+  p.roughness = 0.4f;
+  p.iridescence = 0.7f;
+  p.iridescence_ior = 1.6f;
+  p.iridescence_thickness = 350.0f;
+  const SurfaceBsdf b(p);
+  const Rgb f0(0.04f);
+  for (const glm::vec3& wi : directions())
+    for (const glm::vec3& wo : directions()) {
+      const dvec3 h = glm::normalize(dvec3(wi) + dvec3(wo));
+      const double c = std::abs(glm::dot(dvec3(wo), h)), w = std::pow(1.0 - c, 5.0);
+      const double s = ggx_vd(0.16, {0, 0, 1}, dvec3(wi), dvec3(wo));
+      const dvec3 film_d(iridescence_fresnel(float(c), 350.0f, 1.6f, f0));
+      const dvec3 film_m(iridescence_fresnel(float(c), 350.0f, 1.6f, p.base_color));
+      const dvec3 fd = glm::mix(dvec3(0.04 + 0.96 * w), film_d, 0.7);
+      const dvec3 base(p.base_color);
+      const dvec3 fm = glm::mix(base + (1.0 - base) * w, film_m, 0.7);
+      const double fmax = std::max(fd.x, std::max(fd.y, fd.z));
+      const dvec3 dielectric = (1.0 - fmax) * base / kPiD + fd * s;
+      const dvec3 want = glm::mix(dielectric, s * fm, 0.5);
+      const dvec3 got(b.eval(wi, wo));
+      for (int k = 0; k < 3; ++k) EXPECT_LT(rel_err(got[k], want[k]), 1e-4) << "channel " << k;
+    }
+  // With no film thickness the film is the plain Fresnel: the surface is the glTF BRDF.
+  p.iridescence_thickness = 0.0f;
+  const SurfaceBsdf none(p);
+  const GltfParams g{p.base_color, p.metallic, p.roughness};
+  for (const glm::vec3& wi : directions())
+    for (const glm::vec3& wo : directions())
+      for (int k = 0; k < 3; ++k) EXPECT_LT(rel_err(none.eval(wi, wo)[k], gltf_eval(g, wi, wo)[k]), 1e-5);
+}
+
+// KHR_materials_volume's refraction: Snell's direction with radiance scaled by (1 − F)/η² entering
+// glass (η = 1.5), and, leaving it (η = 1/1.5) past the critical angle, no transmission: the
+// specular lobe's Fresnel is 1 and reflects everything (a smooth white dielectric's albedo is its
+// GGX lobe's, near 1).
+TEST(Volume, RefractsByTheIorsRatioWithTotalInternalReflection) {
+  ShadingParams p;
+  p.base_color = Rgb(1.0f);
+  p.roughness = 0.0f;
+  p.transmission = 1.0f;
+  p.thin_walled = false;
+  p.eta = 1.5f;
+  const glm::vec3 wo = direction_deg(45.0, 30.0);
+  const Impulses in = SurfaceBsdf(p).impulses_in(wo);
+  ASSERT_EQ(in.count, 1);
+  const glm::vec3 wt = in.items[0].direction;
+  const double sin_t = std::sin(kPiD / 4) / 1.5;
+  EXPECT_NEAR(wt.z, -std::sqrt(1 - sin_t * sin_t), 1e-6);
+  EXPECT_NEAR(std::atan2(wt.y, wt.x), std::atan2(-wo.y, -wo.x), 1e-6);  // the plane of incidence
+  const double fr = 0.04 + 0.96 * std::pow(1 - std::cos(kPiD / 4), 5.0);
+  EXPECT_NEAR(in.items[0].magnitude.x, (1 - fr) / 2.25, 1e-6);
+  // Light leaving the same path backwards (impulses_out from below) crosses with the same magnitude.
+  const Impulses out = SurfaceBsdf(p).impulses_out(wt);
+  ASSERT_EQ(out.count, 1);
+  EXPECT_NEAR(glm::length(out.items[0].direction - wo), 0.0, 1e-5);
+
+  p.eta = 1.0f / 1.5f;  // inside, looking out
+  const double critical = std::asin(1.0 / 1.5) * 180 / kPiD;  // 41.8°
+  EXPECT_EQ(SurfaceBsdf(p).impulses_in(direction_deg(critical + 2, 0.0)).count, 0);
+  EXPECT_EQ(SurfaceBsdf(p).impulses_in(direction_deg(critical - 2, 0.0)).count, 1);
+  double se = 0;
+  EXPECT_NEAR(albedo(SurfaceBsdf(p), direction_deg(60.0, 0.0), 20000, 17, &se), 1.0, 0.01);
 }
 
 }  // namespace

@@ -274,10 +274,10 @@ TEST(GltfLoader, UnsupportedRequiredExtension) {
 TEST(GltfLoader, UnsupportedOptionalExtensionWarnsOnce) {
   TempDir dir;
   GltfQuad q;
-  q.top_extra = R"(, "extensionsUsed": ["KHR_materials_sheen", "KHR_texture_transform"])";
+  q.top_extra = R"(, "extensionsUsed": ["EXT_lights_image_based", "KHR_texture_transform"])";
   const Scene s = load_gltf(dir.write("e.gltf", q.json()));
   ASSERT_EQ(s.warnings.size(), 1u);
-  EXPECT_NE(s.warnings[0].find("KHR_materials_sheen"), std::string::npos);
+  EXPECT_NE(s.warnings[0].find("EXT_lights_image_based"), std::string::npos);
 }
 
 TEST(GltfLoader, BadAlphaMode) {
@@ -477,7 +477,7 @@ TEST(GltfLoader, MaterialExtensionsAndTextureTransform) {
   EXPECT_EQ(s.images[0].pixels.width, 1);
 }
 
-TEST(GltfLoader, ReadsClearcoatAndAnisotropy) {
+TEST(GltfLoader, ReadsTheLayerExtensions) {
   TempDir dir;
   GltfQuad q;
   q.texcoords = {0, 0, 1, 0, 1, 1, 0, 1};
@@ -487,11 +487,18 @@ TEST(GltfLoader, ReadsClearcoatAndAnisotropy) {
        "KHR_materials_clearcoat": {"clearcoatFactor": 0.7, "clearcoatRoughnessFactor": 0.2,
          "clearcoatTexture": {"index": 0}, "clearcoatNormalTexture": {"index": 0, "scale": 0.5}},
        "KHR_materials_anisotropy": {"anisotropyStrength": 0.6, "anisotropyRotation": 1.25,
-         "anisotropyTexture": {"index": 0}}}},
-     {"extensions": {"KHR_materials_clearcoat": {}, "KHR_materials_anisotropy": {}}}])";
+         "anisotropyTexture": {"index": 0}},
+       "KHR_materials_sheen": {"sheenColorFactor": [0.5, 0.25, 1], "sheenRoughnessFactor": 0.3,
+         "sheenRoughnessTexture": {"index": 0}},
+       "KHR_materials_iridescence": {"iridescenceFactor": 0.8, "iridescenceIor": 1.4,
+         "iridescenceThicknessMinimum": 50, "iridescenceThicknessMaximum": 600,
+         "iridescenceThicknessTexture": {"index": 0}}}},
+     {"extensions": {"KHR_materials_clearcoat": {}, "KHR_materials_anisotropy": {}, "KHR_materials_sheen": {},
+       "KHR_materials_iridescence": {}}}])";
   q.primitive_extra = R"(, "material": 0)";
   q.top_extra = R"(, "textures": [{"source": 0}], "images": [{"uri": "px.png"}],
-      "extensionsUsed": ["KHR_materials_clearcoat", "KHR_materials_anisotropy"])";
+      "extensionsUsed": ["KHR_materials_clearcoat", "KHR_materials_anisotropy", "KHR_materials_sheen",
+                         "KHR_materials_iridescence"])";
   const Scene s = load_gltf(dir.write("m.gltf", q.json()));
   EXPECT_TRUE(s.warnings.empty());
   ASSERT_EQ(s.materials.size(), 2u);
@@ -504,15 +511,29 @@ TEST(GltfLoader, ReadsClearcoatAndAnisotropy) {
   EXPECT_FLOAT_EQ(m.anisotropy_strength, 0.6f);
   EXPECT_FLOAT_EQ(m.anisotropy_rotation, 1.25f);
   EXPECT_TRUE(m.anisotropy_texture.present());
+  EXPECT_EQ(m.sheen_color, Rgb(0.5f, 0.25f, 1.0f));
+  EXPECT_FLOAT_EQ(m.sheen_roughness, 0.3f);
+  EXPECT_TRUE(m.sheen_roughness_texture.present());
+  EXPECT_FALSE(m.sheen_color_texture.present());
+  EXPECT_FLOAT_EQ(m.iridescence, 0.8f);
+  EXPECT_FLOAT_EQ(m.iridescence_ior, 1.4f);
+  EXPECT_FLOAT_EQ(m.iridescence_thickness_min, 50.0f);
+  EXPECT_FLOAT_EQ(m.iridescence_thickness_max, 600.0f);
+  EXPECT_TRUE(m.iridescence_thickness_texture.present());
   // A normal map, a coat normal map or anisotropy needs a tangent space: the loader makes one.
   EXPECT_FALSE(s.meshes[0].primitives[0].tangents.empty());
   // The extensions' defaults (their schemas): no coat, no anisotropy.
   EXPECT_FLOAT_EQ(s.materials[1].clearcoat, 0.0f);
   EXPECT_FLOAT_EQ(s.materials[1].clearcoat_roughness, 0.0f);
   EXPECT_FLOAT_EQ(s.materials[1].anisotropy_strength, 0.0f);
+  EXPECT_EQ(s.materials[1].sheen_color, Rgb(0.0f));
+  EXPECT_FLOAT_EQ(s.materials[1].iridescence, 0.0f);
+  EXPECT_FLOAT_EQ(s.materials[1].iridescence_ior, 1.3f);
+  EXPECT_FLOAT_EQ(s.materials[1].iridescence_thickness_min, 100.0f);
+  EXPECT_FLOAT_EQ(s.materials[1].iridescence_thickness_max, 400.0f);
 }
 
-TEST(GltfLoader, ClearcoatAndAnisotropyOutOfRange) {
+TEST(GltfLoader, LayerExtensionsOutOfRange) {
   TempDir dir;
   GltfQuad q;
   q.primitive_extra = R"(, "material": 0)";
@@ -522,6 +543,10 @@ TEST(GltfLoader, ClearcoatAndAnisotropyOutOfRange) {
   expect_error(dir.write("a.gltf", q.json()), "materials[0].extensions.KHR_materials_anisotropy.anisotropyStrength");
   q.materials = R"([{"extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 1, "clearcoatTexture": {"index": 3}}}}])";
   expect_error(dir.write("t.gltf", q.json()), "KHR_materials_clearcoat.clearcoatTexture.index");
+  q.materials = R"([{"extensions": {"KHR_materials_sheen": {"sheenColorFactor": [0.5, 2, 0]}}}])";
+  expect_error(dir.write("s.gltf", q.json()), "KHR_materials_sheen.sheenColorFactor");
+  q.materials = R"([{"extensions": {"KHR_materials_iridescence": {"iridescenceIor": 0.5}}}])";
+  expect_error(dir.write("i.gltf", q.json()), "KHR_materials_iridescence.iridescenceIor");
 }
 
 TEST(GltfLoader, FactorOutOfRange) {

@@ -113,5 +113,66 @@ TEST(LayeredRender, AnisotropyDirectionFollowsTheTangentAndRotation) {
   }
 }
 
+// A closed box with flat, outward faces: the boundary of a volume.
+void add_box(Scene& s, int material, const glm::vec3& half) {
+  MeshPrimitive p;
+  for (int axis = 0; axis < 3; ++axis)
+    for (const float sign : {1.0f, -1.0f}) {
+      glm::vec3 n(0.0f), u(0.0f);
+      n[axis] = sign;
+      u[(axis + 1) % 3] = 1.0f;
+      const glm::vec3 v = glm::cross(n, u);  // u × v = n: counter-clockwise seen from outside
+      const glm::vec3 c = n * half[axis];
+      const float hu = half[(axis + 1) % 3], hv = glm::dot(glm::abs(v), half);
+      const auto base = std::uint32_t(p.positions.size());
+      for (const glm::vec2 k : {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1), glm::vec2(-1, 1)}) {
+        p.positions.push_back(c + k.x * hu * u + k.y * hv * v);
+        p.normals.push_back(n);
+      }
+      for (const std::uint32_t i : {0u, 1u, 2u, 0u, 2u, 3u}) p.indices.push_back(base + i);
+    }
+  p.material = material;
+  p.where = "test box";
+  Mesh m;
+  m.primitives.push_back(std::move(p));
+  s.meshes.push_back(std::move(m));
+  s.instances.push_back({int(s.meshes.size()) - 1, int(s.instances.size()), glm::dmat4(1.0)});
+}
+
+// KHR_materials_volume: a smooth glass slab (ior 1.5, transmission 1) of thickness t between the
+// camera and an emitter of radiance Le, seen head-on, black elsewhere. With attenuationColor c at
+// attenuationDistance d the inside keeps e^(−τ), τ = −ln(c)·t/d, and the slab lets through
+//   Le·(1 − F)²·e^(−τ) / (1 − F²·e^(−2τ)),  F = ((1.5 − 1)/(1.5 + 1))² = 0.04,
+// the inter-reflections summed in closed form (the light reflected toward the camera's side meets
+// the black sky).
+TEST(LayeredRender, GlassSlabTransmitsBeerLambertAndFresnel) {
+  const float t = 0.5f;
+  for (const float c : {1.0f, 0.5f}) {
+    Scene s;
+    MaterialDesc glass;
+    glass.base_color = Rgb(1.0f);
+    glass.metallic = 0.0f;
+    glass.roughness = 0.0f;
+    glass.transmission = 1.0f;
+    glass.thickness = t;
+    glass.attenuation_distance = 0.5f;
+    glass.attenuation_color = Rgb(c);
+    s.materials.push_back(glass);
+    MaterialDesc light = lambertian(Rgb(0.0f));
+    light.emissive = Rgb(1.0f);
+    s.materials.push_back(light);
+    add_box(s, 0, {4.0f, 4.0f, 0.5f * t});
+    add_quad(s, 1, glm::translate(glm::dmat4(1.0), glm::dvec3(0, 0, -2)), 20.0f);
+    s.cameras.push_back(ortho_camera({0, 0, 5}, {0, 0, 0}, 1.0f));
+    SceneSetup setup;
+    setup.width = setup.height = 8;
+    setup.env = "0,0,0";
+    const Image im = render_scene(std::move(s), setup, 256).radiance();
+    const double f = 0.04, tau = -std::log(double(c)) * t / 0.5;
+    const double want = (1 - f) * (1 - f) * std::exp(-tau) / (1 - f * f * std::exp(-2 * tau));
+    EXPECT_NEAR(mean_luma(im), want, 0.01 * want) << "attenuationColor " << c;
+  }
+}
+
 }  // namespace
 }  // namespace svbrdf
