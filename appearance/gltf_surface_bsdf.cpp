@@ -34,6 +34,7 @@ SurfaceBsdf::SurfaceBsdf(const ShadingParams& p) : p_(p) {
   p_.specular = std::clamp(p.specular, 0.0f, 1.0f);
   p_.anisotropy = std::clamp(p.anisotropy, 0.0f, 1.0f);
   p_.clearcoat = std::clamp(p.clearcoat, 0.0f, 1.0f);
+  p_.diffuse_transmission = std::clamp(p.diffuse_transmission, 0.0f, 1.0f);
   // KHR_materials_anisotropy: the direction of increased roughness gets mix(α, 1, strength²).
   anisotropic_ = p_.anisotropy > 0.0f;
   const float s2 = p_.anisotropy * p_.anisotropy;
@@ -129,17 +130,30 @@ Rgb SurfaceBsdf::base_f(const glm::vec3& wi, const glm::vec3& wo) const {
   const float s = specular_vd(wi, wo, h);
   const float c = std::abs(glm::dot(wo, h));
   const float w = schlick_weight(c);
-  const Rgb base = (1.0f - p_.transmission) * diffuse_f(wi, wo);
+  Rgb base = (1.0f - p_.transmission) * diffuse_f(wi, wo);
+  if (p_.diffuse_transmission > 0.0f) base *= 1.0f - p_.diffuse_transmission;
   const Rgb material = gltf_layers(metal_fresnel(c, w), p_.metallic, base, dielectric_fresnel(c, w), p_.specular, s);
   if (!has_sheen()) return material;
   return sheen_brdf(wi, wo, p_.sheen_color, p_.sheen_roughness) +
          material * sheen_albedo_scaling(wi, wo, p_.sheen_color, p_.sheen_roughness);
 }
 
+Rgb SurfaceBsdf::diffuse_transmission_f(const glm::vec3& wi, const glm::vec3& wo) const {
+  const float c = std::min(wo.z, 1.0f);
+  const Rgb fr = dielectric_fresnel(c, schlick_weight(c));
+  Rgb f = (1.0f - coat_blend(wo)) * (1.0f - p_.metallic) * (1.0f - p_.transmission) * p_.diffuse_transmission *
+          (1.0f - p_.specular * max_channel(fr)) * p_.diffuse_transmission_color * kInvPi;
+  if (has_sheen()) f *= sheen_albedo_scaling(glm::vec3(wi.x, wi.y, -wi.z), wo, p_.sheen_color, p_.sheen_roughness);
+  return f;
+}
+
 Rgb SurfaceBsdf::eval(const glm::vec3& wi, const glm::vec3& wo) const {
-  // The whole BSDF, coat included, vanishes below the shading horizon: the integrator's cosine is
-  // the shading normal's, and a coat normal tilted off it would otherwise reflect with a negative one.
-  if (wi.z <= 0.0f || wo.z <= 0.0f) return Rgb(0.0f);
+  // The whole BSDF, coat included, vanishes below the shading horizon but for the diffuse
+  // transmission: the integrator's cosine is the shading normal's, and a coat normal tilted off it
+  // would otherwise reflect with a negative one.
+  if (wo.z <= 0.0f) return Rgb(0.0f);
+  if (wi.z < 0.0f && transmits_finitely()) return diffuse_transmission_f(wi, wo);
+  if (wi.z <= 0.0f) return Rgb(0.0f);
   if (p_.clearcoat <= 0.0f) return base_f(wi, wo);
   const float blend = coat_blend(wo);
   return blend * coat_vd(wi, wo) + (1.0f - blend) * base_f(wi, wo);
@@ -209,15 +223,23 @@ SurfaceBsdf::LobeChoice SurfaceBsdf::choose(const glm::vec3& wo) const {
     c.specular = under * (p_.metallic + (1.0f - p_.metallic) * spec_d);
     c.diffuse = rest * (1.0f - p_.transmission);
     c.transmission = rest * p_.transmission;
+    if (transmits_finitely()) {
+      c.diffuse *= 1.0f - p_.diffuse_transmission;
+      c.diffuse_transmission = under * (1.0f - p_.metallic) * (1.0f - spec_d) * (1.0f - p_.transmission) *
+                               p_.diffuse_transmission * max_channel(p_.diffuse_transmission_color);
+    }
   }
-  const float sum = c.coat + c.specular + c.sheen + c.diffuse + c.transmission;
+  const float sum = c.coat + c.specular + c.sheen + c.diffuse + c.diffuse_transmission + c.transmission;
   if (!(sum > 0.0f)) return LobeChoice{};
-  c.coat /= sum, c.specular /= sum, c.sheen /= sum, c.diffuse /= sum, c.transmission /= sum;
+  c.coat /= sum, c.specular /= sum, c.sheen /= sum, c.diffuse /= sum, c.diffuse_transmission /= sum;
+  c.transmission /= sum;
   return c;
 }
 
 float SurfaceBsdf::pdf(const glm::vec3& wi, const glm::vec3& wo) const {
-  if (wi.z <= 0.0f || wo.z <= 0.0f) return 0.0f;
+  if (wo.z <= 0.0f) return 0.0f;
+  if (wi.z < 0.0f) return transmits_finitely() ? choose(wo).diffuse_transmission * -wi.z * kInvPi : 0.0f;
+  if (wi.z == 0.0f) return 0.0f;
   const LobeChoice c = choose(wo);
   float p = c.diffuse * wi.z * kInvPi;
   if (c.specular > 0.0f) p += c.specular * specular_pdf(wi, wo);
@@ -231,6 +253,7 @@ BsdfSample SurfaceBsdf::sample(const glm::vec3& wo, const SampleU& u) const {
   const LobeChoice c = choose(wo);
   const glm::vec2 uv(u.y, u.z);
   glm::vec3 wi;
+  bool transmitting = false;
   if (u.x < c.transmission) {
     Rgb m;
     if (!transmitted(wo, out.wi, m)) return out;
@@ -247,17 +270,22 @@ BsdfSample SurfaceBsdf::sample(const glm::vec3& wo, const SampleU& u) const {
     wi = reflect_about(wo, sample_specular_normal(wo, uv));
   } else if (u.x < c.transmission + c.coat + c.specular + c.sheen) {
     wi = sample_sheen(uv);
-  } else if (c.diffuse > 0.0f) {
+  } else if (u.x < c.transmission + c.coat + c.specular + c.sheen + c.diffuse) {
     wi = sample_cosine_hemisphere(uv);
+  } else if (c.diffuse_transmission > 0.0f) {
+    wi = sample_cosine_hemisphere(uv);
+    wi.z = -wi.z;
+    transmitting = true;
   } else {
     return out;
   }
-  if (wi.z <= 0.0f) return out;  // below the horizon: absorbed
+  // A reflection below the horizon is absorbed (pdf counts only the transmission there).
+  if (transmitting ? !(wi.z < 0.0f) : !(wi.z > 0.0f)) return out;
   const float p = pdf(wi, wo);
   if (!(p > 0.0f)) return out;
   out.wi = wi;
   out.pdf = p;
-  out.weight = eval(wi, wo) * (wi.z / p);
+  out.weight = eval(wi, wo) * (std::abs(wi.z) / p);
   out.kind = SampleKind::finite;
   return out;
 }

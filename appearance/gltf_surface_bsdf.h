@@ -12,6 +12,9 @@
 //   KHR_materials_transmission — a fraction `transmission` of base becomes a transmission impulse;
 //   KHR_materials_anisotropy — the specular V·D of both the dielectric and the metal becomes
 //     anisotropic GGX: α along the anisotropy direction mix(α, 1, strength²), α across it;
+//   KHR_materials_diffuse_transmission — base becomes mix(diffuse_brdf, diffuse_btdf,
+//     diffuseTransmission), the BTDF color/π for wi on the other side, weighed by the dielectric's
+//     1 − specular·max(fr) with fr at the normal (the pair has no half vector);
 //   KHR_materials_iridescence — both Fresnel terms (the dielectric's fr and the metal's Schlick on
 //     base_color) become mix(F_schlick, F_thin_film, iridescence) (appearance/thin_film.h), the
 //     film in air (outside ior 1);
@@ -52,6 +55,10 @@ struct ShadingParams {
   // the shading frame's x–y plane (the texture's direction, rotated by anisotropyRotation).
   float anisotropy = 0.0f;
   glm::vec2 anisotropy_direction{1.0f, 0.0f};
+  // KHR_materials_diffuse_transmission: the share of the diffuse base that crosses the surface and
+  // leaves on the other side as Lambertian (color/π), and its linear color.
+  float diffuse_transmission = 0.0f;
+  Rgb diffuse_transmission_color{1.0f};
   // KHR_materials_sheen: the linear sheen color and its perceptual roughness.
   Rgb sheen_color{0.0f};
   float sheen_roughness = 0.0f;
@@ -88,11 +95,13 @@ class SurfaceBsdf final : public Bsdf {
   float pdf(const glm::vec3& wi, const glm::vec3& wo) const override;
 
   bool has_impulse() const { return transmission_weight_ > 0.0f; }
+  // Whether eval can be non-zero for wi on the other side of the surface (diffuse transmission).
+  bool transmits_finitely() const { return p_.diffuse_transmission > 0.0f && p_.metallic < 1.0f; }
 
  private:
   struct LobeChoice {
     // probabilities, summing to 1 (or all 0)
-    float coat = 0, specular = 0, sheen = 0, diffuse = 0, transmission = 0;
+    float coat = 0, specular = 0, sheen = 0, diffuse = 0, diffuse_transmission = 0, transmission = 0;
   };
   LobeChoice choose(const glm::vec3& wo) const;
   Rgb transmission_magnitude(const glm::vec3& wo) const;
@@ -100,6 +109,8 @@ class SurfaceBsdf final : public Bsdf {
   // when nothing is transmitted (no transmission, or total internal reflection).
   bool transmitted(const glm::vec3& w, glm::vec3& wt, Rgb& magnitude) const;
   Rgb diffuse_f(const glm::vec3& wi, const glm::vec3& wo) const;
+  // The diffuse BTDF term for wi below (wi.z < 0) and wo above, all layers applied.
+  Rgb diffuse_transmission_f(const glm::vec3& wi, const glm::vec3& wo) const;
   // The base material (everything under the coat) for both directions above the base's horizon.
   Rgb base_f(const glm::vec3& wi, const glm::vec3& wo) const;
   // The coat's V·D (no Fresnel) and the density of its sampler, in the shading frame.

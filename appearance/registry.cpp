@@ -253,6 +253,8 @@ std::unique_ptr<Bsdf> build(const std::string& name, ParamReader& r) {
     p.specular_color = r.rgb("specular_color", Rgb(1.0f), kNonNegative);
     p.diffuse_roughness = r.number("diffuse_roughness", 0.0f, kUnit);
     p.transmission = r.number("transmission", 0.0f, kUnit);
+    p.diffuse_transmission = r.number("diffuse_transmission", 0.0f, kUnit);
+    p.diffuse_transmission_color = r.rgb("diffuse_transmission_color", Rgb(1.0f), kUnit);
     p.anisotropy = r.number("anisotropy", 0.0f, kUnit);
     const float rotation = r.number("anisotropy_rotation", 0.0f, Range{-1e3f, 1e3f});
     p.anisotropy_direction = glm::vec2(std::cos(rotation), std::sin(rotation));
@@ -310,7 +312,8 @@ std::string models_help() {
          "gltf: base_color=0.8 metallic=0 roughness=0.5 [0,1]\n"
          "sheen: color=1 roughness=0.5 [0,1] (KHR_materials_sheen's Charlie lobe alone)\n"
          "gltf-surface: gltf's parameters with the glTF extensions' layers: ior=1.5 [1,1e3] specular=1\n"
-         "  specular_color=1 diffuse_roughness=0 transmission=0 anisotropy=0 anisotropy_rotation=0 (radians)\n"
+         "  specular_color=1 diffuse_roughness=0 transmission=0 diffuse_transmission=0 diffuse_transmission_color=1\n"
+         "  anisotropy=0 anisotropy_rotation=0 (radians)\n"
          "  sheen_color=0 sheen_roughness=0 iridescence=0 [0,1] iridescence_ior=1.3 iridescence_thickness=400 (nm)\n"
          "  clearcoat=0 clearcoat_roughness=0 [0,1]\n"
          "measured: file=PATH (MERL binary layout)\n"

@@ -91,6 +91,13 @@ struct MaterialDesc {
   float iridescence_thickness_max = 400.0f;
   TextureRef iridescence_thickness_texture;
 
+  // KHR_materials_diffuse_transmission: the share of the diffuse base transmitted (× texture A) and
+  // its color (× texture RGB, sRGB-encoded).
+  float diffuse_transmission = 0.0f;
+  TextureRef diffuse_transmission_texture;
+  Rgb diffuse_transmission_color{1.0f};
+  TextureRef diffuse_transmission_color_texture;
+
   // KHR_materials_volume: thicknessFactor > 0 makes the mesh the boundary of a volume (0: thin-walled).
   // A path tracer meets the real thickness along its rays, so thickness and its texture only
   // decide which; attenuationColor is the transmittance after attenuationDistance (render/medium_stack.h).
@@ -123,6 +130,8 @@ struct MaterialDesc {
             {"KHR_materials_clearcoat.clearcoatNormalTexture", &clearcoat_normal_texture},
             {"KHR_materials_anisotropy.anisotropyTexture", &anisotropy_texture},
             {"KHR_materials_volume.thicknessTexture", &thickness_texture},
+            {"KHR_materials_diffuse_transmission.diffuseTransmissionTexture", &diffuse_transmission_texture},
+            {"KHR_materials_diffuse_transmission.diffuseTransmissionColorTexture", &diffuse_transmission_color_texture},
             {"KHR_materials_sheen.sheenColorTexture", &sheen_color_texture},
             {"KHR_materials_sheen.sheenRoughnessTexture", &sheen_roughness_texture},
             {"KHR_materials_iridescence.iridescenceTexture", &iridescence_texture},

@@ -240,6 +240,14 @@ class MaterialReader {
         d.clearcoat_normal_texture.scale = float(scale);
       }
     }
+    if (const auto* e = get("KHR_materials_diffuse_transmission")) {
+      const std::string wd = w + "KHR_materials_diffuse_transmission";
+      d.diffuse_transmission =
+          checked(number_or(*e, "diffuseTransmissionFactor", 0.0), 0, 1, wd + ".diffuseTransmissionFactor");
+      d.diffuse_transmission_texture = texture_ref(*e, "diffuseTransmissionTexture", wd);
+      d.diffuse_transmission_color = rgb_or(*e, "diffuseTransmissionColorFactor", Rgb(1.0f), 1.0, wd);
+      d.diffuse_transmission_color_texture = texture_ref(*e, "diffuseTransmissionColorTexture", wd);
+    }
     if (const auto* e = get("KHR_materials_volume")) {
       const std::string wv = w + "KHR_materials_volume";
       d.thickness = checked(number_or(*e, "thicknessFactor", 0.0), 0, 1e30, wv + ".thicknessFactor");
@@ -307,7 +315,7 @@ const std::vector<std::string>& supported_extensions() {
       "KHR_materials_unlit",          "KHR_lights_punctual",             "KHR_mesh_quantization",
       "KHR_draco_mesh_compression",   "EXT_meshopt_compression",         "KHR_materials_variants",
       "KHR_materials_clearcoat",      "KHR_materials_anisotropy",        "KHR_materials_sheen",
-      "KHR_materials_iridescence",    "KHR_materials_volume"};
+      "KHR_materials_iridescence",    "KHR_materials_volume",            "KHR_materials_diffuse_transmission"};
   return k;
 }
 

@@ -155,10 +155,13 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
     float env_pdf = 0.0f;
     Rgb env_radiance(0.0f);
     bool env_visible = false;
+    // A diffusely transmitting material (KHR_materials_diffuse_transmission; shaded at level 0, never
+    // by MIP lobes) is lit from both sides of the surface.
+    const bool lit_from_behind = !mip && sp.material->diffuse_transmission > 0.0f;
     if (scatters) {
       if (env_on && s.light_sampling != LightSampling::bsdf) {
         env_dir = w.environment.sample({u1(), u1(), u1()}, env_pdf, &env_radiance);
-        env_visible = env_pdf > 0.0f && glm::dot(env_dir, sp.ng) > 0.0f &&
+        env_visible = env_pdf > 0.0f && (lit_from_behind || glm::dot(env_dir, sp.ng) > 0.0f) &&
                       !occluded(offset_origin(sp.p, sp.ng, env_dir, w.scene_extent), env_dir, kInfinity);
       } else {
         u1(), u1(), u1();  // keep the random sequence's layout the same across strategies
@@ -237,39 +240,52 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
 
     const glm::vec3 wo = frame.to_local(-ray.dir);
 
+    // The shading cosine of a light's direction, or 0 where the light cannot count: behind the
+    // geometric surface unless the material transmits, and on the other side of the shading
+    // normal than of the geometric one (an interpolated normal must not turn reflection into
+    // transmission or back).
+    auto light_cosine = [&](const glm::vec3& wi_world, const glm::vec3& wi) {
+      const bool behind = glm::dot(wi_world, sp.ng) <= 0.0f;
+      if (behind && !lit_from_behind) return 0.0f;
+      return behind == (wi.z < 0.0f) ? std::abs(wi.z) : 0.0f;
+    };
+
     // Next-event estimation: every punctual light (they are delta lights: light sampling only).
     for (const LightDesc& light : w.lights) {
       const LightArrival a = arrive(light, sp.p);
-      if (max_channel(a.irradiance) <= 0.0f || glm::dot(a.wi, sp.ng) <= 0.0f) continue;
+      if (max_channel(a.irradiance) <= 0.0f) continue;
       const glm::vec3 wi = frame.to_local(a.wi);
+      const float cos_i = light_cosine(a.wi, wi);
+      if (!(cos_i > 0.0f)) continue;
       const Rgb f = bsdf->eval(wi, wo);
       if (max_channel(f) <= 0.0f) continue;
       const glm::vec3 o = offset_origin(sp.p, sp.ng, a.wi, w.scene_extent);
       const float tmax = std::isinf(a.distance) ? kInfinity : glm::length(light.position - o) * (1.0f - 1e-5f);
-      if (!occluded(o, a.wi, tmax)) add(beta * f * a.irradiance * wi.z, depth);
+      if (!occluded(o, a.wi, tmax)) add(beta * f * a.irradiance * cos_i, depth);
     }
     // Next-event estimation: the point drawn on an emissive triangle.
-    if (emitter_sample.pdf > 0.0f && max_channel(emitter_sample.radiance) > 0.0f &&
-        glm::dot(emitter_sample.wi, sp.ng) > 0.0f) {
+    if (emitter_sample.pdf > 0.0f && max_channel(emitter_sample.radiance) > 0.0f) {
       const glm::vec3 wi = frame.to_local(emitter_sample.wi);
-      const Rgb f = bsdf->eval(wi, wo);
+      const float cos_i = light_cosine(emitter_sample.wi, wi);
+      const Rgb f = cos_i > 0.0f ? bsdf->eval(wi, wo) : Rgb(0.0f);
       if (max_channel(f) > 0.0f) {
         const glm::vec3 o = offset_origin(sp.p, sp.ng, emitter_sample.wi, w.scene_extent);
         // Stop short of the emitter's own surface: the segment ends a relative hair before the point.
         if (!occluded(o, emitter_sample.wi, emitter_sample.distance * (1.0f - 1e-4f))) {
           const float weight =
               s.light_sampling == LightSampling::mis ? power_heuristic(emitter_sample.pdf, bsdf->pdf(wi, wo)) : 1.0f;
-          add(beta * f * emitter_sample.radiance * (wi.z * weight / emitter_sample.pdf), depth);
+          add(beta * f * emitter_sample.radiance * (cos_i * weight / emitter_sample.pdf), depth);
         }
       }
     }
     // Next-event estimation: the environment, whose shadow ray was traced above.
     if (env_visible) {
       const glm::vec3 wi = frame.to_local(env_dir);
-      const Rgb f = bsdf->eval(wi, wo);
+      const float cos_i = light_cosine(env_dir, wi);
+      const Rgb f = cos_i > 0.0f ? bsdf->eval(wi, wo) : Rgb(0.0f);
       if (max_channel(f) > 0.0f) {
         const float weight = s.light_sampling == LightSampling::mis ? power_heuristic(env_pdf, bsdf->pdf(wi, wo)) : 1.0f;
-        add(beta * f * env_radiance * (wi.z * weight / env_pdf), depth);
+        add(beta * f * env_radiance * (cos_i * weight / env_pdf), depth);
       }
     }
 
@@ -277,8 +293,10 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
     const BsdfSample bs = bsdf->sample(wo, SampleU{u1(), u1(), u1()});  // braces: drawn left to right
     if (bs.kind == SampleKind::absorbed) break;
     const glm::vec3 wi_world = frame.to_world(bs.wi);
-    // f_eff vanishes below the geometric surface (brdf-mip.md): a finite sample there is absorbed.
-    if (bs.kind == SampleKind::finite && glm::dot(wi_world, sp.ng) <= 0.0f) break;
+    // f_eff vanishes below the geometric surface (brdf-mip.md): a finite sample there is absorbed,
+    // unless it is a transmission (below the shading normal too) of a material that transmits.
+    if (bs.kind == SampleKind::finite && glm::dot(wi_world, sp.ng) <= 0.0f && !(lit_from_behind && bs.wi.z < 0.0f))
+      break;
     beta *= bs.weight;
     if (!(max_channel(beta) > 0.0f) || !std::isfinite(max_channel(beta))) break;
     // A path that crosses a volume's boundary enters its medium through the front face and leaves

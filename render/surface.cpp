@@ -175,6 +175,14 @@ ShadingParams shading_params(const SurfacePoint& sp, const TextureSet& textures)
   sh.diffuse_roughness = m.diffuse_roughness;
   if (m.diffuse_roughness_texture.present()) sh.diffuse_roughness *= tex(m.diffuse_roughness_texture, false).r;
   sh.unlit = m.unlit;
+  // KHR_materials_diffuse_transmission: the share × texture A, the color × texture RGB (sRGB-encoded).
+  sh.diffuse_transmission = m.diffuse_transmission;
+  if (m.diffuse_transmission_texture.present()) sh.diffuse_transmission *= tex(m.diffuse_transmission_texture, false).a;
+  if (sh.diffuse_transmission > 0.0f) {
+    sh.diffuse_transmission_color = m.diffuse_transmission_color;
+    if (m.diffuse_transmission_color_texture.present())
+      sh.diffuse_transmission_color *= Rgb(tex(m.diffuse_transmission_color_texture, true));
+  }
   // KHR_materials_sheen: color × texture RGB (sRGB-encoded), roughness × texture A.
   sh.sheen_color = m.sheen_color;
   if (m.sheen_color_texture.present()) sh.sheen_color *= Rgb(tex(m.sheen_color_texture, true));

@@ -317,6 +317,65 @@ TEST(Iridescence, EvalMixesTheFilmIntoBothFresnelTerms) {
       for (int k = 0; k < 3; ++k) EXPECT_LT(rel_err(none.eval(wi, wo)[k], gltf_eval(g, wi, wo)[k]), 1e-5);
 }
 
+// KHR_materials_diffuse_transmission: base = mix(diffuse_brdf(baseColor), diffuse_btdf(color),
+// diffuseTransmission) under the dielectric's 1 − specular·max(fr): reflection as the glTF BRDF with
+// its Lambertian scaled by 1 − dt, transmission (wi below) (1 − fr(wo.z))·dt·color/π.
+TEST(DiffuseTransmission, EvalIsTheExtensionsMixOfBrdfAndBtdf) {
+  ShadingParams p;
+  p.base_color = Rgb(0.3f, 0.6f, 0.2f);
+  p.roughness = 0.5f;
+  p.diffuse_transmission = 0.6f;
+  p.diffuse_transmission_color = Rgb(0.9f, 0.8f, 0.1f);
+  const SurfaceBsdf b(p);
+  for (const glm::vec3& wi : directions())
+    for (const glm::vec3& wo : directions()) {
+      // Reflection: the glTF BRDF with ρ/π → (1 − dt)·ρ/π (α = 0.25, F0 = 0.04).
+      const dvec3 h = glm::normalize(dvec3(wi) + dvec3(wo));
+      const double fr = 0.04 + 0.96 * std::pow(1.0 - std::abs(glm::dot(dvec3(wo), h)), 5.0);
+      const double s = ggx_vd(0.25, {0, 0, 1}, dvec3(wi), dvec3(wo));
+      const dvec3 refl = (1 - fr) * 0.4 * dvec3(p.base_color) / kPiD + fr * s;
+      // Transmission to the mirror of wi below the surface.
+      const glm::vec3 below(wi.x, wi.y, -wi.z);
+      const double ft = 0.04 + 0.96 * std::pow(1.0 - double(wo.z), 5.0);
+      const dvec3 trans = (1 - ft) * 0.6 * dvec3(p.diffuse_transmission_color) / kPiD;
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_LT(rel_err(b.eval(wi, wo)[k], refl[k]), 2e-5) << "reflection, channel " << k;
+        EXPECT_LT(rel_err(b.eval(below, wo)[k], trans[k]), 2e-5) << "transmission, channel " << k;
+      }
+    }
+}
+
+// A white Lambertian base (the specular layer off) that transmits half of what it scatters keeps
+// everything: directional albedo over both hemispheres 1, half of it transmitted; its sampler
+// (both hemispheres) matches its density.
+TEST(DiffuseTransmission, WhiteFurnaceAndSampler) {
+  ShadingParams p;
+  p.base_color = Rgb(1.0f);
+  p.specular = 0.0f;
+  p.diffuse_transmission = 0.5f;
+  const SurfaceBsdf b(p);
+  for (double theta : {0.0, 50.0, 85.0}) {
+    Rng rng(23, 3);
+    double all = 0, below = 0;
+    const int n = 50000;
+    for (int k = 0; k < n; ++k) {
+      const BsdfSample smp = b.sample(direction_deg(theta, 10.0), SampleU(rng.next_float(), rng.next_float(), rng.next_float()));
+      if (smp.kind == SampleKind::absorbed) continue;
+      all += smp.weight.x;
+      if (smp.wi.z < 0) below += smp.weight.x;
+    }
+    EXPECT_NEAR(all / n, 1.0, 1e-4) << theta;
+    EXPECT_NEAR(below / n, 0.5, 0.01) << theta;
+  }
+  p.specular = 1.0f;
+  p.base_color = Rgb(0.7f, 0.5f, 0.3f);
+  p.diffuse_transmission_color = Rgb(0.4f, 0.9f, 0.6f);
+  for (double theta : {20.0, 70.0}) {
+    const testing::Chi2Result r = testing::chi2_test(SurfaceBsdf(p), direction_deg(theta, 0.0));
+    EXPECT_GT(r.p_value, 1e-3) << "θo " << theta << ": worst bin " << r.worst;
+  }
+}
+
 // KHR_materials_volume's refraction: Snell's direction with radiance scaled by (1 − F)/η² entering
 // glass (η = 1.5), and, leaving it (η = 1/1.5) past the critical angle, no transmission: the
 // specular lobe's Fresnel is 1 and reflects everything (a smooth white dielectric's albedo is its

@@ -492,13 +492,17 @@ TEST(GltfLoader, ReadsTheLayerExtensions) {
          "sheenRoughnessTexture": {"index": 0}},
        "KHR_materials_iridescence": {"iridescenceFactor": 0.8, "iridescenceIor": 1.4,
          "iridescenceThicknessMinimum": 50, "iridescenceThicknessMaximum": 600,
-         "iridescenceThicknessTexture": {"index": 0}}}},
+         "iridescenceThicknessTexture": {"index": 0}},
+       "KHR_materials_volume": {"thicknessFactor": 0.02, "attenuationDistance": 0.5,
+         "attenuationColor": [0.9, 0.5, 0.25]},
+       "KHR_materials_diffuse_transmission": {"diffuseTransmissionFactor": 0.35,
+         "diffuseTransmissionColorFactor": [1, 0.5, 0], "diffuseTransmissionTexture": {"index": 0}}}},
      {"extensions": {"KHR_materials_clearcoat": {}, "KHR_materials_anisotropy": {}, "KHR_materials_sheen": {},
-       "KHR_materials_iridescence": {}}}])";
+       "KHR_materials_iridescence": {}, "KHR_materials_volume": {}, "KHR_materials_diffuse_transmission": {}}}])";
   q.primitive_extra = R"(, "material": 0)";
   q.top_extra = R"(, "textures": [{"source": 0}], "images": [{"uri": "px.png"}],
       "extensionsUsed": ["KHR_materials_clearcoat", "KHR_materials_anisotropy", "KHR_materials_sheen",
-                         "KHR_materials_iridescence"])";
+                         "KHR_materials_iridescence", "KHR_materials_volume", "KHR_materials_diffuse_transmission"])";
   const Scene s = load_gltf(dir.write("m.gltf", q.json()));
   EXPECT_TRUE(s.warnings.empty());
   ASSERT_EQ(s.materials.size(), 2u);
@@ -520,6 +524,12 @@ TEST(GltfLoader, ReadsTheLayerExtensions) {
   EXPECT_FLOAT_EQ(m.iridescence_thickness_min, 50.0f);
   EXPECT_FLOAT_EQ(m.iridescence_thickness_max, 600.0f);
   EXPECT_TRUE(m.iridescence_thickness_texture.present());
+  EXPECT_TRUE(m.has_volume());
+  EXPECT_FLOAT_EQ(m.attenuation_distance, 0.5f);
+  EXPECT_EQ(m.attenuation_color, Rgb(0.9f, 0.5f, 0.25f));
+  EXPECT_FLOAT_EQ(m.diffuse_transmission, 0.35f);
+  EXPECT_EQ(m.diffuse_transmission_color, Rgb(1.0f, 0.5f, 0.0f));
+  EXPECT_TRUE(m.diffuse_transmission_texture.present());
   // A normal map, a coat normal map or anisotropy needs a tangent space: the loader makes one.
   EXPECT_FALSE(s.meshes[0].primitives[0].tangents.empty());
   // The extensions' defaults (their schemas): no coat, no anisotropy.
@@ -531,6 +541,9 @@ TEST(GltfLoader, ReadsTheLayerExtensions) {
   EXPECT_FLOAT_EQ(s.materials[1].iridescence_ior, 1.3f);
   EXPECT_FLOAT_EQ(s.materials[1].iridescence_thickness_min, 100.0f);
   EXPECT_FLOAT_EQ(s.materials[1].iridescence_thickness_max, 400.0f);
+  EXPECT_FALSE(s.materials[1].has_volume());  // thicknessFactor 0: thin-walled
+  EXPECT_TRUE(std::isinf(s.materials[1].attenuation_distance));
+  EXPECT_FLOAT_EQ(s.materials[1].diffuse_transmission, 0.0f);
 }
 
 TEST(GltfLoader, LayerExtensionsOutOfRange) {
@@ -547,6 +560,10 @@ TEST(GltfLoader, LayerExtensionsOutOfRange) {
   expect_error(dir.write("s.gltf", q.json()), "KHR_materials_sheen.sheenColorFactor");
   q.materials = R"([{"extensions": {"KHR_materials_iridescence": {"iridescenceIor": 0.5}}}])";
   expect_error(dir.write("i.gltf", q.json()), "KHR_materials_iridescence.iridescenceIor");
+  q.materials = R"([{"extensions": {"KHR_materials_volume": {"thicknessFactor": 1, "attenuationDistance": 0}}}])";
+  expect_error(dir.write("v.gltf", q.json()), "KHR_materials_volume.attenuationDistance");
+  q.materials = R"([{"extensions": {"KHR_materials_diffuse_transmission": {"diffuseTransmissionFactor": 2}}}])";
+  expect_error(dir.write("d.gltf", q.json()), "KHR_materials_diffuse_transmission.diffuseTransmissionFactor");
 }
 
 TEST(GltfLoader, FactorOutOfRange) {

@@ -113,6 +113,37 @@ TEST(LayeredRender, AnisotropyDirectionFollowsTheTangentAndRotation) {
   }
 }
 
+// KHR_materials_diffuse_transmission through the renderer: a thin quad (the specular layer off, so
+// its base is Lambertian) that transmits a share dt of what it scatters, lit by a directional light
+// of E at 60°, seen head-on from the front: lit from the front it reflects (1 − dt)·ρ/π·E·cos60°,
+// lit from behind it transmits dt·c/π·E·cos60°.
+TEST(LayeredRender, DiffuseTransmissionLightsTheFrontFromBehind) {
+  const Rgb rho(0.2f, 0.5f, 0.8f), color(0.9f, 0.6f, 0.3f);
+  const float dt = 0.4f, E = 2.0f, theta = glm::radians(60.0f);
+  for (const float side : {1.0f, -1.0f}) {
+    Scene s;
+    MaterialDesc m = lambertian(rho);
+    m.diffuse_transmission = dt;
+    m.diffuse_transmission_color = color;
+    m.double_sided = true;
+    s.materials.push_back(m);
+    add_quad(s, 0, glm::dmat4(1.0), 8.0f);
+    LightDesc sun;
+    sun.type = LightDesc::Type::directional;
+    sun.intensity = E;
+    sun.direction = -glm::vec3(std::sin(theta), 0.0f, side * std::cos(theta));
+    s.lights.push_back(sun);
+    s.cameras.push_back(ortho_camera({0, 0, 5}, {0, 0, 0}, 1.0f));
+    SceneSetup setup;
+    setup.width = setup.height = 4;
+    setup.env = "0,0,0";
+    const Image im = render_scene(std::move(s), setup, 1).radiance();
+    const Rgb want = (side > 0 ? (1.0f - dt) * rho : dt * color) / 3.14159265f * E * std::cos(theta);
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(pixel(im, 1, 1)[c], want[c], 1e-5f * want[c] + 1e-7f) << (side > 0 ? "front" : "behind");
+  }
+}
+
 // A closed box with flat, outward faces: the boundary of a volume.
 void add_box(Scene& s, int material, const glm::vec3& half) {
   MeshPrimitive p;
