@@ -3,11 +3,13 @@
 # compared with Cycles' (tests/blender/README.md).
 #
 #   blender -b --factory-startup --python-exit-code 1 --python tests/blender/scenes.py -- \
-#       --scene NAME --out DIR --res W H --spp N [--seed S] [--variant lambert|lambert-only]
+#       --scene NAME --out DIR --res W H --spp N [--seed S] [--variant lambert|lambert-only|principled-coat]
 #
-# Writes DIR/NAME.gltf (with NAME.bin and the textures beside it) and DIR/NAME.cycles.png. With
+# Writes DIR/NAME.gltf (with NAME.bin and the textures beside it) and DIR/NAME.cycles.png, in which
+# Cycles renders each clearcoat as KHR_materials_clearcoat defines it (gltf_clearcoat). With
 # --variant V, only DIR/NAME.cycles-V.png: Cycles' render of the scene with the dielectrics' diffuse
-# made Lambertian (diffuse_variant), to measure what Cycles' Principled BSDF adds to the difference.
+# made Lambertian (diffuse_variant), to measure what Cycles' Principled BSDF adds to the difference,
+# or with Blender's own Principled clearcoat (principled-coat), to measure how far it is from glTF's.
 import argparse
 import math
 import os
@@ -33,7 +35,7 @@ def parse_args():
     p.add_argument("--res", nargs=2, type=int, default=[160, 120], metavar=("W", "H"))
     p.add_argument("--spp", type=int, default=64)
     p.add_argument("--seed", type=int, default=1, help="Cycles' seed (a second one measures its noise)")
-    p.add_argument("--variant", choices=["lambert", "lambert-only"])
+    p.add_argument("--variant", choices=["lambert", "lambert-only", "principled-coat"])
     return p.parse_args(argv)
 
 
@@ -198,6 +200,133 @@ def normal_mapped():
     camera((0.0, -4.0, 3.0), (0.0, 0.1, 0.0))
 
 
+def checker(n=128, cells=8, light=(1.0, 1.0, 1.0), dark=(0.12, 0.12, 0.12)):
+    """A checkerboard of `cells`² squares as RGBA float rows from the bottom."""
+    t = (np.arange(n) + 0.5) / n
+    u, v = np.meshgrid(t, t)
+    checker = ((np.floor(u * cells) + np.floor(v * cells)) % 2)[..., None]
+    rgb = checker * np.array(light) + (1 - checker) * np.array(dark)
+    return np.concatenate([rgb, np.ones((n, n, 1))], axis=-1)
+
+
+def clearcoat(mat, weight, roughness):
+    """Gives a Principled BSDF material a clearcoat (exported as KHR_materials_clearcoat)."""
+    bsdf = mat.node_tree.nodes["Principled BSDF"]
+    bsdf.inputs["Clearcoat"].default_value = weight
+    bsdf.inputs["Clearcoat Roughness"].default_value = roughness
+    return mat
+
+
+@scene
+def clearcoat_paint():
+    # Car paint in a studio of soft boxes: a dark red dielectric and a blue metal, each under a
+    # smooth coat. Wide panels on the ceiling and on the wall behind the camera cover much of what
+    # the spheres reflect, so that the coat's sharp image of them (which the rough bases blur into
+    # a glow) fills much of the frame; wide, so that few pixels straddle a panel's edge. A dim floor.
+    plane("Floor", principled("floor_dark", base=(0.02, 0.02, 0.02), roughness=0.7), 14)
+    add_mesh("PaintSphere", bpy.ops.mesh.primitive_uv_sphere_add,
+             clearcoat(principled("paint_red", base=(0.15, 0.01, 0.01), roughness=0.7), 1.0, 0.05),
+             location=(-0.85, 0.0, 0.75), radius=0.75, segments=64, ring_count=32, smooth=True)
+    add_mesh("MetalSphere", bpy.ops.mesh.primitive_uv_sphere_add,
+             clearcoat(principled("paint_blue_metal", base=(0.06, 0.1, 0.3), metallic=1.0, roughness=0.6),
+                       1.0, 0.1),
+             location=(0.85, 0.0, 0.75), radius=0.75, segments=64, ring_count=32, smooth=True)
+    # 8 m long panels, 1.4 m wide with 1.4 m between them: on the ceiling facing down, and behind the
+    # camera facing it.
+    box = principled("softbox", base=(0.0, 0.0, 0.0), emission=(1.0, 1.0, 1.0), strength=6.0)
+    for i, y in enumerate((-4.2, -1.4, 1.4)):
+        obj = plane(f"CeilingPanel{i}", box, 1.0, location=(0.0, y, 3.0), rotation=(math.pi, 0, 0))
+        obj.scale = (8.0, 1.4, 1.0)
+    obj = plane("WallPanel", box, 1.0, location=(0.0, -5.5, 1.4), rotation=(-math.pi / 2, 0, 0))
+    obj.scale = (8.0, 1.4, 1.0)
+    camera((0.0, -3.4, 1.25), (0.0, 0.0, 0.75), lens=40.0)
+
+
+def gltf_material_output(mat, thickness):
+    """The exporter's "glTF Material Output" node group, carrying KHR_materials_volume's
+    thicknessFactor: Blender 3.4's exporter writes the volume extension only where a material has
+    it with Thickness > 0. Unlinked, it changes nothing Cycles renders."""
+    group = bpy.data.node_groups.get("glTF Material Output")
+    if group is None:
+        group = bpy.data.node_groups.new("glTF Material Output", "ShaderNodeTree")
+        group.inputs.new("NodeSocketFloat", "Thickness")
+    node = mat.node_tree.nodes.new("ShaderNodeGroup")
+    node.node_tree = group
+    node.inputs["Thickness"].default_value = thickness
+
+
+def glass(name, absorption):
+    """Clear glass (transmission 1, IOR 1.5, roughness 0) filled with a Volume Absorption of
+    coefficient `absorption` (1/m per channel), written as density ρ = 50 and color C = 1 − σ/ρ so
+    that Cycles' σ = ρ·(1 − C) and glTF's σ = −ln(C)/(1/ρ) agree within 1.2 % (README)."""
+    mat = principled(name, base=(1.0, 1.0, 1.0), roughness=0.0)
+    nodes, links = mat.node_tree.nodes, mat.node_tree.links
+    bsdf = nodes["Principled BSDF"]
+    bsdf.inputs["Transmission"].default_value = 1.0
+    bsdf.inputs["IOR"].default_value = 1.5
+    density = 50.0
+    volume = nodes.new("ShaderNodeVolumeAbsorption")
+    volume.inputs["Color"].default_value = (*[1.0 - s / density for s in absorption], 1.0)
+    volume.inputs["Density"].default_value = density
+    links.new(volume.outputs["Volume"], nodes["Material Output"].inputs["Volume"])
+    gltf_material_output(mat, 1.0)
+    return mat
+
+
+@scene
+def glass_volume():
+    # A glass ball and a glass block in front of a lit checker wall: refraction shows in the bent
+    # squares, absorption in the tint that deepens with the path length through each.
+    wall = principled("checker_wall", base=(0.0, 0.0, 0.0), roughness=1.0)
+    nodes, links = wall.node_tree.nodes, wall.node_tree.links
+    tex = nodes.new("ShaderNodeTexImage")
+    tex.image = image("checker_wall_emission", checker(), "sRGB")
+    links.new(tex.outputs["Color"], nodes["Principled BSDF"].inputs["Emission"])
+    nodes["Principled BSDF"].inputs["Emission Strength"].default_value = 1.0
+    plane("Wall", wall, 6.0, location=(0, 2.0, 0.8), rotation=(math.pi / 2, 0, 0))
+    add_mesh("GlassBall", bpy.ops.mesh.primitive_uv_sphere_add, glass("glass_teal", (1.2, 0.35, 0.12)),
+             location=(-0.8, 0.0, 0.8), radius=0.65, segments=64, ring_count=32, smooth=True)
+    add_mesh("GlassBlock", bpy.ops.mesh.primitive_cube_add, glass("glass_amber", (0.1, 0.45, 1.2)),
+             location=(0.85, 0.1, 0.8), rotation=(0.3, 0.2, 0.5), size=0.9)
+    camera((0.0, -4.0, 1.1), (0.0, 0.5, 0.8), lens=40.0)
+
+
+def gltf_clearcoat(mat):
+    """Cycles' counterpart of KHR_materials_clearcoat for a Principled BSDF with a clearcoat: the
+    same Principled without its coat, mixed with a GGX Glossy BSDF of the coat's roughness (α = r²
+    in both) by clearcoat·Fc, Fc = 0.04 + 0.96·(1 − |N·V|)^5 — the extension's fresnel_coat, where
+    Cycles 3.4's own Principled clearcoat is another model (README)."""
+    nodes, links = mat.node_tree.nodes, mat.node_tree.links
+    bsdf, output = nodes["Principled BSDF"], nodes["Material Output"]
+    weight = bsdf.inputs["Clearcoat"].default_value
+    roughness = bsdf.inputs["Clearcoat Roughness"].default_value
+    bsdf.inputs["Clearcoat"].default_value = 0.0
+    facing = nodes.new("ShaderNodeLayerWeight")  # Facing at blend 0.5: 1 − |N·V|
+    facing.inputs["Blend"].default_value = 0.5
+    power = nodes.new("ShaderNodeMath")
+    power.operation = "POWER"
+    power.inputs[1].default_value = 5.0
+    schlick = nodes.new("ShaderNodeMath")
+    schlick.operation = "MULTIPLY_ADD"
+    schlick.inputs[1].default_value = 0.96
+    schlick.inputs[2].default_value = 0.04
+    blend = nodes.new("ShaderNodeMath")
+    blend.operation = "MULTIPLY"
+    blend.inputs[1].default_value = weight
+    coat = nodes.new("ShaderNodeBsdfGlossy")
+    coat.distribution = "GGX"
+    coat.inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
+    coat.inputs["Roughness"].default_value = roughness
+    mix = nodes.new("ShaderNodeMixShader")
+    links.new(facing.outputs["Facing"], power.inputs[0])
+    links.new(power.outputs[0], schlick.inputs[0])
+    links.new(schlick.outputs[0], blend.inputs[0])
+    links.new(blend.outputs[0], mix.inputs["Fac"])
+    links.new(bsdf.outputs["BSDF"], mix.inputs[1])
+    links.new(coat.outputs["BSDF"], mix.inputs[2])
+    links.new(mix.outputs["Shader"], output.inputs["Surface"])
+
+
 def diffuse_variant(variant):
     """Each dielectric Principled BSDF's Disney diffuse becomes a Lambertian Diffuse BSDF (roughness
     0). lambert: added to the same Principled with a black base color (its specular layer alone), as
@@ -285,8 +414,16 @@ def main():
                                   export_format="GLTF_SEPARATE", export_cameras=True, export_lights=True)
         png = os.path.join(args.out, args.scene + ".cycles.png")
     else:
-        diffuse_variant(args.variant)
         png = os.path.join(args.out, f"{args.scene}.cycles-{args.variant}.png")
+    # Cycles renders each clearcoat as KHR_materials_clearcoat defines it, unless asked for Blender's
+    # own Principled clearcoat (principled-coat), to measure how far that one is from it.
+    if args.variant != "principled-coat":
+        for mat in bpy.data.materials:
+            if (mat.use_nodes and "Principled BSDF" in mat.node_tree.nodes and
+                    mat.node_tree.nodes["Principled BSDF"].inputs["Clearcoat"].default_value > 0.0):
+                gltf_clearcoat(mat)
+    if args.variant in ("lambert", "lambert-only"):
+        diffuse_variant(args.variant)
     bpy.context.scene.render.filepath = png
     bpy.ops.render.render(write_still=True)
 
