@@ -1,5 +1,7 @@
 // ns per eval and per sample of every model of brdf-models.md (default parameters unless named),
-// over 4096 precomputed random direction pairs / random numbers so the branch mix is realistic.
+// over 4096 precomputed random direction pairs / random numbers so the branch mix is realistic; and
+// of the renderer's glTF surface (SurfaceBsdf) with each extension layer alone, against the same
+// material without it in the same run.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -8,6 +10,7 @@
 #include <vector>
 
 #include "appearance/gltf_bsdf.h"
+#include "appearance/gltf_surface_bsdf.h"
 #include "appearance/measured.h"
 #include "appearance/mixture.h"
 #include "appearance/registry.h"
@@ -107,6 +110,36 @@ class TwoGltfLobes final : public Bsdf {
   Mixture mix_;
 };
 
+// The renderer's glTF surface: one rough red dielectric, then that material with each extension
+// layer alone at a typical setting (the transmission one refracting into a volume, as the
+// integrator shades a KHR_materials_volume boundary from outside).
+std::vector<std::pair<std::string, std::shared_ptr<const Bsdf>>> surface_cases() {
+  ShadingParams base;
+  base.base_color = Rgb(0.8f, 0.3f, 0.2f);
+  base.metallic = 0.0f;
+  base.roughness = 0.5f;
+  std::vector<std::pair<std::string, ShadingParams>> cases;
+  cases.push_back({"base", base});
+  ShadingParams p = base;
+  p.clearcoat = 1.0f, p.clearcoat_roughness = 0.1f;
+  cases.push_back({"clearcoat", p});
+  p = base;
+  p.anisotropy = 0.6f, p.anisotropy_direction = glm::vec2(0.8f, 0.6f);
+  cases.push_back({"anisotropy", p});
+  p = base;
+  p.sheen_color = Rgb(0.9f, 0.6f, 0.3f), p.sheen_roughness = 0.5f;
+  cases.push_back({"sheen", p});
+  p = base;
+  p.iridescence = 1.0f, p.iridescence_ior = 1.3f, p.iridescence_thickness = 400.0f;
+  cases.push_back({"iridescence", p});
+  p = base;
+  p.transmission = 1.0f, p.thin_walled = false, p.eta = 1.5f;
+  cases.push_back({"transmission+volume", p});
+  std::vector<std::pair<std::string, std::shared_ptr<const Bsdf>>> out;
+  for (const auto& [label, params] : cases) out.push_back({"surface/" + label, std::make_shared<SurfaceBsdf>(params)});
+  return out;
+}
+
 struct Registrar {
   Registrar() {
     struct Case {
@@ -136,6 +169,7 @@ struct Registrar {
     g.roughness = 0.4f;
     models.push_back({"measured", std::make_shared<Measured>(std::make_shared<MerlTable>(MerlTable::tabulate(GltfBsdf(g))))});
     models.push_back({"mixture/2-gltf-lobes", std::make_shared<TwoGltfLobes>()});
+    for (auto& c : surface_cases()) models.push_back(std::move(c));
     sheen_albedo(0.5f, 0.5f);  // the albedo table is built on first use, not inside the timing
     benchmark::RegisterBenchmark("sheen_albedo_scaling", sheen_scaling_bench);
     benchmark::RegisterBenchmark("iridescence_fresnel", thin_film_bench);

@@ -11,6 +11,12 @@
 // the cheapest surface the renderer shades. Its ratio is the ceiling that no texture filter can
 // raise the textured showcase above — what the integrator itself (NEE to the sun and the sky, MIS,
 // the sky's importance sampling) costs against a BVH of a few hundred triangles.
+//
+// LayeredMaterials: what the glTF extension layers cost a whole frame. One scene built in code — a
+// floor and six spheres under a directional light and a uniform sky — rendered twice in each
+// iteration, with the same seed, size and samples: the spheres wearing the base material, then
+// each wearing one layer (clearcoat, anisotropy, sheen, iridescence, transmission into a volume,
+// and the base). Texture filter level0, so both frames shade every material with SurfaceBsdf.
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -27,6 +33,7 @@
 #include "render/ray_log.h"
 #include "render/render_setup.h"
 #include "render/renderer.h"
+#include "tests/render/render_test_scenes.h"
 
 namespace svbrdf {
 namespace {
@@ -171,6 +178,68 @@ void BM_ShowcaseUntextured(benchmark::State& state) {
   bench_scene(state, fs::path(SVBRDF_BINARY_DIR) / "scenes/showcase/showcase.gltf", true);
 }
 
+// The LayeredMaterials scene: a 12 m floor (material 0) and six unit spheres 2.4 m apart in a row;
+// sphere i wears material 1 + i, or material 1 (the base) when not `layered`.
+Scene layered_scene(bool layered) {
+  Scene s;
+  s.materials.push_back(test::lambertian(Rgb(0.5f)));
+  MaterialDesc base;
+  base.base_color = Rgb(0.8f, 0.3f, 0.2f);
+  base.metallic = 0.0f;
+  base.roughness = 0.5f;
+  std::vector<MaterialDesc> spheres(6, base);
+  spheres[1].clearcoat = 1.0f, spheres[1].clearcoat_roughness = 0.1f;
+  spheres[2].anisotropy_strength = 0.6f;
+  spheres[3].sheen_color = Rgb(0.9f, 0.6f, 0.3f), spheres[3].sheen_roughness = 0.5f;
+  spheres[4].iridescence = 1.0f;
+  spheres[5].transmission = 1.0f, spheres[5].thickness = 1.0f;
+  spheres[5].attenuation_distance = 1.0f, spheres[5].attenuation_color = Rgb(0.9f, 0.6f, 0.3f);
+  for (std::size_t i = 0; i < spheres.size(); ++i) s.materials.push_back(layered ? spheres[i] : base);
+  test::add_quad(s, 0, glm::rotate(glm::dmat4(1.0), -1.5707963267948966, glm::dvec3(1, 0, 0)), 12.0f);
+  for (int i = 0; i < 6; ++i) {
+    test::add_sphere(s, 1 + i, 1.0f, 24, 48);
+    s.instances.back().to_world = glm::translate(glm::dmat4(1.0), glm::dvec3(2.4 * (i - 2.5), 1.0, 0.0));
+  }
+  s.cameras.push_back(test::perspective_camera({0, 3.5, 9}, {0, 0.8, 0}, 40.0f));
+  LightDesc sun;
+  sun.type = LightDesc::Type::directional;
+  sun.intensity = 3.0f;
+  sun.direction = glm::normalize(glm::vec3(-0.4f, -1.0f, -0.5f));
+  s.lights.push_back(sun);
+  return s;
+}
+
+void BM_LayeredMaterials(benchmark::State& state) {
+  constexpr int kWidth = 320, kHeight = 180, kSpp = 16;
+  SceneSetup setup;
+  setup.width = kWidth, setup.height = kHeight;
+  setup.env = "0.5";
+  const PreparedScene plain(layered_scene(false), setup), layered(layered_scene(true), setup);
+  RenderOptions o;
+  o.spp = kSpp;
+  o.seed = 1;
+  o.threads = int(state.range(0));
+  o.integrator.filter = TextureFilter::level0;
+  o.integrator.footprints = false;
+  o.aovs = false;
+  RenderStats ps, ls;
+  double plain_total = 0.0, layered_total = 0.0;
+  for (auto _ : state) {
+    render(plain.world(), o, &ps);
+    render(layered.world(), o, &ls);
+    plain_total += ps.seconds, layered_total += ls.seconds;
+    state.SetIterationTime(ps.seconds + ls.seconds);
+  }
+  const double n = double(state.iterations());
+  state.counters["plain_frame_s"] = plain_total / n;
+  state.counters["layered_frame_s"] = layered_total / n;
+  state.counters["plain_Msamples/s"] = double(ps.samples) / (plain_total / n) * 1e-6;
+  state.counters["layered_Msamples/s"] = double(ls.samples) / (layered_total / n) * 1e-6;
+  state.counters["plain_Mrays/s"] = double(ps.rays) / (plain_total / n) * 1e-6;
+  state.counters["layered_Mrays/s"] = double(ls.rays) / (layered_total / n) * 1e-6;
+  state.counters["time_ratio"] = layered_total / plain_total;
+}
+
 // Arguments: threads, filter (TextureFilter: 0 level0, 4 brdf, svbrdf-render's default).
 constexpr int kLevel0 = int(TextureFilter::level0), kBrdf = int(TextureFilter::brdf);
 BENCHMARK(BM_DamagedHelmet)
@@ -179,6 +248,8 @@ BENCHMARK(BM_DamagedHelmet)
 BENCHMARK(BM_Showcase)
     ->Args({1, kLevel0})->Args({2, kLevel0})->Args({1, kBrdf})->Args({2, kBrdf})
     ->ArgNames({"threads", "filter"})->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
+BENCHMARK(BM_LayeredMaterials)
+    ->Arg(1)->Arg(2)->ArgName("threads")->Iterations(3)->UseManualTime()->Unit(benchmark::kSecond);
 BENCHMARK(BM_ShowcaseUntextured)
     ->Args({1, kLevel0})->Args({2, kLevel0})
     ->ArgNames({"threads", "filter"})->Iterations(1)->UseManualTime()->Unit(benchmark::kSecond);
