@@ -91,6 +91,9 @@ struct MaterialDesc {
   float iridescence_thickness_max = 400.0f;
   TextureRef iridescence_thickness_texture;
 
+  // KHR_materials_dispersion: 20/V_d, V_d the Abbe number (0: none; appearance/dispersion.h).
+  float dispersion = 0.0f;
+
   // KHR_materials_diffuse_transmission: the share of the diffuse base transmitted (× texture A) and
   // its color (× texture RGB, sRGB-encoded).
   float diffuse_transmission = 0.0f;

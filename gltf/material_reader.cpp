@@ -193,8 +193,13 @@ class MaterialReader {
     return c;
   }
 
-  void read_material_extensions(const tinygltf::ExtensionMap& ext, MaterialDesc& d) const {
+  void read_material_extensions(const tinygltf::ExtensionMap& ext, MaterialDesc& d) {
     const std::string w = d.where + ".extensions.";
+    const auto& known = supported_extensions();
+    for (const auto& [name, value] : ext)
+      if (std::find(known.begin(), known.end(), name) == known.end())
+        out_.warnings.push_back(d.where + (d.name.empty() ? "" : " '" + d.name + "'") + ": optional extension " + name +
+                                " is not supported; the material renders without it");
     auto get = [&](const char* name) -> const tinygltf::Value* {
       auto it = ext.find(name);
       return it == ext.end() ? nullptr : &it->second;
@@ -259,6 +264,8 @@ class MaterialReader {
       }
       d.attenuation_color = rgb_or(*e, "attenuationColor", Rgb(1.0f), 1.0, wv);
     }
+    if (const auto* e = get("KHR_materials_dispersion"))
+      d.dispersion = checked(number_or(*e, "dispersion", 0.0), 0, 1e3, w + "KHR_materials_dispersion.dispersion");
     if (const auto* e = get("KHR_materials_sheen")) {
       const std::string ws = w + "KHR_materials_sheen";
       d.sheen_color = rgb_or(*e, "sheenColorFactor", Rgb(0.0f), 1.0, ws);
@@ -315,7 +322,8 @@ const std::vector<std::string>& supported_extensions() {
       "KHR_materials_unlit",          "KHR_lights_punctual",             "KHR_mesh_quantization",
       "KHR_draco_mesh_compression",   "EXT_meshopt_compression",         "KHR_materials_variants",
       "KHR_materials_clearcoat",      "KHR_materials_anisotropy",        "KHR_materials_sheen",
-      "KHR_materials_iridescence",    "KHR_materials_volume",            "KHR_materials_diffuse_transmission"};
+      "KHR_materials_iridescence",    "KHR_materials_volume",            "KHR_materials_diffuse_transmission",
+      "KHR_materials_dispersion"};
   return k;
 }
 

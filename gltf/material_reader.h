@@ -17,6 +17,8 @@ struct Materials {
   std::vector<ImageDesc> images;  // described and checked; pixels empty until decode_image
   std::vector<TextureDesc> textures;
   std::vector<MaterialDesc> materials;
+  // One line per material and extension of it that the project does not read, naming both.
+  std::vector<std::string> warnings;
 };
 
 // Reads the images' descriptions, the textures and the materials of `doc`. Every image's bytes must

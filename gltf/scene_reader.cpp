@@ -71,6 +71,7 @@ class Loader {
     scene_.images = std::move(m.images);
     scene_.textures = std::move(m.textures);
     scene_.materials = std::move(m.materials);
+    scene_.warnings.insert(scene_.warnings.end(), m.warnings.begin(), m.warnings.end());
   }
 
   // KHR_materials_variants README: the root extension's `variants` name the variants; a primitive's
@@ -142,8 +143,14 @@ class Loader {
     auto supported = [&](const std::string& e) { return std::find(ok.begin(), ok.end(), e) != ok.end(); };
     for (const auto& e : model_.extensionsRequired)
       if (!supported(e)) fail("extensionsRequired", "requires " + e + ", which svbrdf-render does not support");
+    // An unsupported extension of a material is warned about once per material, naming it (the
+    // material reader); any other once for the file.
+    auto on_a_material = [&](const std::string& e) {
+      return std::any_of(model_.materials.begin(), model_.materials.end(),
+                         [&](const tinygltf::Material& m) { return m.extensions.count(e) != 0; });
+    };
     for (const auto& e : model_.extensionsUsed)
-      if (!supported(e))
+      if (!supported(e) && !on_a_material(e))
         scene_.warnings.push_back("optional extension " + e + " is not supported; the file renders without it");
   }
 

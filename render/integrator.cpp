@@ -6,6 +6,7 @@
 
 #include "appearance/microfacet_normal_mapping.h"
 #include "appearance/shading.h"
+#include "appearance/dispersion.h"
 #include "render/medium_stack.h"
 #include "render/surface.h"
 #include "appearance/gltf_surface_bsdf.h"
@@ -84,6 +85,7 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
 
   LobeMixtureBsdf lobe_bsdf;  // the hit's mixture under a MIP filter, reassigned at every hit
   MediumStack media;          // the volumes (KHR_materials_volume) the path is inside
+  int channel = -1;           // the one RGB channel a path follows after a dispersive refraction
   RayHit hit = first_hit;
   for (int depth = 0;; ++depth) {
     if (depth > 0) {
@@ -172,6 +174,8 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
     // filter's lobes in the geometric tangent frame (the lobes carry the normal-mapped normals);
     // any other by SurfaceBsdf in its shading frame, or under NormalMapping::microfacet as the
     // microsurface of its mapped normal in the geometric tangent frame.
+    int candidate = -1;                          // the channel a dispersive refraction here would follow
+    float material_ior = sp.material->ior;       // the material's index for this path
     std::optional<SurfaceBsdf> surface_bsdf;
     std::optional<MicrofacetNormalMapping> normal_mapped;
     const Bsdf* bsdf = nullptr;
@@ -196,10 +200,18 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
       if (s.normal_mapping == NormalMapping::shading) keep_reflection_above(sp, -ray.dir);
       ShadingParams sh = shading_params(sp, *w.textures);
       if (sp.material->has_volume()) {
-        // Refraction between the medium the path is in and the one beyond this boundary.
+        // Refraction between the medium the path is in and the one beyond this boundary. A
+        // dispersive material refracts each channel by its own index: a path that has not chosen
+        // its channel yet draws one here (u_select, which only MIP lookups use otherwise) and keeps
+        // it if it refracts (KHR_materials_dispersion; appearance/dispersion.h).
         sh.thin_walled = false;
-        const float n_here = sp.front ? media.ior() : sp.material->ior;
-        const float n_beyond = sp.front ? sp.material->ior : media.ior_outside(sp.material);
+        if (sp.material->dispersion > 0.0f && channel < 0) candidate = std::min(2, int(3.0f * u_select));
+        const int c = channel >= 0 ? channel : candidate;
+        const float ior = c >= 0 ? dispersion_ior(sp.material->ior, sp.material->dispersion, kChannelWavelengthNm[c])
+                                 : sp.material->ior;
+        material_ior = ior;
+        const float n_here = sp.front ? media.ior() : ior;
+        const float n_beyond = sp.front ? ior : media.ior_outside(sp.material);
         sh.eta = n_beyond / n_here;
       }
       if (depth == 0) {
@@ -302,8 +314,15 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
     // A path that crosses a volume's boundary enters its medium through the front face and leaves
     // it through the back.
     if (bs.kind == SampleKind::impulse && sp.material->has_volume() && glm::dot(wi_world, sp.ng) < 0.0f) {
-      if (sp.front) media.enter(sp.material);
+      if (sp.front) media.enter(sp.material, material_ior);
       else media.leave(sp.material);
+      if (candidate >= 0) {
+        // The path follows one channel, drawn with probability 1/3.
+        channel = candidate;
+        Rgb only(0.0f);
+        only[channel] = 3.0f * beta[channel];
+        beta = only;
+      }
     }
     last_impulse = bs.kind == SampleKind::impulse;
     last_pdf = bs.pdf;

@@ -32,9 +32,9 @@ Rgb MediumStack::transmittance(float t) const {
   return {std::exp(-s.x * t), std::exp(-s.y * t), std::exp(-s.z * t)};
 }
 
-void MediumStack::enter(const MaterialDesc* m) {
+void MediumStack::enter(const MaterialDesc* m, float ior) {
   if (size_ >= kCapacity) return;
-  items_[std::size_t(size_++)] = {m, absorption_coefficient(*m), m->ior};
+  items_[std::size_t(size_++)] = {m, absorption_coefficient(*m), ior};
 }
 
 void MediumStack::leave(const MaterialDesc* m) {

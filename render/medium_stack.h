@@ -29,7 +29,9 @@ class MediumStack {
   // What a segment of length t inside the current medium lets through.
   Rgb transmittance(float t) const;
 
-  void enter(const MaterialDesc* m);
+  // Enters m's volume, whose index is `ior` for the path (the material's, or its index at the
+  // wavelength a dispersive path follows).
+  void enter(const MaterialDesc* m, float ior);
   void leave(const MaterialDesc* m);
 
  private:

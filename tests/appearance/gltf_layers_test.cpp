@@ -9,6 +9,7 @@
 
 #include <cmath>
 
+#include "appearance/dispersion.h"
 #include "appearance/gltf.h"
 #include "appearance/gltf_surface_bsdf.h"
 #include "appearance/microfacet_distribution.h"
@@ -374,6 +375,26 @@ TEST(DiffuseTransmission, WhiteFurnaceAndSampler) {
     const testing::Chi2Result r = testing::chi2_test(SurfaceBsdf(p), direction_deg(theta, 0.0));
     EXPECT_GT(r.p_value, 1e-3) << "θo " << theta << ": worst bin " << r.worst;
   }
+}
+
+// KHR_materials_dispersion: the Cauchy index keeps the extension's defining property, n(486.1 nm) −
+// n(656.3 nm) = (n_d − 1)/V_d with V_d = 20/dispersion (to 0.04 %: the text's constant 523655 rounds
+// 1/(486.1⁻² − 656.3⁻²) = 523454), and n(587.6 nm) = n_d; the channels' indices rise from red to
+// blue; never below 1.
+TEST(Dispersion, CauchyIndexHasTheAbbeNumbersSpread) {
+  for (const float ior : {1.33f, 1.5f, 2.4f})
+    for (const float dispersion : {0.33f, 1.0f, 2.04f}) {
+      const double vd = 20.0 / dispersion;
+      EXPECT_NEAR(dispersion_ior(ior, dispersion, 486.1f) - dispersion_ior(ior, dispersion, 656.3f), (ior - 1) / vd,
+                  6e-4 * (ior - 1) / vd + 1e-6);
+      EXPECT_NEAR(dispersion_ior(ior, dispersion, 587.6f), ior, 1e-4);
+      EXPECT_LT(dispersion_ior(ior, dispersion, kChannelWavelengthNm[0]),
+                dispersion_ior(ior, dispersion, kChannelWavelengthNm[1]));
+      EXPECT_LT(dispersion_ior(ior, dispersion, kChannelWavelengthNm[1]),
+                dispersion_ior(ior, dispersion, kChannelWavelengthNm[2]));
+    }
+  EXPECT_EQ(dispersion_ior(1.5f, 0.0f, 400.0f), 1.5f);
+  EXPECT_GE(dispersion_ior(1.01f, 1000.0f, 700.0f), 1.0f);
 }
 
 // KHR_materials_volume's refraction: Snell's direction with radiance scaled by (1 − F)/η² entering

@@ -280,6 +280,23 @@ TEST(GltfLoader, UnsupportedOptionalExtensionWarnsOnce) {
   EXPECT_NE(s.warnings[0].find("EXT_lights_image_based"), std::string::npos);
 }
 
+// An optional extension on materials that the project does not read: one warning per material,
+// naming the material and the extension, instead of one for the file.
+TEST(GltfLoader, UnsupportedMaterialExtensionWarnsOncePerMaterial) {
+  TempDir dir;
+  GltfQuad q;
+  q.materials = R"([{"name": "Skin", "extensions": {"KHR_materials_subsurface_x": {}}},
+                    {"name": "Cloth", "extensions": {"KHR_materials_subsurface_x": {}, "KHR_materials_sheen": {}}},
+                    {"name": "Plain"}])";
+  q.primitive_extra = R"(, "material": 0)";
+  q.top_extra = R"(, "extensionsUsed": ["KHR_materials_subsurface_x", "KHR_materials_sheen"])";
+  const Scene s = load_gltf(dir.write("e.gltf", q.json()));
+  ASSERT_EQ(s.warnings.size(), 2u);
+  EXPECT_NE(s.warnings[0].find("materials[0] 'Skin'"), std::string::npos) << s.warnings[0];
+  EXPECT_NE(s.warnings[1].find("materials[1] 'Cloth'"), std::string::npos) << s.warnings[1];
+  for (const auto& w : s.warnings) EXPECT_NE(w.find("KHR_materials_subsurface_x"), std::string::npos) << w;
+}
+
 TEST(GltfLoader, BadAlphaMode) {
   TempDir dir;
   GltfQuad q;
