@@ -220,7 +220,10 @@ SurfaceBsdf::LobeChoice SurfaceBsdf::choose(const glm::vec3& wo) const {
     const float fr = max_channel(dielectric_fresnel(cos_o, schlick_weight(cos_o)));
     const float spec_d = p_.specular * fr;
     const float rest = under * (1.0f - p_.metallic) * (1.0f - spec_d) * max_channel(p_.base_color);
-    c.specular = under * (p_.metallic + (1.0f - p_.metallic) * spec_d);
+    // The metal's share by its Fresnel reflectance, not 1: a dark metal under a coat would otherwise
+    // draw its own lobe where the coat's reflection dominates.
+    const float metal = max_channel(p_.base_color + (Rgb(1.0f) - p_.base_color) * schlick_weight(cos_o));
+    c.specular = under * (p_.metallic * metal + (1.0f - p_.metallic) * spec_d);
     c.diffuse = rest * (1.0f - p_.transmission);
     c.transmission = rest * p_.transmission;
     if (transmits_finitely()) {

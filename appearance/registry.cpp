@@ -253,6 +253,10 @@ std::unique_ptr<Bsdf> build(const std::string& name, ParamReader& r) {
     p.specular_color = r.rgb("specular_color", Rgb(1.0f), kNonNegative);
     p.diffuse_roughness = r.number("diffuse_roughness", 0.0f, kUnit);
     p.transmission = r.number("transmission", 0.0f, kUnit);
+    // KHR_materials_volume: the transmission refracts by eta = n(beyond)/n(here); 0 keeps it thin-walled.
+    p.eta = r.number("volume_eta", 0.0f, Range{0.0f, 1e3f});
+    p.thin_walled = p.eta == 0.0f;
+    if (p.thin_walled) p.eta = 1.5f;
     p.diffuse_transmission = r.number("diffuse_transmission", 0.0f, kUnit);
     p.diffuse_transmission_color = r.rgb("diffuse_transmission_color", Rgb(1.0f), kUnit);
     p.anisotropy = r.number("anisotropy", 0.0f, kUnit);
@@ -313,7 +317,7 @@ std::string models_help() {
          "sheen: color=1 roughness=0.5 [0,1] (KHR_materials_sheen's Charlie lobe alone)\n"
          "gltf-surface: gltf's parameters with the glTF extensions' layers: ior=1.5 [1,1e3] specular=1\n"
          "  specular_color=1 diffuse_roughness=0 transmission=0 diffuse_transmission=0 diffuse_transmission_color=1\n"
-         "  anisotropy=0 anisotropy_rotation=0 (radians)\n"
+         "  volume_eta=0 (>0: the transmission refracts by n(beyond)/n(here)) anisotropy=0 anisotropy_rotation=0 (radians)\n"
          "  sheen_color=0 sheen_roughness=0 iridescence=0 [0,1] iridescence_ior=1.3 iridescence_thickness=400 (nm)\n"
          "  clearcoat=0 clearcoat_roughness=0 [0,1]\n"
          "measured: file=PATH (MERL binary layout)\n"
