@@ -135,6 +135,9 @@ std::vector<std::pair<std::string, std::shared_ptr<const Bsdf>>> surface_cases()
   p = base;
   p.transmission = 1.0f, p.thin_walled = false, p.eta = 1.5f;
   cases.push_back({"transmission+volume", p});
+  p = base;
+  p.diffuse_transmission = 0.5f, p.diffuse_transmission_color = Rgb(0.6f, 0.9f, 0.3f);
+  cases.push_back({"diffuse-transmission", p});
   std::vector<std::pair<std::string, std::shared_ptr<const Bsdf>>> out;
   for (const auto& [label, params] : cases) out.push_back({"surface/" + label, std::make_shared<SurfaceBsdf>(params)});
   return out;
