@@ -233,32 +233,46 @@ void add_box(Scene& s, int material, const glm::vec3& half) {
 //   Le·(1 − F)²·e^(−τ) / (1 − F²·e^(−2τ)),  F = ((1.5 − 1)/(1.5 + 1))² = 0.04,
 // the inter-reflections summed in closed form (the light reflected toward the camera's side meets
 // the black sky).
+constexpr float kSlabThickness = 0.5f, kSlabAttenuationDistance = 0.5f;
+
+// The slab's head-on 8×8 image: a smooth glass box (ior 1.5, transmission 1) of thickness
+// kSlabThickness with attenuationColor c and the given dispersion, before an emitter of radiance
+// `emitted`, black elsewhere.
+Image glass_slab_image(float c, float dispersion, const Rgb& emitted, int spp) {
+  Scene s;
+  MaterialDesc glass;
+  glass.base_color = Rgb(1.0f);
+  glass.metallic = 0.0f;
+  glass.roughness = 0.0f;
+  glass.transmission = 1.0f;
+  glass.thickness = kSlabThickness;
+  glass.attenuation_distance = kSlabAttenuationDistance;
+  glass.attenuation_color = Rgb(c);
+  glass.dispersion = dispersion;
+  s.materials.push_back(glass);
+  MaterialDesc light = lambertian(Rgb(0.0f));
+  light.emissive = emitted;
+  s.materials.push_back(light);
+  add_box(s, 0, {4.0f, 4.0f, 0.5f * kSlabThickness});
+  add_quad(s, 1, glm::translate(glm::dmat4(1.0), glm::dvec3(0, 0, -2)), 20.0f);
+  s.cameras.push_back(ortho_camera({0, 0, 5}, {0, 0, 0}, 1.0f));
+  SceneSetup setup;
+  setup.width = setup.height = 8;
+  setup.env = "0,0,0";
+  return render_scene(std::move(s), setup, spp).radiance();
+}
+
+// What the slab lets through head-on: (1 − F)²·e^(−τ) / (1 − F²·e^(−2τ)), F = 0.04,
+// τ = −ln(c)·t/d.
+double slab_transmittance(float c) {
+  const double f = 0.04, tau = -std::log(double(c)) * kSlabThickness / kSlabAttenuationDistance;
+  return (1 - f) * (1 - f) * std::exp(-tau) / (1 - f * f * std::exp(-2 * tau));
+}
+
 TEST(LayeredRender, GlassSlabTransmitsBeerLambertAndFresnel) {
-  const float t = 0.5f;
   for (const float c : {1.0f, 0.5f}) {
-    Scene s;
-    MaterialDesc glass;
-    glass.base_color = Rgb(1.0f);
-    glass.metallic = 0.0f;
-    glass.roughness = 0.0f;
-    glass.transmission = 1.0f;
-    glass.thickness = t;
-    glass.attenuation_distance = 0.5f;
-    glass.attenuation_color = Rgb(c);
-    s.materials.push_back(glass);
-    MaterialDesc light = lambertian(Rgb(0.0f));
-    light.emissive = Rgb(1.0f);
-    s.materials.push_back(light);
-    add_box(s, 0, {4.0f, 4.0f, 0.5f * t});
-    add_quad(s, 1, glm::translate(glm::dmat4(1.0), glm::dvec3(0, 0, -2)), 20.0f);
-    s.cameras.push_back(ortho_camera({0, 0, 5}, {0, 0, 0}, 1.0f));
-    SceneSetup setup;
-    setup.width = setup.height = 8;
-    setup.env = "0,0,0";
-    const Image im = render_scene(std::move(s), setup, 256).radiance();
-    const double f = 0.04, tau = -std::log(double(c)) * t / 0.5;
-    const double want = (1 - f) * (1 - f) * std::exp(-tau) / (1 - f * f * std::exp(-2 * tau));
-    EXPECT_NEAR(mean_luma(im), want, 0.01 * want) << "attenuationColor " << c;
+    const double want = slab_transmittance(c);
+    EXPECT_NEAR(mean_luma(glass_slab_image(c, 0.0f, Rgb(1.0f), 256)), want, 0.01 * want) << "attenuationColor " << c;
   }
 }
 
@@ -267,31 +281,9 @@ TEST(LayeredRender, GlassSlabTransmitsBeerLambertAndFresnel) {
 // a dispersive slab must transmit what the same slab without dispersion does, channel by channel
 // (the closed form of GlassSlabTransmitsBeerLambertAndFresnel): the channel's draw is unbiased.
 TEST(LayeredRender, DispersiveSlabFollowsOneChannelUnbiased) {
-  const float t = 0.5f;
-  Scene s;
-  MaterialDesc glass;
-  glass.base_color = Rgb(1.0f);
-  glass.metallic = 0.0f;
-  glass.roughness = 0.0f;
-  glass.transmission = 1.0f;
-  glass.thickness = t;
-  glass.attenuation_distance = 0.5f;
-  glass.attenuation_color = Rgb(0.5f);
-  glass.dispersion = 2.0f;
-  s.materials.push_back(glass);
-  MaterialDesc light = lambertian(Rgb(0.0f));
-  light.emissive = Rgb(1.0f, 0.5f, 0.25f);
-  s.materials.push_back(light);
-  add_box(s, 0, {4.0f, 4.0f, 0.5f * t});
-  add_quad(s, 1, glm::translate(glm::dmat4(1.0), glm::dvec3(0, 0, -2)), 20.0f);
-  s.cameras.push_back(ortho_camera({0, 0, 5}, {0, 0, 0}, 1.0f));
-  SceneSetup setup;
-  setup.width = setup.height = 8;
-  setup.env = "0,0,0";
-  const Image im = render_scene(std::move(s), setup, 512).radiance();
-  const double f = 0.04, tau = std::log(2.0);
-  const double slab = (1 - f) * (1 - f) * std::exp(-tau) / (1 - f * f * std::exp(-2 * tau));
   const Rgb emitted(1.0f, 0.5f, 0.25f);
+  const Image im = glass_slab_image(0.5f, 2.0f, emitted, 512);
+  const double slab = slab_transmittance(0.5f);
   for (int c = 0; c < 3; ++c) {
     double mean = 0;
     for (int y = 0; y < 8; ++y)
