@@ -62,6 +62,13 @@ std::vector<glm::vec3> directions() {
 
 double rel_err(double a, double b) { return std::abs(a - b) / std::max(std::abs(b), 1e-30); }
 
+// The surface is the plain glTF BRDF of g (appearance/gltf.h), channel by channel, within `tolerance`.
+void expect_is_gltf_brdf(const SurfaceBsdf& b, const GltfParams& g, double tolerance) {
+  for (const glm::vec3& wi : directions())
+    for (const glm::vec3& wo : directions())
+      for (int c = 0; c < 3; ++c) EXPECT_LT(rel_err(b.eval(wi, wo)[c], gltf_eval(g, wi, wo)[c]), tolerance);
+}
+
 // The sampler's χ² test against its own density at each view elevation (degrees), azimuth phi.
 void expect_sampler_matches(const Bsdf& b, std::initializer_list<double> thetas, double phi) {
   for (const double theta : thetas) {
@@ -169,11 +176,7 @@ TEST(Anisotropy, ZeroStrengthIsIsotropicGgx) {
   p.roughness = 0.35f;
   p.anisotropy = 0.0f;
   p.anisotropy_direction = glm::vec2(0.6f, 0.8f);
-  const SurfaceBsdf b(p);
-  const GltfParams g{p.base_color, p.metallic, p.roughness};
-  for (const glm::vec3& wi : directions())
-    for (const glm::vec3& wo : directions())
-      for (int c = 0; c < 3; ++c) EXPECT_LT(rel_err(b.eval(wi, wo)[c], gltf_eval(g, wi, wo)[c]), 1e-6);
+  expect_is_gltf_brdf(SurfaceBsdf(p), {p.base_color, p.metallic, p.roughness}, 1e-6);
 }
 
 // A white metal's BRDF is the specular V·D alone (Fresnel 1): it must be the extension's
@@ -310,11 +313,7 @@ TEST(Iridescence, EvalMixesTheFilmIntoBothFresnelTerms) {
     }
   // With no film thickness the film is the plain Fresnel: the surface is the glTF BRDF.
   p.iridescence_thickness = 0.0f;
-  const SurfaceBsdf none(p);
-  const GltfParams g{p.base_color, p.metallic, p.roughness};
-  for (const glm::vec3& wi : directions())
-    for (const glm::vec3& wo : directions())
-      for (int k = 0; k < 3; ++k) EXPECT_LT(rel_err(none.eval(wi, wo)[k], gltf_eval(g, wi, wo)[k]), 1e-5);
+  expect_is_gltf_brdf(SurfaceBsdf(p), {p.base_color, p.metallic, p.roughness}, 1e-5);
 }
 
 // KHR_materials_diffuse_transmission: base = mix(diffuse_brdf(baseColor), diffuse_btdf(color),
