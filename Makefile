@@ -2,6 +2,7 @@
 # is missing, configures, builds Release, then renders or tests. Idempotent; seconds when nothing changed.
 BUILD      ?= build
 ASAN_BUILD ?= build-asan
+FUZZ_BUILD ?= build-fuzz
 JOBS       ?= $(shell nproc)
 CTEST_ARGS ?=
 LAUNCHER   := $(if $(shell command -v ccache),-DCMAKE_CXX_COMPILER_LAUNCHER=ccache,)
@@ -9,7 +10,7 @@ LAUNCHER   := $(if $(shell command -v ccache),-DCMAKE_CXX_COMPILER_LAUNCHER=ccac
 export CCACHE_BASEDIR ?= $(CURDIR)
 export CCACHE_NOHASHDIR ?= 1
 
-.PHONY: all deps configure build test test-long render bench asan asan-contract format lod-report clean
+.PHONY: all deps configure build test test-long render bench asan asan-contract fuzz fuzz-smoke format lod-report clean
 
 all: build
 
@@ -69,8 +70,24 @@ asan-contract: deps $(ASAN_BUILD)/build.ninja
 	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	  ctest -j $(JOBS) --output-on-failure --timeout 900 -LE 'long|lod' -R '$(CONTRACT_TESTS)' $(CTEST_ARGS)
 
+# The libFuzzer targets of fuzz/ (fuzz/README.md), built by clang with AddressSanitizer and
+# UndefinedBehaviorSanitizer: only the libraries they read through, not the programs or the suites.
+$(FUZZ_BUILD)/build.ninja:
+	@$(MAKE) --no-print-directory deps
+	cmake -S . -B $(FUZZ_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_COMPILER=clang++-14 \
+	  -DCMAKE_CXX_FLAGS="-O1 -g1" -DSVBRDF_SANITIZE=ON -DSVBRDF_FUZZ=ON -DSVBRDF_BUILD_TESTS=OFF \
+	  -DSVBRDF_BUILD_BENCH=OFF $(LAUNCHER)
+
+fuzz: deps $(FUZZ_BUILD)/build.ninja
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_targets
+
+# Every target on its corpus and its regression inputs, then a short mutation run of each (CI's check,
+# about a minute and a half); fails on any finding.
+fuzz-smoke: fuzz
+	fuzz/smoke $(FUZZ_BUILD)/fuzz
+
 format:
 	@git ls-files '*.h' '*.cpp' | xargs clang-format -i
 
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD) out
+	rm -rf $(BUILD) $(ASAN_BUILD) $(FUZZ_BUILD) out

@@ -7,6 +7,15 @@ if(SVBRDF_SANITIZE)
   add_link_options(-fsanitize=address,undefined)
 endif()
 
+# libFuzzer steers by the coverage of the code under test: every library is instrumented for it, and
+# only the fuzz targets link libFuzzer itself (fuzz/CMakeLists.txt).
+if(SVBRDF_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+    message(FATAL_ERROR "SVBRDF_FUZZ needs clang (libFuzzer): configure with -DCMAKE_CXX_COMPILER=clang++-14")
+  endif()
+  add_compile_options(-fsanitize=fuzzer-no-link)
+endif()
+
 # svbrdf_module(NAME SOURCES... DEPS ...): a module library svbrdf_NAME with alias svbrdf::NAME,
 # include root at the repository root so code writes #include "appearance/bsdf.h".
 function(svbrdf_module name)
