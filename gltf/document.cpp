@@ -287,6 +287,9 @@ class Reader {
         const auto& b = (*it)[i];
         const auto length = unsigned_member(b, "byteLength");
         buffer_length.push_back(length);
+        // The schema's minimum (glTF 2.0, buffer.schema.json); tinygltf 2.7 copies a .glb's BIN chunk
+        // into an empty buffer through data.at(0), which throws std::out_of_range.
+        if (length && *length == 0) fail(json_index("buffers", int(i)) + ".byteLength", "is 0; a buffer has at least 1 byte");
         if (length && *length > resource_limits().memory_bytes)
           fail(json_index("buffers", int(i)) + ".byteLength",
                "is " + byte_size_text(*length) + ", over the memory budget of " +
