@@ -23,6 +23,7 @@
 #include "mip/mip_file_channels.h"
 #include "mip/stored_lobe.h"
 #include "mip/stored_normal.h"
+#include "textures/exr_header.h"
 
 namespace svbrdf {
 
@@ -355,6 +356,7 @@ void write_mip_file(const fs::path& path, const ParamPyramid& param, const BrdfP
 }
 
 MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
+  check_exr_file_header(path, where(path));  // no allocation at a size only the file states
   std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path.string());
   if (!in) {
     std::string why = OIIO::geterror();

@@ -17,6 +17,7 @@
 #include "base/atomic_file.h"
 #include "base/error.h"
 #include "base/resource_limits.h"
+#include "textures/exr_header.h"
 
 namespace svbrdf {
 
@@ -209,6 +210,7 @@ Image decode_memory(std::span<const std::byte> bytes, std::string_view mime_type
   if (is_png(bytes)) quiet.emplace();
   if (bytes.empty()) throw input_error(name, "image data is empty");
   if (is_png(bytes)) check_png_structure(bytes, name);
+  check_exr_header(bytes, name);
   const std::string ext = extension_for(bytes, mime_type);
   if (ext.empty())
     throw input_error(name, "unsupported image type" + (mime_type.empty() ? std::string() : " \"" + std::string(mime_type) + "\""));
@@ -262,6 +264,7 @@ Image read_image(const std::filesystem::path& path, PixelFormat* stored_format) 
   // PNGs are checked whole before libpng sees them (check_png_structure), so decode from memory.
   if (char sig[8] = {}; std::ifstream(path, std::ios::binary).read(sig, 8) && is_png(std::as_bytes(std::span(sig))))
     return decode_memory(read_file_bytes(path), "", where, stored_format);
+  check_exr_file_header(path, where);
   auto in = OIIO::ImageInput::open(where, &straight_alpha_config());
   if (!in) throw input_error(where, "cannot read image: " + reason(OIIO::geterror(), "unrecognized format"));
   return read_opened(*in, where, stored_format);

@@ -336,6 +336,22 @@ TEST(MipFile, ReadsNormalCodesAsDocumented) {
   EXPECT_GT(differ, 0) << "no lobe's normal is off the pole: the two decodings cannot be told apart here";
 }
 
+// What fuzzing found (fuzz/regressions/mip_file): a MIP file whose second part states 1.1 GB for an
+// attribute in a file of 2.9 KB, which OpenEXR would allocate before failing at the end of the file.
+// Refused from its header, naming the attribute.
+TEST(MipFile, AnAttributeLargerThanTheFileIsRefusedBeforeOpenExrReadsIt) {
+  const std::filesystem::path file =
+      std::filesystem::path(SVBRDF_SOURCE_DIR) / "fuzz/regressions/mip_file/attribute-larger-than-the-file.exr";
+  try {
+    read_mip_file(file);
+    ADD_FAILURE() << "read";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("corrupt OpenEXR header: attribute"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("states 1148215651 bytes"), std::string::npos) << e.what();
+    EXPECT_EQ(e.exit_code(), 2);
+  }
+}
+
 }  // namespace
 }  // namespace svbrdf
 

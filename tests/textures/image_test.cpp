@@ -228,6 +228,29 @@ TEST(Image, TexelLimitIsCheckedFromTheHeader) {
   resource_limits().max_texels = saved;
 }
 
+// OpenEXR allocates an attribute's value at the size the file states before reading it: an EXR of a
+// few hundred bytes whose first attribute states 2^31 - 1 bytes (its layout: the 4-byte magic, the
+// 4-byte version field, then the attribute's name and type name, null-terminated, and its 4-byte
+// little-endian size) is refused from the header, from a file and from memory, with one line; with the
+// size restored it reads.
+TEST(Image, ExrAttributeLargerThanTheFileIsRefusedFromTheHeader) {
+  const TempDir dir;
+  write_image(dir / "small.exr", gradient(4, 4, 3), PixelFormat::half);
+  std::vector<std::byte> exr = file_bytes(dir / "small.exr");
+  std::size_t at = 8;
+  while (exr.at(at) != std::byte{0}) ++at;
+  ++at;
+  while (exr.at(at) != std::byte{0}) ++at;
+  ++at;
+  const std::vector<std::byte> size(exr.begin() + std::ptrdiff_t(at), exr.begin() + std::ptrdiff_t(at) + 4);
+  for (int b = 0; b < 4; ++b) exr[at + std::size_t(b)] = std::byte(b == 3 ? 0x7f : 0xff);
+  write_bytes(dir / "lying.exr", exr);
+  expect_bad_input([&] { read_image(dir / "lying.exr"); }, "states 2147483647 bytes");
+  expect_bad_input([&] { read_image_from_memory(exr, "", "images[4]"); }, "images[4]: corrupt OpenEXR header");
+  std::copy(size.begin(), size.end(), exr.begin() + std::ptrdiff_t(at));
+  EXPECT_EQ(read_image_from_memory(exr, "", "images[4]").pixels, read_image(dir / "small.exr").pixels);
+}
+
 // Decoding from memory (a .glb buffer view, a data: URI) gives exactly what decoding the file
 // gives, for every format glTF embeds and for the float formats.
 TEST(Image, DecodesFromMemoryLikeFromFile) {
