@@ -93,6 +93,7 @@ BrdfLevel level_from_below(Extent level0, int level, const BrdfLevel& fine, cons
         int kept = 0;
         for (int k = 0; k < std::min(reduced, max_lobes); ++k) {
           Lobe& l = buf[static_cast<std::size_t>(k)];
+          if (!options.tint) l.f0_tint = glm::vec3(0.0f);
           round_to_stored(l);
           // A lobe below a half float's smallest weight (6e-8 of the texel) is dropped: the file
           // could not tell it from an empty slot.
@@ -220,6 +221,7 @@ BrdfPyramid BrdfPyramid::build(const MaterialTexels& m, const BrdfBuildOptions& 
   BrdfPyramid p;
   p.level0_ = {m.width, m.height};
   p.max_lobes_ = std::clamp(options.reduction.max_lobes, 1, kMaxLobes);
+  p.tintable_ = options.tint;
   const int n = level_count(p.level0_);
   if (n == 0) return p;
   if (stats) stats->assign(static_cast<std::size_t>(n), BrdfLevelStats{1.0, 1, 0.0, 0.0, 0});
@@ -233,14 +235,16 @@ BrdfPyramid BrdfPyramid::build(const MaterialTexels& m, const BrdfBuildOptions& 
 
 int BrdfPyramid::bytes_per_texel(int level) const {
   const BrdfLevel& l = this->level(level);
-  return l.slots * (kBytesPerLobe + (l.specular_layer() ? kBytesPerSpecularLayer : 0)) +
+  return l.slots * (kBytesPerLobe + (l.specular_layer() ? kBytesPerSpecularLayer : 0) +
+                    (l.tint_layer() ? kBytesPerTintLayer : 0)) +
          (l.correction.empty() ? 0 : kBytesPerCorrection);
 }
 
 BrdfPyramid BrdfPyramid::from_levels(const MaterialTexels& m, int max_lobes, std::vector<BrdfLevel> coarse,
-                                     const RadialGrid& grid) {
+                                     const RadialGrid& grid, bool tintable) {
   BrdfPyramid p;
   p.grid_ = grid;
+  p.tintable_ = tintable;
   p.level0_ = {m.width, m.height};
   p.max_lobes_ = max_lobes;
   const int n = level_count(p.level0_);

@@ -63,6 +63,14 @@ struct BrdfLevel {
         if (l.f90 != 1.0f || l.diffuse90 != glm::vec3(0.0f)) return true;
     return false;
   }
+  // Whether some lobe has f0_tint ≠ 0 (a tintable pyramid of a material with metal), which the MIP file
+  // then stores in kBytesPerTintLayer more bytes a slot.
+  bool tint_layer() const {
+    for (std::size_t t = 0; t < counts.size(); ++t)
+      for (const Lobe& l : texel_lobes(t))
+        if (l.f0_tint != glm::vec3(0.0f)) return true;
+    return false;
+  }
   // Makes room for `texels` texels, all empty.
   void reset(Extent e, std::size_t texels) {
     extent = e;
@@ -89,6 +97,10 @@ struct BrdfBuildOptions {
   bool radial_correction = true;  // radial_correction.h, from kFirstCorrectedLevel on
   bool recentre = true;           // and the lobes re-centred before it (radial_correction.h)
   int stats_samples = 0;  // texels per level whose reduction error is measured (0: none)
+  // Keep each lobe's f0_tint, so that the pyramid answers lookups under a tint of the base color
+  // (glTF's COLOR_0; lobe.h tinted) at kBytesPerTintLayer a stored lobe. Without it f0_tint is 0 and
+  // the pyramid is not tintable().
+  bool tint = false;
 };
 
 class BrdfPyramid {
@@ -100,12 +112,15 @@ class BrdfPyramid {
   // `correction` is not empty) and the level-0 texels' extent; throws svbrdf::Error when the shapes do
   // not form a pyramid.
   static BrdfPyramid from_levels(const MaterialTexels& level0, int max_lobes, std::vector<BrdfLevel> coarse,
-                                 const RadialGrid& grid = {});
+                                 const RadialGrid& grid = {}, bool tintable = false);
 
   int levels() const { return static_cast<int>(levels_.size()); }
   Extent level0() const { return level0_; }
   Extent extent(int level) const { return levels_[static_cast<std::size_t>(level)].extent; }
   int max_lobes() const { return max_lobes_; }
+  // Built with BrdfBuildOptions::tint: its lobes' f0_tint are kept, and tinted() of them is the tinted
+  // texels' lobes.
+  bool tintable() const { return tintable_; }
   const BrdfLevel& level(int level) const { return levels_[static_cast<std::size_t>(level)]; }
 
   // The lobes of texel (i, j) of `level` ≥ 1: a view into the pyramid, valid while it lives.
@@ -147,6 +162,7 @@ class BrdfPyramid {
 
   Extent level0_{};
   int max_lobes_ = 1;
+  bool tintable_ = false;
   RadialGrid grid_{};
   std::vector<BrdfLevel> levels_;
 };

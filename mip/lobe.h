@@ -70,6 +70,7 @@ struct Lobe {
   glm::vec3 f0{0.0f};
   glm::vec3 diffuse90{0.0f};  // ρ90: the diffuse factor at w = 1 (specular_layer below)
   float f90 = 1.0f;           // F90: the specular Fresnel at w = 1
+  glm::vec3 f0_tint{0.0f};    // the part of F0 a tint of the base color scales (tinted below)
   glm::vec3 normal{0.0f, 0.0f, 1.0f};
   float alpha2 = 1e-6f;     // GGX α² (a roughness mixture's lower end)
   float ggx = 1.0f;         // μ, the GGX share of a spread core; β, the upper part's share of a roughness mixture
@@ -105,6 +106,7 @@ inline Lobe lobe_from_texel(const glm::vec3& base_color, float metallic, float r
     // The plain layer in its own arithmetic, so that its lobes stay bit for bit what they always were.
     l.diffuse = (1.0f - metallic) * base_color;
     l.f0 = glm::mix(glm::vec3(0.04f), base_color, metallic);
+    l.f0_tint = metallic * base_color;
     return l;
   }
   const glm::vec3 f0 = glm::min(dielectric_f0(layer.ior) * layer.color, glm::vec3(1.0f));
@@ -114,6 +116,27 @@ inline Lobe lobe_from_texel(const glm::vec3& base_color, float metallic, float r
   l.diffuse90 = rho * (1.0f - layer.specular);
   l.f0 = (1.0f - metallic) * layer.specular * f0 + metallic * base_color;
   l.f90 = (1.0f - metallic) * layer.specular + metallic;
+  l.f0_tint = metallic * base_color;
+  return l;
+}
+
+// A tint v of the base color (glTF's COLOR_0: c → c·v, glTF 2.0 §3.9.2) in a lobe's factors. Of the
+// four (specular_layer above) ρ and ρ90 are (1 − m)·c times factors free of c, and F0 is the sum of
+// the untinted (1 − m)·s·f0 and the tintable m·c; F90 holds no c. Each is linear in the texels' colors
+// and a merged lobe averages each linearly (lobe_reduction.h; a merge's flux rescaling scales weight
+// and ρ, never F0), so with f0_tint the mean of m·c a lobe tinted by
+//   ρ·v, ρ90·v, F0 + f0_tint·(v − 1), F90
+// is exactly what the same merges of the tinted texels make, at any level, for a tint that is one
+// value over the texel's footprint (COLOR_0 is interpolated from the vertices, smooth on a texel's
+// scale). What the tint does not move is the lobes' shapes, fitted with the untinted colours' weights,
+// nor the texel's radial correction (weighted by untinted F0, radial_correction.h): where a tint moves
+// metal and dielectric texels of one lobe apart, those weights are off to second order (tint_test.cpp
+// measures it against the exact reference of the tinted texels).
+inline Lobe tinted(Lobe l, const glm::vec3& v) {
+  l.diffuse *= v;
+  l.diffuse90 *= v;
+  l.f0 += l.f0_tint * (v - 1.0f);
+  l.f0_tint *= v;
   return l;
 }
 

@@ -36,7 +36,7 @@ MergeBase merge_base(std::span<const Member> u) {
   for (const Member& x : u) w += x.lobe->weight;
   // Shares by one reciprocal: this runs for every candidate merge of every texel.
   const double inv_w = 1.0 / w;
-  glm::dvec3 diffuse(0), f0(0), diffuse90(0), nbar(0);
+  glm::dvec3 diffuse(0), f0(0), f0_tint(0), diffuse90(0), nbar(0);
   double f90 = 0;
   bool plain = true;  // every member's F90 is 1: the mean is 1 exactly, not a rounding of it
   Summary& s = mb.summary;
@@ -45,6 +45,7 @@ MergeBase merge_base(std::span<const Member> u) {
     const double t = x.lobe->weight * inv_w;
     diffuse += t * glm::dvec3(x.lobe->diffuse);
     f0 += t * glm::dvec3(x.lobe->f0);
+    f0_tint += t * glm::dvec3(x.lobe->f0_tint);
     diffuse90 += t * glm::dvec3(x.lobe->diffuse90);
     f90 += t * x.lobe->f90;
     plain = plain && x.lobe->f90 == 1.0f;
@@ -55,6 +56,7 @@ MergeBase merge_base(std::span<const Member> u) {
   m.weight = static_cast<float>(w);
   m.diffuse = glm::vec3(diffuse);
   m.f0 = glm::vec3(f0);
+  m.f0_tint = glm::vec3(f0_tint);
   m.diffuse90 = glm::vec3(diffuse90);
   if (plain) f90 = 1.0;
   m.f90 = static_cast<float>(f90);

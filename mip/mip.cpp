@@ -14,12 +14,15 @@ struct MipTexture::Pyramids {
   ParamPyramid param;  // level 0 from the start, the coarse levels once a parameter filter is prepared
   BrdfPyramid brdf;
   bool has_brdf = false;
+  bool tint = false;  // build the BRDF pyramid tintable
 
   const ParamTexel& level0(int i, int j) const { return param.texel(0, i, j); }
   void build(TextureFilter filter, const MaterialTexels& level0) {
     if (reads_param_pyramid(filter) && !param.complete()) param.build_coarse_levels();
     if (filter == TextureFilter::brdf && !has_brdf) {
-      brdf = BrdfPyramid::build(level0);
+      BrdfBuildOptions o;
+      o.tint = tint;
+      brdf = BrdfPyramid::build(level0, o);
       has_brdf = true;
     }
   }
@@ -29,11 +32,12 @@ MipTexture::MipTexture(MipTexture&&) noexcept = default;
 MipTexture& MipTexture::operator=(MipTexture&&) noexcept = default;
 MipTexture::~MipTexture() = default;
 
-MipTexture::MipTexture(const MaterialTexels& level0, WrapMode wrap_s, WrapMode wrap_t, TextureFilter filter)
+MipTexture::MipTexture(const MaterialTexels& level0, WrapMode wrap_s, WrapMode wrap_t, TextureFilter filter, bool tint)
     : extent_{level0.width, level0.height},
       wrap_s_(wrap_s),
       wrap_t_(wrap_t),
       pyramids_(std::make_unique<Pyramids>()) {
+  pyramids_->tint = tint;
   pyramids_->param = ParamPyramid::level0_only(level0);
   pyramids_->build(filter, level0);
 }
@@ -43,6 +47,7 @@ MipTexture::MipTexture(MipData data, WrapMode wrap_s, WrapMode wrap_t)
   pyramids_->param = std::move(data.param);
   pyramids_->brdf = std::move(data.brdf);
   pyramids_->has_brdf = true;
+  pyramids_->tint = pyramids_->brdf.tintable();
 }
 
 void MipTexture::write(const std::filesystem::path& path, const std::string& cache_key) const {
@@ -51,14 +56,17 @@ void MipTexture::write(const std::filesystem::path& path, const std::string& cac
   write_mip_file(path, pyramids_->param, pyramids_->brdf, cache_key);
 }
 
-std::string mip_build_identity() {
-  // The options MipTexture::prepare builds with (BrdfPyramid::build's defaults).
-  const BrdfBuildOptions o;
+std::string mip_build_identity(bool tint) {
+  // The options MipTexture::prepare builds with (BrdfPyramid::build's defaults but for the tint).
+  BrdfBuildOptions o;
+  o.tint = tint;
   char text[320];
   std::snprintf(text, sizeof text,
-                "mip file %d; lobes %d; tolerance %a; spread %a; peak weight %a; lean share %a; radial %d; recentre %d",
+                "mip file %d; lobes %d; tolerance %a; spread %a; peak weight %a; lean share %a; radial %d; recentre %d; "
+                "tint %d",
                 kMipFileVersion, o.reduction.max_lobes, double(o.reduction.tolerance), double(o.reduction.spread_scale),
-                o.reduction.peak_weight, o.reduction.lean_peak_share_spread, int(o.radial_correction), int(o.recentre));
+                o.reduction.peak_weight, o.reduction.lean_peak_share_spread, int(o.radial_correction), int(o.recentre),
+                int(o.tint));
   return text;
 }
 
@@ -88,6 +96,8 @@ glm::ivec2 MipTexture::nearest_texel(glm::vec2 uv) const {
 
 MaterialTexels MipTexture::level0_texels() const { return pyramids_->param.level0_texels(); }
 
+bool MipTexture::tintable() const { return pyramids_->tint; }
+
 float MipTexture::level(const Footprint& f) const { return mip_level(extent_, f); }
 
 float mip_level(Extent level0, const Footprint& f) { return filter_level(level0, level_count(level0), f); }
@@ -96,7 +106,7 @@ MipTexture::Choice MipTexture::choose(TextureFilter filter, const Footprint& f, 
                                       float u) const {
   Choice c{filter, f, tint};
   const Pyramids& p = *pyramids_;
-  if (filter == TextureFilter::brdf && tint == Rgb(1.0f)) {
+  if (filter == TextureFilter::brdf && (tint == Rgb(1.0f) || p.tint)) {
     const FilterTap t = select_tap(p.brdf.level0(), p.brdf.levels(), folded(f), u);  // O(1), mip_lookup.h
     c.level = t.level, c.i = t.i, c.j = t.j;
     if (c.level >= 1)
@@ -106,7 +116,7 @@ MipTexture::Choice MipTexture::choose(TextureFilter filter, const Footprint& f, 
   } else if (reads_param_pyramid(filter)) {
     c.level = -1;
   } else {
-    // level0, and brdf on a tinted hit: the nearest texel.
+    // level0, and brdf on a tinted hit of a texture not built for tints: the nearest texel.
     const glm::ivec2 t = nearest_texel(f.uv);
     c.level = 0, c.i = t.x, c.j = t.y;
     __builtin_prefetch(&p.level0(c.i, c.j));
@@ -114,25 +124,31 @@ MipTexture::Choice MipTexture::choose(TextureFilter filter, const Footprint& f, 
   return c;
 }
 
-std::span<const Lobe> MipTexture::lobes(const Choice& c, Lobe& scratch) const {
+std::span<const Lobe> MipTexture::lobes(const Choice& c, Scratch& scratch) const {
   const Pyramids& p = *pyramids_;
   if (c.level < 0) {
     SpecularLayer layer;
     ParamTexel t = filter_params(p.param, folded(c.footprint), kMaxProbes, &layer);
     t.base_color *= c.tint;
-    scratch = param_lobe(t, c.filter, layer);
-    return {&scratch, 1};
+    scratch.lobe[0] = param_lobe(t, c.filter, layer);
+    return {scratch.lobe, 1};
   }
-  if (c.level >= 1) return p.brdf.texel(c.level, c.i, c.j);
+  if (c.level >= 1) {
+    const std::span<const Lobe> texel = p.brdf.texel(c.level, c.i, c.j);
+    if (c.tint == Rgb(1.0f)) return texel;
+    const std::size_t n = std::min<std::size_t>(texel.size(), kMaxLobes);
+    for (std::size_t k = 0; k < n; ++k) scratch.lobe[k] = tinted(texel[k], c.tint);
+    return {scratch.lobe, n};
+  }
   // Level 0 (the BRDF pyramid does not hold it twice): the texel's f_eff. With tint 1 the product is
   // exact, so this is level0_lobe of the texel, the BRDF pyramid's level-0 lobe bit for bit.
   const ParamTexel& t = p.level0(c.i, c.j);
-  scratch = lobe_from_texel(t.base_color * c.tint, t.metallic, t.roughness, t.normal, 1.0f, p.param.specular(0, c.i, c.j));
-  return {&scratch, 1};
+  scratch.lobe[0] = lobe_from_texel(t.base_color * c.tint, t.metallic, t.roughness, t.normal, 1.0f, p.param.specular(0, c.i, c.j));
+  return {scratch.lobe, 1};
 }
 
 void MipTexture::lookup(const Choice& c, LobeMixtureBsdf& out) const {
-  Lobe scratch;
+  Scratch scratch;
   out.assign(lobes(c, scratch));
   const BrdfPyramid& brdf = pyramids_->brdf;
   out.set_correction(c.level >= 1 ? brdf.correction(c.level, c.i, c.j) : nullptr, &brdf.radial_grid());

@@ -17,9 +17,10 @@
 //   brdf    — one texel among the filter's taps, chosen with probability equal to its weight by the
 //             selection number u (Pharr et al. 2024): that texel's lobes and radial correction.
 //
-// A tint (glTF's COLOR_0) multiplies base color: exactly under level0 and the parameter filters. A
-// BRDF texel's lobes hold ρ and F0 already mixed with metallic, from which a tinted base color cannot
-// be recovered, so brdf answers a tinted lookup as level0 does.
+// A tint (glTF's COLOR_0) multiplies base color: exactly under level0 and the parameter filters, and
+// under brdf where the texture was built for it (`tint` below; lobe.h tinted: a lobe keeps apart the
+// part of F0 the base color tints, 6 bytes a stored lobe). A texture built without it answers a
+// tinted brdf lookup as level0 does.
 //
 // Wrap modes: the filters wrap with repeat; clamp-to-edge and mirrored repeat are folded into the
 // texture first (textures/sampler.h fold_into_texture), which is exact for level 0's bilinear taps and
@@ -49,9 +50,10 @@ struct MipData;  // mip_data.h: what a MIP file holds (mip_file.h)
 class MipTexture {
  public:
   // Level 0 from `level0`, read with the wrap modes along u (s) and v (t), and what `filter` reads
-  // built from the same texels.
+  // built from the same texels; with `tint`, the BRDF pyramid is built for tinted lookups
+  // (BrdfBuildOptions::tint), for a material drawn with COLOR_0.
   MipTexture(const MaterialTexels& level0, WrapMode wrap_s, WrapMode wrap_t,
-             TextureFilter filter = TextureFilter::level0);
+             TextureFilter filter = TextureFilter::level0, bool tint = false);
   // Level 0 and both pyramids as a MIP file holds them (read_mip_file, mip_file.h), moved in: every
   // filter is prepared and nothing is built. A MIP file reads back bit-identically, so lookups answer
   // as those of the texture that wrote it.
@@ -90,12 +92,24 @@ class MipTexture {
               LobeMixtureBsdf& out) const {
     lookup(choose(filter, footprint, tint, u), out);
   }
-  // The chosen texel's lobes: a view into the BRDF pyramid, or `scratch` holding one lobe.
-  std::span<const Lobe> lobes(const Choice& choice, Lobe& scratch) const;
+  // The chosen texel's lobes: a view into the BRDF pyramid, or into `scratch` (one lobe of level 0
+  // or of a parameter filter, or a coarse texel's lobes tinted).
+  // Room for those lobes, left uninitialized: a lookup writes only the ones it returns.
+  struct Scratch {
+    Scratch() {}
+    union {
+      Lobe lobe[kMaxLobes];
+    };
+  };
+  std::span<const Lobe> lobes(const Choice& choice, Scratch& scratch) const;
   std::span<const Lobe> lobes(TextureFilter filter, const Footprint& footprint, const Rgb& tint, float u,
-                              Lobe& scratch) const {
+                              Scratch& scratch) const {
     return lobes(choose(filter, footprint, tint, u), scratch);
   }
+
+  // Whether brdf answers tinted lookups from its pyramid (built with `tint`, or read from a MIP file
+  // built so).
+  bool tintable() const;
 
   // The continuous MIP level λ the filters read at a texture-space footprint.
   float level(const Footprint& footprint) const;
@@ -114,9 +128,9 @@ class MipTexture {
 };
 
 // What a MipTexture's build depends on besides its level-0 texels and this code, as text for a cache
-// key (render/mip_cache.h): the BRDF build's options (lobes, tolerance, the radial correction) and
-// the MIP file version.
-std::string mip_build_identity();
+// key (render/mip_cache.h): the BRDF build's options (lobes, tolerance, the radial correction, `tint`)
+// and the MIP file version.
+std::string mip_build_identity(bool tint = false);
 
 // The continuous MIP level λ the filters read at a texture-space footprint on a level-0 image of
 // `level0` texels (for a texture without MIP data: the level a filter would read there).

@@ -31,7 +31,8 @@ void check_texel(const MipData& mip, int level, int i, int j) {
                                      std::to_string(e.height) + ")");
 }
 
-void accumulate_brdf_texel(const MipData& mip, int level, int i, int j, double weight, std::span<glm::dvec3> acc) {
+void accumulate_brdf_texel(const MipData& mip, int level, int i, int j, double weight, std::span<glm::dvec3> acc,
+                           const glm::vec3& tint) {
   const RadialCorrection* c = mip.brdf.correction(level, i, j);
   const float* scales = nullptr;
   static thread_local std::vector<float> per_pair;
@@ -43,7 +44,8 @@ void accumulate_brdf_texel(const MipData& mip, int level, int i, int j, double w
     scales = per_pair.data();
   }
   Lobe scratch;
-  for (const Lobe& l : brdf_texel(mip, level, i, j, scratch)) accumulate_lobe_float(l, weight, acc, scales);
+  for (const Lobe& l : brdf_texel(mip, level, i, j, scratch))
+    accumulate_lobe_float(tint == glm::vec3(1.0f) ? l : tinted(l, tint), weight, acc, scales);
 }
 
 glm::dvec3 texel_eval(const MipData& mip, TextureFilter filter, int level, int i, int j, const glm::dvec3& wi,

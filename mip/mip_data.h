@@ -55,8 +55,10 @@ glm::dvec3 texel_eval(const MipData& mip, TextureFilter filter, int level, int i
 BrdfTable texel_table(const MipData& mip, TextureFilter filter, int level, int i, int j);
 
 // acc += weight · the BRDF pyramid's texel (level, i, j) over the direction grid's pairs, in float as
-// the renderer evaluates it, with its radial correction (radial_correction.h).
-void accumulate_brdf_texel(const MipData& mip, int level, int i, int j, double weight, std::span<glm::dvec3> acc);
+// the renderer evaluates it, with its radial correction (radial_correction.h), its lobes under a tint
+// of the base color (lobe.h tinted; a pyramid built tintable, unless the tint is 1).
+void accumulate_brdf_texel(const MipData& mip, int level, int i, int j, double weight, std::span<glm::dvec3> acc,
+                           const glm::vec3& tint = glm::vec3(1.0f));
 
 // Bytes per texel a filter stores at a level.
 int bytes_per_texel(const MipData& mip, TextureFilter filter, int level);

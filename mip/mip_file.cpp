@@ -136,6 +136,7 @@ std::string level_checksum(const OIIO::ImageSpec& s, int max_lobes, float radial
   const float ior = s.get_float_attribute(kIor, 1.5f);
   std::memcpy(&bits[0], &ior, 4);
   header += " ior " + std::to_string(bits[0]);
+  header += " tint " + std::to_string(s.get_int_attribute(kTint, 0));
   // Channels in name order, as the pixels: OpenImageIO lists a file's channels in an order of its own.
   std::vector<std::string> channels;
   for (int c = 0; c < s.nchannels; ++c)
@@ -284,7 +285,8 @@ void write_mip_file(const fs::path& path, const ParamPyramid& param, const BrdfP
   const bool param_specular = !param.specular_level(0).empty();
   std::vector<std::vector<LobeChannel>> channels(static_cast<std::size_t>(levels));
   for (int level = 1; level < levels; ++level)
-    channels[static_cast<std::size_t>(level)] = lobe_channels(brdf.level(level).specular_layer());
+    channels[static_cast<std::size_t>(level)] =
+        lobe_channels(brdf.level(level).specular_layer(), brdf.tintable() && brdf.level(level).tint_layer());
   std::vector<OIIO::ImageSpec> specs(static_cast<std::size_t>(levels));
   std::vector<NativeLayout> layouts(static_cast<std::size_t>(levels));
   for (int level = 0; level < levels; ++level) {
@@ -319,6 +321,7 @@ void write_mip_file(const fs::path& path, const ParamPyramid& param, const BrdfP
     s.attribute("svbrdf:max_lobes", brdf.max_lobes());
     s.attribute("svbrdf:slots", slots);
     if (param.ior() != 1.5f) s.attribute(kIor, param.ior());
+    if (brdf.tintable()) s.attribute(kTint, 1);
     if (corrected) {
       s.attribute(kRadialInner, radial_inner);
       s.attribute(kRadialOuter, radial_outer);
@@ -384,6 +387,8 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
   const int max_lobes = first.get_int_attribute("svbrdf:max_lobes", 1);
   const float radial_inner = first.get_float_attribute(kRadialInner, 0.0f);
   const float ior = first.get_float_attribute(kIor, 1.5f);
+  const int tint = first.get_int_attribute(kTint, 0);
+  if (tint != 0 && tint != 1) throw input_error(where(path), std::string(kTint) + " is " + std::to_string(tint) + ", not 0 or 1");
   if (!(std::isfinite(ior) && ior >= 0.0f && ior <= 1e4f))
     throw input_error(where(path), std::string(kIor) + " is " + std::to_string(ior) + ", not an index of refraction");
   if (first.find_attribute(kRadialInner) && !(radial_inner > 0.0f && radial_inner < 0.5f))
@@ -465,7 +470,11 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
     if (param_specular)
       for (const char* c : kParamSpecularChannels) need(c);
     const std::size_t first_lobe = order.size();
-    const std::vector<LobeChannel> lobe_ch = lobe_channels(slots > 0 && index.count("lobe0.F90") > 0);
+    // The tint layer's: only in a tintable file (a lobe of any other has no f0_tint).
+    const bool tint_channels = slots > 0 && index.count("lobe0.F0tint.R") > 0;
+    if (tint_channels && s.get_int_attribute(kTint, 0) != 1)
+      throw input_error(where(path), at_level + " has channel lobe0.F0tint.R but the file is not " + kTint + " 1");
+    const std::vector<LobeChannel> lobe_ch = lobe_channels(slots > 0 && index.count("lobe0.F90") > 0, tint_channels);
     for (int k = 0; k < slots; ++k)
       for (const LobeChannel& c : lobe_ch) {
         const std::string name = "lobe" + std::to_string(k) + "." + c.suffix;
@@ -567,7 +576,8 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
   if (corrupt) throw *corrupt;
   mip.param = ParamPyramid::from_levels(level0, std::move(param_levels), std::move(specular_levels), ior);
   mip.brdf = BrdfPyramid::from_levels(mip.level0, max_lobes, std::move(coarse),
-                                      radial_inner > 0.0f ? RadialGrid::with_inner(radial_inner, radial_outer) : RadialGrid{});
+                                      radial_inner > 0.0f ? RadialGrid::with_inner(radial_inner, radial_outer) : RadialGrid{},
+                                      tint == 1);
   return mip;
 }
 

@@ -35,6 +35,9 @@
 // and, in a level where some lobe has ρ90 ≠ 0 or F90 ≠ 1 (the specular layer), 8 bytes more a slot:
 //   lobeK.diffuse90.R/G/B       the diffuse factor at grazing incidence ρ90              half
 //   lobeK.F90                   the specular Fresnel at grazing incidence F90           half
+// and, in a level of a tintable file (svbrdf:tint 1) where some lobe has f0_tint ≠ 0, 6 bytes more:
+//   lobeK.F0tint.R/G/B          the part of F0 a tint of the base color scales, the mean of
+//                               metallic·base color (lobe.h, tinted)                     half
 // and, for L ≥ kFirstCorrectedLevel (4), 24 bytes (radial_correction.h):
 //   radial.R0 .. radial.R11     the texel's radial correction: the ratio of its true radial
 //                               profile of reflected light to its lobes' (gated beyond 10°)
@@ -43,7 +46,8 @@
 // Level 0's BRDF pyramid is its parameters (one lobe per texel) and is not stored twice.
 // Attributes on every subimage: svbrdf:mip_version (int, kMipFileVersion), svbrdf:level (int),
 // svbrdf:max_lobes (int, the --lobes the file was built with), svbrdf:slots (int, S_L), svbrdf:ior
-// (float, the material's KHR_materials_ior; absent: 1.5), and, where any
+// (float, the material's KHR_materials_ior; absent: 1.5), svbrdf:tint (int 1: a pyramid built for
+// tinted lookups, brdf_pyramid.h BrdfBuildOptions::tint; absent: 0), and, where any
 // level has radial channels, svbrdf:radial_inner (float, radians: θ of the grid's node 1) and
 // svbrdf:radial_outer (float, degrees: θ of its last node, RadialGrid::kOuterDeg).
 // svbrdf:checksum (string, on every subimage): 32 hexadecimal digits, farmhash's Fingerprint128 (a
@@ -63,7 +67,7 @@
 
 namespace svbrdf {
 
-inline constexpr int kMipFileVersion = 10;
+inline constexpr int kMipFileVersion = 11;
 
 // Throws svbrdf::Error naming the file when it cannot be written. A non-empty `cache_key` is stored as
 // svbrdf:cache_key.

@@ -27,6 +27,7 @@ enum class Role {
   normal_direction, normal_deficit,  // stored_normal.h
   alpha, shape, skirt,               // stored_lobe.h
   diffuse90_r, diffuse90_g, diffuse90_b, f90,  // the specular layer's (kSpecularLobeChannels)
+  f0_tint_r, f0_tint_g, f0_tint_b,             // the tint layer's (kTintLobeChannels)
   count
 };
 struct LobeChannel {
@@ -59,10 +60,20 @@ constexpr LobeChannel kSpecularLobeChannels[] = {
     {"diffuse90.B", Role::diffuse90_b, kHalf},
     {"F90", Role::f90, kHalf},
 };
-// The channels of a level's lobe slots, without or with the specular layer's.
-inline std::vector<LobeChannel> lobe_channels(bool specular) {
+// A lobe's channels of the tint layer, 6 bytes (kBytesPerTintLayer), in levels of a tintable pyramid
+// where some lobe has f0_tint ≠ 0.
+constexpr LobeChannel kTintLobeChannels[] = {
+    {"F0tint.R", Role::f0_tint_r, kHalf},
+    {"F0tint.G", Role::f0_tint_g, kHalf},
+    {"F0tint.B", Role::f0_tint_b, kHalf},
+};
+// The attribute (int 1, on every subimage) of a tintable pyramid's file (brdf_pyramid.h tintable).
+inline constexpr const char* kTint = "svbrdf:tint";
+// The channels of a level's lobe slots, with the layers' it has.
+inline std::vector<LobeChannel> lobe_channels(bool specular, bool tint) {
   std::vector<LobeChannel> c(std::begin(kLobeChannels), std::end(kLobeChannels));
   if (specular) c.insert(c.end(), std::begin(kSpecularLobeChannels), std::end(kSpecularLobeChannels));
+  if (tint) c.insert(c.end(), std::begin(kTintLobeChannels), std::end(kTintLobeChannels));
   return c;
 }
 
@@ -83,6 +94,7 @@ inline LobeValues pack_lobe(const Lobe& l) {
   out[Role::f0_r] = l.f0.r, out[Role::f0_g] = l.f0.g, out[Role::f0_b] = l.f0.b;
   out[Role::diffuse90_r] = l.diffuse90.r, out[Role::diffuse90_g] = l.diffuse90.g, out[Role::diffuse90_b] = l.diffuse90.b;
   out[Role::f90] = l.f90;
+  out[Role::f0_tint_r] = l.f0_tint.r, out[Role::f0_tint_g] = l.f0_tint.g, out[Role::f0_tint_b] = l.f0_tint.b;
   const StoredNormal n = store_normal(l.normal);  // exact: the pyramid's normals are decoded codes
   out.direction = n.direction;
   out[Role::normal_deficit] = n.deficit;
@@ -98,6 +110,7 @@ inline Lobe unpack_lobe(const LobeValues& in) {
   l.f0 = {in[Role::f0_r], in[Role::f0_g], in[Role::f0_b]};
   l.diffuse90 = {in[Role::diffuse90_r], in[Role::diffuse90_g], in[Role::diffuse90_b]};
   l.f90 = in[Role::f90];
+  l.f0_tint = {in[Role::f0_tint_r], in[Role::f0_tint_g], in[Role::f0_tint_b]};
   l.normal = load_normal(StoredNormal{in.direction, in[Role::normal_deficit]});
   l.alpha2 = in[Role::alpha] * in[Role::alpha];
   set_lobe_shape_code(l, in[Role::shape]);

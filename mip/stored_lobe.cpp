@@ -77,6 +77,7 @@ void round_to_stored(Lobe& lobe) {
   for (int c = 0; c < 3; ++c) {
     lobe.diffuse[c] = to_half(lobe.diffuse[c]);
     lobe.f0[c] = to_half(lobe.f0[c]);
+    lobe.f0_tint[c] = to_half(lobe.f0_tint[c]);
     lobe.diffuse90[c] = to_half(lobe.diffuse90[c]);
   }
   lobe.f90 = to_half(lobe.f90);

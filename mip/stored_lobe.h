@@ -24,8 +24,8 @@ void set_lobe_shape_code(Lobe& lobe, float code);
 float lobe_skirt_code(const Lobe& lobe);
 void set_lobe_skirt_code(Lobe& lobe, float code);
 
-// Rounds a lobe to what the MIP file stores: weight, colors, α (the square root of alpha2), shape code
-// and skirt as half floats, the normal as stored_normal.h codes it.
+// Rounds a lobe to what the MIP file stores: weight, colors (f0_tint among them), α (the square root of
+// alpha2), shape code and skirt as half floats, the normal as stored_normal.h codes it.
 void round_to_stored(Lobe& lobe);
 
 // Bytes a stored lobe takes: the normal's direction as a 32-bit code (stored_normal.h); weight, ρ (3),
@@ -33,5 +33,8 @@ void round_to_stored(Lobe& lobe);
 inline constexpr int kBytesPerLobe = 4 + 11 * 2;
 // What the specular layer adds to a stored lobe (ρ90 and F90 as four halves; mip_file.h).
 inline constexpr int kBytesPerSpecularLayer = 4 * 2;
+// What the tint layer adds to a stored lobe (f0_tint as three halves), in pyramids built for tinted
+// lookups (brdf_pyramid.h BrdfBuildOptions::tint).
+inline constexpr int kBytesPerTintLayer = 3 * 2;
 
 }  // namespace svbrdf
