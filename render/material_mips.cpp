@@ -86,23 +86,19 @@ SceneMips::SceneMips(const Scene& scene, const TextureSet& textures)
     slot_[i] = static_cast<int>(mips_.size()) - 1;
     source_.push_back(i);
   }
-  // COLOR_0 that is not white, on a material that takes part (see the header).
+  // COLOR_0 that is not white, on a material that takes part: its BRDF pyramid is built tintable
+  // (see the header).
   for (const Mesh& mesh : scene.meshes)
     for (const MeshPrimitive& p : mesh.primitives) {
       if (p.colors.empty() || !find(p.material)) continue;
-      const bool tinted = std::any_of(p.colors.begin(), p.colors.end(),
-                                      [](const glm::vec4& c) { return glm::vec3(c) != glm::vec3(1.0f); });
-      if (tinted)
-        tint_warnings_.push_back(p.where + ": COLOR_0 tints the base color, which a BRDF texel cannot carry; under "
-                            "--filter brdf its hits are shaded with level0 lookups");
+      if (std::any_of(p.colors.begin(), p.colors.end(), [](const glm::vec4& c) { return glm::vec3(c) != glm::vec3(1.0f); }))
+        mips_[static_cast<std::size_t>(slot_[static_cast<std::size_t>(p.material)])].tint_ = true;
     }
 }
 
 std::vector<std::string> SceneMips::warnings(TextureFilter filter) const {
   if (filter == TextureFilter::level0) return {};
-  std::vector<std::string> w = warnings_;
-  if (filter == TextureFilter::brdf) w.insert(w.end(), tint_warnings_.begin(), tint_warnings_.end());
-  return w;
+  return warnings_;
 }
 
 int SceneMips::active_count() const {
@@ -155,7 +151,7 @@ void SceneMips::read_cached(std::vector<std::size_t>& todo, std::vector<std::str
     const SetupProgress::Stage stage(progress, "reading the materials' MIP maps from the MIP cache", todo.size());
     tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t t) {
       MaterialMip& mip = mips_[todo[t]];
-      all[t] = mip_cache_key(scene_, textures_, scene_.materials[source_[todo[t]]], mip.extent_, color_identity_);
+      all[t] = mip_cache_key(scene_, textures_, scene_.materials[source_[todo[t]]], mip.extent_, color_identity_, mip.tint_);
       if (std::optional<MipData> data = cache_->load(all[t])) {
         mip.texture_.emplace(std::move(*data), mip.sampler_.wrap_s, mip.sampler_.wrap_t);
         read[t] = 1;
@@ -195,7 +191,7 @@ void SceneMips::build(std::size_t i, TextureFilter filter) {
   };
   // decode_material_texels' arguments: what render/texel_inputs.h lists.
   const MaterialImages in = material_images(m, image_for);
-  mip.texture_.emplace(decode_material_texels(in), mip.sampler_.wrap_s, mip.sampler_.wrap_t, filter);
+  mip.texture_.emplace(decode_material_texels(in), mip.sampler_.wrap_s, mip.sampler_.wrap_t, filter, mip.tint_);
 }
 
 }  // namespace svbrdf

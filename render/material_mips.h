@@ -18,8 +18,9 @@
 // contains a uv is the one whose replica contains it. Anything else (different uv sets, transforms,
 // wrap modes, sizes that do not divide) leaves the material out, with a warning naming the textures.
 //
-// COLOR_0 is the lookups' tint; brdf answers a tinted hit as level0 does (mip.h), so a primitive
-// whose COLOR_0 is not white gets one warning under `brdf`, from the scene scan.
+// COLOR_0 is the lookups' tint. A material drawn by a primitive whose COLOR_0 is not white has its
+// BRDF pyramid built tintable (mip.h; 6 bytes a stored lobe more), found by the scene scan, so brdf
+// filters tinted hits as it does the others.
 //
 // Building: SceneMips::prepare(filter) builds, for every active material in parallel, the texels and
 // what the filter reads, once; later calls for other filters add what is missing. Materials with the
@@ -60,6 +61,7 @@ class MaterialMip {
   TextureRef grid_;  // the slot whose uv set and transform the grid follows
   Sampler sampler_;  // the grid's wrap modes
   Extent extent_{};  // the grid's size: the largest of its textures
+  bool tint_ = false;  // drawn with a COLOR_0 tint: the BRDF pyramid is built tintable
   std::optional<MipTexture> texture_;
 };
 
@@ -93,7 +95,7 @@ class SceneMips {
   }
 
   // What a render under `filter` should say, one line each: the textured materials left out (every
-  // MIP filter), and for brdf the primitives whose COLOR_0 keeps it at level0. None for level0.
+  // MIP filter). None for level0.
   std::vector<std::string> warnings(TextureFilter filter) const;
   // Materials that take part, and the distinct MIP data they share (materials that differ only in
   // what the texels do not hold — alpha, emission, double-sidedness — share one).
@@ -112,7 +114,6 @@ class SceneMips {
   std::vector<int> slot_;                // per material: its entry in mips_, −1 when it does not take part
   std::vector<std::size_t> source_;      // per entry: the first material that uses it
   std::vector<std::string> warnings_;        // materials left out
-  std::vector<std::string> tint_warnings_;   // COLOR_0 under brdf
   MipCache* cache_ = nullptr;
   std::string color_identity_;
   CacheCounts counts_;

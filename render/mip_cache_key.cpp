@@ -52,12 +52,12 @@ Sha256Digest image_content(const ImageDesc& image) {
 }  // namespace
 
 std::string mip_cache_key(const Scene& scene, const TextureSet& textures, const MaterialDesc& material, Extent grid,
-                          const std::string& color_identity) {
+                          const std::string& color_identity, bool tint) {
   KeyWriter key;
   key.field("key", "svbrdf MIP cache key 1");
   key.field("code", mip_code_identity());
   key.field("libraries", std::string("OpenImageIO ") + OIIO_VERSION_STRING + ", OpenColorIO " + OCIO_VERSION);
-  key.field("build", mip_build_identity());
+  key.field("build", mip_build_identity(tint));
   key.field("color", color_identity);
   key.number("grid.width", grid.width);
   key.number("grid.height", grid.height);

@@ -206,6 +206,23 @@ TEST(MipFilters, BrdfIsTheMeanOfTheCoveredTexels) {
   }
 }
 
+// Under a COLOR_0 tint, `brdf` is still the mean f_eff of the covered texels, now of their tinted
+// base colors (glTF 2.0 §3.9.2: COLOR_0 multiplies the base color), metals (B, D) and dielectrics
+// (A, C) alike: the material's pyramid is built tintable because its primitive is tinted.
+TEST(MipFilters, BrdfUnderATintIsTheMeanOfTheTintedTexels) {
+  const glm::vec3 tint(0.9f, 0.35f, 0.6f);
+  Scene s = periodic_quad();
+  s.meshes[0].primitives[0].colors.assign(4, glm::vec4(tint, 1.0f));
+  auto tinted = [&](TexelSpec t) {
+    const Rgb c = linear(t.srgb) * tint;
+    return f_eff(c, t.metallic, t.roughness, stored_normal(t.normal), kWi, glm::vec3(0, 0, 1));
+  };
+  const glm::dvec3 want = kE0 * double(kWi.z) * (tinted(kA) + tinted(kB) + tinted(kC) + tinted(kD)) / 4.0;
+  const Image im = render_quad(s, TextureFilter::brdf, 16).radiance();
+  expect_rgb_near(image_mean(im), want, 5e-3, "brdf under a tint");
+  expect_rgb_near(pixel(im, 7, 20), want, 5e-3, "brdf under a tint, one pixel");
+}
+
 // `param`: the f_eff of the averaged parameters (mean linear color, metallic, roughness; normal
 // the normalized mean) of the same texels.
 TEST(MipFilters, ParamIsTheBrdfOfTheMeanParameters) {
@@ -325,7 +342,7 @@ TEST(MipFilters, Level0AndBrdfAgreeExactlyAtLevel0) {
   p.mips->prepare(TextureFilter::brdf);
   const MaterialMip* mip = p.mips->find(0);
   ASSERT_NE(mip, nullptr);
-  Lobe s0, s1;
+  MipTexture::Scratch s0, s1;
   for (int j = 0; j < 16; ++j)
     for (int i = 0; i < 16; ++i) {
       const Footprint centre{{(i + 0.5f) / 16, (j + 0.5f) / 16}, {0, 0}, {0, 0}};
@@ -353,7 +370,8 @@ TEST(MipFilters, Level0AndBrdfAgreeExactlyAtLevel0) {
   }
 }
 
-// COLOR_0 tints the base color: exact for level0 and param; brdf falls back to level0 on such hits.
+// COLOR_0 tints the base color: exact for level0 and param; on a texture not built for tints (no
+// primitive of the material has a COLOR_0 that is not white) brdf answers a tinted hit as level0.
 TEST(MipFilters, VertexColorTint) {
   Prepared p(periodic_quad(16));
   p.mips->prepare(TextureFilter::brdf);
@@ -362,7 +380,7 @@ TEST(MipFilters, VertexColorTint) {
   ASSERT_NE(mip, nullptr);
   const Rgb tint(0.5f, 1.0f, 0.25f);
   const Footprint f{{0.5f / 16, 0.5f / 16}, {0.2f, 0}, {0, 0.2f}};
-  Lobe s0, s1;
+  MipTexture::Scratch s0, s1;
   const Lobe l0 = mip->texture().lobes(TextureFilter::level0, f, tint, 0.3f, s0)[0];
   EXPECT_TRUE(same_lobes(mip->texture().lobes(TextureFilter::brdf, f, tint, 0.3f, s1), {&l0, 1}));
   // Texel A is a dielectric: ρ = c·tint, F0 = 0.04.
@@ -503,15 +521,17 @@ TEST(MipFilters, TextureGridRules) {
     warned(std::move(s), "KHR_materials_transmission");
   }
   {
-    // A tinted COLOR_0 keeps brdf at level0 on that primitive (exact for the other filters): said once.
-    Scene s = periodic_quad(8);
-    s.meshes[0].primitives[0].colors.assign(4, {1.0f, 0.5f, 1.0f, 1.0f});
-    Prepared p(std::move(s));
-    ASSERT_NE(p.mips->find(0), nullptr);
-    const std::vector<std::string> w = p.mips->warnings(TextureFilter::brdf);
-    ASSERT_EQ(w.size(), 1u);
-    EXPECT_NE(w[0].find("meshes[0].primitives[0]: COLOR_0"), std::string::npos) << w[0];
-    EXPECT_TRUE(p.mips->warnings(TextureFilter::param).empty());
+    // A tinted COLOR_0 makes the material's BRDF pyramid tintable, with no warning; white COLOR_0
+    // does not.
+    for (const float g : {0.5f, 1.0f}) {
+      Scene s = periodic_quad(8);
+      s.meshes[0].primitives[0].colors.assign(4, {1.0f, g, 1.0f, 1.0f});
+      Prepared p(std::move(s));
+      ASSERT_NE(p.mips->find(0), nullptr);
+      EXPECT_TRUE(p.mips->warnings(TextureFilter::brdf).empty());
+      p.mips->prepare(TextureFilter::brdf);
+      EXPECT_EQ(p.mips->find(0)->texture().tintable(), g != 1.0f);
+    }
   }
   {
     // Materials that differ only in what the texels do not hold share one build.
