@@ -13,7 +13,15 @@
 // new files. The renames themselves are checked beforehand as far as they can be (the targets are
 // files in folders we have just written into); rename(2) within a folder fails after that only on
 // an I/O error.
+//
+// A process killed outright (SIGKILL, a power cut) runs none of this: each target is then its previous
+// content or the new one, whole, because rename(2) replaces it atomically (POSIX.1-2017, rename()),
+// and the temporary stays behind until the next run that writes the same output removes it (its name
+// carries the process id, and a temporary whose process is gone is stale). A set's renames are one
+// system call each: a kill in the microseconds between two of them is the one case that leaves a set
+// mixed.
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -48,7 +56,7 @@ inline Error creation_error(const std::string& where, const std::string& what, i
 
 // The temporary beside `path`: ".STEM.tmpPID.EXT". It keeps the target's extension, so writers that
 // choose a format by extension (OpenImageIO) see the right one; the process id lets the next run
-// tell a stale temporary of a killed run from one being written now (base/output_location.h).
+// tell a stale temporary of a killed run from one being written now (is_stale_temp_of).
 inline std::filesystem::path temp_path_for(const std::filesystem::path& path) {
   namespace fs = std::filesystem;
   const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
@@ -59,6 +67,40 @@ inline std::filesystem::path temp_path_for(const std::filesystem::path& path) {
   name += std::to_string(::getpid());
   name += path.extension().string();
   return dir / name;
+}
+
+// Whether `name` is ".STEM.tmpPID.EXT" for `path` (temp_path_for's pattern) with PID a process that
+// no longer exists. A PID that exists may be an unrelated process that reused it; such a file is
+// left alone rather than risk removing a file another run is writing.
+inline bool is_stale_temp_of(const std::string& name, const std::filesystem::path& path) {
+  // Appended piece by piece: GCC 12 warns falsely (-Wrestrict, PR 105651) on "." + std::string.
+  std::string prefix = ".";
+  prefix += path.stem().string();
+  prefix += ".tmp";
+  const std::string suffix = path.extension().string();
+  if (name.size() <= prefix.size() + suffix.size() || name.compare(0, prefix.size(), prefix) != 0 ||
+      name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
+    return false;
+  const std::string digits = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+  if (digits.empty() || digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) return false;
+  const long pid = std::stol(digits);
+  if (pid <= 0 || pid == ::getpid()) return false;
+  return ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
+}
+
+// Removes the stale temporaries of `path` in its folder; returns how many. Best effort: a folder
+// that cannot be listed is left to the write to report.
+inline int remove_stale_temp_files(const std::filesystem::path& path) {
+  namespace fs = std::filesystem;
+  const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  std::error_code ec;
+  int removed = 0;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    if (!is_stale_temp_of(it->path().filename().string(), path)) continue;
+    std::error_code rm;
+    if (fs::remove(it->path(), rm)) ++removed;
+  }
+  return removed;
 }
 
 // Throws the error for a target that cannot take a file: an existing folder (bad input), or
@@ -163,6 +205,9 @@ class StagedFiles {
  private:
   void add(const std::filesystem::path& path, const std::function<void(const std::filesystem::path&)>& write) {
     check_file_target(path);
+    // Every program's outputs come through here, so this is where the temporaries of an earlier run
+    // of any of them that was killed (SIGKILL, a power cut: nothing of it ran to remove them) go.
+    remove_stale_temp_files(path);
     const std::filesystem::path tmp = temp_path_for(path);
     // Registered before it exists: a signal from here on removes it (base/interrupt.h).
     files_.push_back({path, tmp, std::make_unique<RegisteredTempFile>(tmp)});
