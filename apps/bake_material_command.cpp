@@ -11,6 +11,7 @@
 
 #include "base/cli_checks.h"
 #include "apps/bake_commands.h"
+#include "base/output_location.h"
 #include "textures/color.h"
 #include "textures/material_family.h"
 #include "scenes/texture_set.h"
@@ -46,6 +47,7 @@ void run(const MaterialOptions& o) {
   const ColorConfig color =
       ColorConfig::resolve(o.ocio_config.empty() ? std::nullopt : std::optional<std::filesystem::path>(o.ocio_config));
   MaterialRecipe recipe{o.preset, o.variant, o.size, o.seed, o.mm_per_texel};
+  check_output_folder(o.out);  // before the bake: its seconds must not end in "cannot write"
   // A progress line per stage, once a bake has taken more than a second.
   const auto start = std::chrono::steady_clock::now();
   const auto elapsed = [start] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };

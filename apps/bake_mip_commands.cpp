@@ -21,6 +21,7 @@
 #include "apps/mip_cache_options.h"
 #include "base/cli_checks.h"
 #include "base/error.h"
+#include "base/output_location.h"
 #include "base/resource_limits.h"
 #include "apps/bake_commands.h"
 #include "apps/compare_report.h"
@@ -101,6 +102,7 @@ void run_mip(const MipOptions& o) {
     throw input_error("--lobes", std::to_string(o.lobes) + " is out of range (1.." + std::to_string(kMaxLobes) + ")");
   if (!(o.tolerance >= 0 && o.tolerance < 1)) throw input_error("--tolerance", "must be in [0, 1)");
   if (std::filesystem::path(o.out).extension() != ".exr") throw input_error("--out", "'" + o.out + "' must end in .exr (an OpenEXR file)");
+  check_output_location(o.out);  // before the build: its seconds must not end in "cannot write"
   const ColorConfig color =
       ColorConfig::resolve(o.ocio_config.empty() ? std::nullopt : std::optional<std::filesystem::path>(o.ocio_config));
   MaterialTexels texels;

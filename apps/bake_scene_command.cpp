@@ -11,6 +11,7 @@
 #include <string>
 
 #include "apps/bake_commands.h"
+#include "base/output_location.h"
 #include "scenes/recipe.h"
 #include "scenes/scene_assembly.h"
 #include "textures/color.h"
@@ -28,6 +29,7 @@ void run(const SceneOptions& o) {
   const ColorConfig color =
       ColorConfig::resolve(o.ocio_config.empty() ? std::nullopt : std::optional<std::filesystem::path>(o.ocio_config));
   const Recipe recipe = read_recipe(o.recipe);  // every check before anything is written
+  check_output_folder(o.out);
   const auto start = std::chrono::steady_clock::now();
   const ProgressFn progress = [&](std::string_view stage) {
     const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

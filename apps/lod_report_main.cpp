@@ -13,6 +13,7 @@
 #include "apps/run_program.h"
 #include "base/cli_checks.h"
 #include "base/interrupt.h"
+#include "base/output_location.h"
 #include "lod/comparison.h"
 #include "lod/report.h"
 #include "scenes/lod_scenes.h"
@@ -78,6 +79,8 @@ int main(int argc, char** argv) {
     o.cases = cases, o.lights = lights, o.views = views;
     if (!filters.empty()) o.filters = filters;
     if (!quiet) o.progress = [](const std::string& s) { std::fprintf(stderr, "svbrdf-lod-report: %s\n", s.c_str()); };
+    // Before the comparison (minutes to hours): the report's folder must take its files.
+    svbrdf::check_output_folder(fs::path(out) / "img");
     const svbrdf::LodResults results = svbrdf::run_lod_comparison(m, o, color);
     svbrdf::LodReportInfo info;
     info.size_name = spp > 0 ? std::to_string(spp) + " spp" : full ? "full" : "default";

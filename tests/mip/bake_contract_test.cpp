@@ -1,14 +1,18 @@
 // svbrdf-bake's program contract beyond its commands' own bad input (cli_test.cpp): a failed write is
-// reported with exit 1 and leaves no truncated file, a parse error is one line with the program's
+// reported with exit 1 and leaves no truncated file, an unwritable output folder is exit 1 before the
+// work, a killed bake's temporaries are removed by the next, a parse error is one line with the program's
 // name, every number is checked against its range, and --max-texels bounds the images read.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "tests/common/run_command.h"
+#include "tests/common/spawn.h"
 #include "textures/image.h"
 
 namespace svbrdf {
@@ -47,6 +51,51 @@ TEST(BakeContract, AFailedPngWriteIsReportedAndLeavesNoTruncatedFile) {
       EXPECT_NO_THROW(read_image(e.path())) << name << " is truncated";
     }
   EXPECT_LT(images, 3) << "the 20 KB normal map cannot fit under a 2 KB limit";
+}
+
+// A folder the machine does not let us write is its failure, not the user's (exit 2 is for bad
+// input): one line and exit 1, said before the work rather than after it.
+TEST(BakeContract, AnUnwritableOutputFolderIsExit1BeforeTheWork) {
+  testing::TempDir dir;
+  fs::path ro;
+  if (::geteuid() == 0) {
+    // Root writes through permission bits; sysfs takes no new files from anyone.
+    if (!fs::is_directory("/sys/kernel")) GTEST_SKIP() << "no /sys to stand for a read-only folder";
+    ro = "/sys/kernel";
+  } else {
+    ro = dir / "ro";
+    fs::create_directories(ro);
+    fs::permissions(ro, fs::perms::owner_read | fs::perms::owner_exec);
+  }
+  for (const std::string& args : {"material sandstone --size 64 --out " + q(ro / "m"),
+                                   "mip --base-color-factor 0.5,0.5,0.5 --out " + q(ro / "x.exr")}) {
+    const testing::CommandResult r = bake(dir, args);
+    EXPECT_EQ(r.status, 1) << args << ": " << r.err;
+    EXPECT_EQ(lines(r.err), 1) << args << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("svbrdf-bake: " + ro.string(), 0), 0u) << args << ": " << r.err;
+    EXPECT_EQ(r.out, "") << args << ": nothing was made";
+  }
+  if (::geteuid() != 0) fs::permissions(ro, fs::perms::owner_all);
+}
+
+// The temporaries a killed bake left beside its outputs (its process gone) go with the next bake of
+// the same outputs; another run's (its process alive) and other files stay.
+TEST(BakeContract, TheTemporariesOfAKilledBakeAreRemoved) {
+  testing::TempDir dir;
+  const std::string dead = std::to_string(testing::dead_pid()), alive = std::to_string(::getpid());
+  fs::create_directories(dir / "m");
+  const fs::path stale[] = {dir / "m" / (".sandstone_normal.tmp" + dead + ".png"), dir / "m" / (".sandstone.tmp" + dead + ".gltf"),
+                            dir / (".x.tmp" + dead + ".exr")};
+  const fs::path kept[] = {dir / "m" / (".sandstone_normal.tmp" + alive + ".png"), dir / (".y.tmp" + dead + ".exr")};
+  for (const fs::path& p : stale) std::ofstream(p) << "partial";
+  for (const fs::path& p : kept) std::ofstream(p) << "partial";
+  for (const std::string& args : {"material sandstone --size 64 --out " + q(dir / "m"),
+                                  "mip --base-color-factor 0.5,0.5,0.5 --out " + q(dir / "x.exr")}) {
+    const testing::CommandResult r = bake(dir, args);
+    EXPECT_EQ(r.status, 0) << args << ": " << r.err;
+  }
+  for (const fs::path& p : stale) EXPECT_FALSE(fs::exists(p)) << p;
+  for (const fs::path& p : kept) EXPECT_TRUE(fs::exists(p)) << p;
 }
 
 TEST(BakeContract, AParseErrorIsOneLineWithTheProgramsName) {
