@@ -10,6 +10,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -65,6 +66,26 @@ inline ProgramEnd wait_program(pid_t pid, double seconds) {
       return e;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+}
+
+// Waits until the spawned program `pid` has written a line holding `needle` (and not `unless`, when
+// given) to its stderr file `err` (a line it prints on reaching a stage), up to `seconds`. False when it ended first or the time ran out; the
+// program is not reaped (waitid with WNOWAIT), so wait_program still reads how it ended. This is how
+// a test signals a program at a stage of its run, on a loaded machine as on an idle one, rather than
+// sleeping and hoping the stage has come.
+inline bool wait_for_output(pid_t pid, const std::filesystem::path& err, const std::string& needle, double seconds,
+                            const std::string& unless = "") {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  for (;;) {
+    std::ifstream f(err, std::ios::binary);
+    for (std::string line; std::getline(f, line);)
+      if (!f.eof() && line.find(needle) != std::string::npos && (unless.empty() || line.find(unless) == std::string::npos))
+        return true;
+    siginfo_t info{};
+    if (::waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOHANG | WNOWAIT) != 0 || info.si_pid == pid) return false;
+    if (std::chrono::steady_clock::now() >= end) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
 }
 
