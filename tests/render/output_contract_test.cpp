@@ -2,13 +2,19 @@
 // cannot take the output is refused before the render starts, the EXR and the PNG are replaced
 // together or not at all, and the temporaries of a killed run are removed by the next.
 #include <gtest/gtest.h>
+#include <signal.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "gltf_test_files.h"
 #include "render_program.h"
@@ -51,6 +57,42 @@ TEST(OutputContract, AFailedWriteIsReportedAndReplacesNothing) {
   EXPECT_NE(r.err.find("File too large"), std::string::npos) << r.err;
   EXPECT_EQ(testing::slurp(exr), old_exr) << "the EXR was replaced by a failed run";
   EXPECT_EQ(testing::slurp(png), old_png) << "the PNG was replaced by a failed run";
+  EXPECT_TRUE(test::temp_files(dir.path()).empty());
+}
+
+// The disk fills while a later file of the set is written (the depth AOV, the largest here): the EXR
+// and the PNG are already whole in their temporaries, yet neither replaces its previous file, and no
+// temporary stays. Renaming each file as soon as it was written would leave a new EXR by an old PNG.
+TEST(OutputContract, AFailedWriteOfALaterFileOfTheSetReplacesNone) {
+  test::TempDir dir;
+  const std::string q = scene(dir);
+  const fs::path exr = dir.path() / "s.exr";
+  const auto args = [&](const std::string& env) {
+    return std::vector<std::string>{q, "-q", "--aov", "--env", env, "--res", "32x32", "--spp", "1", "-o", exr.string()};
+  };
+  const test::RenderRun first = test::render(args("1,1,1"), dir.path());
+  ASSERT_TRUE(first.end.exited && first.end.code == 0) << first.err;
+  const char* const names[] = {"s.exr", "s.png", "s.albedo.exr", "s.normal.exr", "s.depth.exr", "s.level.exr"};
+  std::vector<std::string> previous;
+  std::uintmax_t before_depth = 0;
+  for (const char* name : names) {
+    previous.push_back(testing::slurp(dir.path() / name));
+    if (std::string(name) != "s.depth.exr" && std::string(name) != "s.level.exr")
+      before_depth = std::max(before_depth, fs::file_size(dir.path() / name));
+  }
+  // The limit in blocks of 512 bytes: the files staged before the depth AOV fit, the depth AOV not.
+  const int blocks = static_cast<int>((before_depth + 511) / 512);
+  ASSERT_GT(fs::file_size(dir.path() / "s.depth.exr"), std::uintmax_t(blocks) * 512 + 256)
+      << "the depth AOV must be the first file of the set that does not fit";
+
+  const test::RenderRun r = render_with_file_limit(blocks, args("0.5,0.5,0.5"), dir.path());  // another image
+  ASSERT_TRUE(r.end.exited) << "killed by signal " << r.end.signal;
+  EXPECT_EQ(r.end.code, 1) << r.err;
+  EXPECT_EQ(test::line_count(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("s.depth.exr"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("File too large"), std::string::npos) << r.err;
+  for (std::size_t i = 0; i < previous.size(); ++i)
+    EXPECT_EQ(testing::slurp(dir.path() / names[i]), previous[i]) << names[i] << " was replaced by a failed run";
   EXPECT_TRUE(test::temp_files(dir.path()).empty());
 }
 
@@ -114,6 +156,60 @@ TEST(OutputContract, TheTemporariesOfAKilledRunAreRemoved) {
   for (const fs::path& p : stale) EXPECT_FALSE(fs::exists(p)) << p;
   for (const fs::path& p : kept) EXPECT_TRUE(fs::exists(p)) << p;
   EXPECT_TRUE(fs::exists(dir.path() / "o.albedo.exr"));
+}
+
+// SIGKILL while the outputs are written: nothing of the program runs (no handler, no clean-up), yet
+// each output is its previous content or the new one whole, never a part, because only a finished
+// temporary is renamed onto it; the temporaries left behind go with the next run of the same outputs.
+TEST(OutputContract, ASigkillWhileWritingLeavesEachFileWholeAndTheNextRunRemovesTheTemporaries) {
+  test::TempDir dir;
+  const std::string q = scene(dir);
+  const fs::path exr = dir.path() / "k.exr";
+  // Float EXRs and the four AOVs: the writes last long enough (tens of milliseconds) to be caught.
+  const auto args = [&](const std::string& res) {
+    return std::vector<std::string>{q, "--float", "--aov", "--res", res, "--spp", "1", "-o", exr.string()};
+  };
+  std::vector<std::string> quiet = args("512x512");
+  quiet.push_back("-q");
+  const test::RenderRun first = test::render(quiet, dir.path());
+  ASSERT_TRUE(first.end.exited && first.end.code == 0) << first.err;
+  std::vector<std::pair<fs::path, std::string>> previous;
+  for (const auto& e : fs::directory_iterator(dir.path()))
+    if (e.path().filename().string().rfind("k.", 0) == 0) previous.emplace_back(e.path(), testing::slurp(e.path()));
+  ASSERT_EQ(previous.size(), 6u) << "the EXR, the PNG and four AOVs";
+
+  std::vector<std::string> again = args("512x512");
+  again.insert(again.begin(), test::kRenderProgram);
+  again.insert(again.end(), {"--seed", "7"});  // a different image, so a replaced file would show
+  const pid_t pid = testing::spawn_program(again, dir.path() / "stderr.txt");
+  ASSERT_GT(pid, 0);
+  // The render's summary line comes right before the outputs are written; then the first temporary
+  // (the probe of the output folder before the render has the same name, hence the wait).
+  ASSERT_TRUE(testing::wait_for_output(pid, dir.path() / "stderr.txt", " rays in ", 120)) << testing::slurp(dir.path() / "stderr.txt");
+  bool caught = false;
+  for (const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+       !caught && std::chrono::steady_clock::now() < give_up;) {
+    caught = !test::temp_files(dir.path()).empty();
+    if (!caught) std::this_thread::sleep_for(std::chrono::microseconds(200));
+    siginfo_t info{};
+    if (!caught && (::waitid(P_PID, static_cast<id_t>(pid), &info, WEXITED | WNOHANG | WNOWAIT) != 0 || info.si_pid == pid)) break;
+  }
+  if (caught) ::kill(pid, SIGKILL);
+  const testing::ProgramEnd end = testing::wait_program(pid, 60);
+  ASSERT_TRUE(caught) << "the outputs were written before a temporary was seen";
+  ASSERT_EQ(end.signal, SIGKILL);
+  EXPECT_FALSE(test::temp_files(dir.path()).empty()) << "a killed run cannot remove its temporaries";
+  for (const auto& [path, bytes] : previous) {
+    ASSERT_TRUE(fs::exists(path)) << path << " vanished";
+    if (testing::slurp(path) == bytes) continue;
+    EXPECT_EQ(read_image(path).width, 512) << path << " is neither the previous file nor a whole new one";
+  }
+
+  std::vector<std::string> small = args("8x8");
+  small.push_back("-q");
+  const test::RenderRun next = test::render(small, dir.path());
+  ASSERT_TRUE(next.end.exited && next.end.code == 0) << next.err;
+  EXPECT_TRUE(test::temp_files(dir.path()).empty()) << test::temp_files(dir.path()).front();
 }
 
 // The PNG's path turns into a folder while the render runs: the EXR must not be written alone.
