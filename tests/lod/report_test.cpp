@@ -2,7 +2,6 @@
 // with no console message — the report carries no script, so any console output means something is
 // broken — and every image it shows present. Skipped with a message where Chromium is absent.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cstdio>
 #include <fstream>
@@ -12,6 +11,7 @@
 #include "base/markup_escape.h"
 #include "lod/comparison.h"
 #include "lod/report.h"
+#include "tests/common/read_only_folder.h"
 #include "tests/common/run_command.h"
 
 namespace svbrdf {
@@ -165,21 +165,13 @@ TEST(LodReport, ProgramBadInputAndASmallRun) {
 // bad input), before the comparison's renders rather than after them.
 TEST(LodReport, AnUnwritableReportFolderIsExit1BeforeRendering) {
   const TempDir dir;
-  fs::path ro;
-  if (::geteuid() == 0) {
-    // Root writes through permission bits; sysfs takes no new files from anyone.
-    if (!fs::is_directory("/sys/kernel")) GTEST_SKIP() << "no /sys to stand for a read-only folder";
-    ro = "/sys/kernel";
-  } else {
-    ro = dir / "ro";
-    fs::create_directories(ro);
-    fs::permissions(ro, fs::perms::owner_read | fs::perms::owner_exec);
-  }
+  const testing::ReadOnlyFolder read_only(dir.path());
+  if (read_only.path().empty()) GTEST_SKIP() << "no folder here that refuses new files";
+  const fs::path& ro = read_only.path();
   // Without -q each render says so on stderr: none may come.
   const auto r = run_command(std::string(SVBRDF_LOD_REPORT) + " --spp 4 --case printed-paper-text --light sun-0 --min-distance 1024 --out '" +
                                  (ro / "r").string() + "'",
                              dir.path());
-  if (::geteuid() != 0) fs::permissions(ro, fs::perms::owner_all);
   EXPECT_EQ(r.status, 1) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_EQ(r.err.rfind("svbrdf-lod-report: " + (ro / "r").string(), 0), 0u) << r.err;

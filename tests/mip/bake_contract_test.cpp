@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "tests/common/read_only_folder.h"
 #include "tests/common/run_command.h"
 #include "tests/common/spawn.h"
 #include "textures/image.h"
@@ -57,16 +58,9 @@ TEST(BakeContract, AFailedPngWriteIsReportedAndLeavesNoTruncatedFile) {
 // input): one line and exit 1, said before the work rather than after it.
 TEST(BakeContract, AnUnwritableOutputFolderIsExit1BeforeTheWork) {
   testing::TempDir dir;
-  fs::path ro;
-  if (::geteuid() == 0) {
-    // Root writes through permission bits; sysfs takes no new files from anyone.
-    if (!fs::is_directory("/sys/kernel")) GTEST_SKIP() << "no /sys to stand for a read-only folder";
-    ro = "/sys/kernel";
-  } else {
-    ro = dir / "ro";
-    fs::create_directories(ro);
-    fs::permissions(ro, fs::perms::owner_read | fs::perms::owner_exec);
-  }
+  const testing::ReadOnlyFolder read_only(dir.path());
+  if (read_only.path().empty()) GTEST_SKIP() << "no folder here that refuses new files";
+  const fs::path& ro = read_only.path();
   for (const std::string& args : {"material sandstone --size 64 --out " + q(ro / "m"),
                                    "mip --base-color-factor 0.5,0.5,0.5 --out " + q(ro / "x.exr")}) {
     const testing::CommandResult r = bake(dir, args);
@@ -75,7 +69,6 @@ TEST(BakeContract, AnUnwritableOutputFolderIsExit1BeforeTheWork) {
     EXPECT_EQ(r.err.rfind("svbrdf-bake: " + ro.string(), 0), 0u) << args << ": " << r.err;
     EXPECT_EQ(r.out, "") << args << ": nothing was made";
   }
-  if (::geteuid() != 0) fs::permissions(ro, fs::perms::owner_all);
 }
 
 // The temporaries a killed bake left beside its outputs (its process gone) go with the next bake of

@@ -18,6 +18,7 @@
 
 #include "gltf_test_files.h"
 #include "render_program.h"
+#include "tests/common/read_only_folder.h"
 #include "textures/image.h"
 
 namespace svbrdf {
@@ -120,18 +121,10 @@ TEST(OutputContract, AnOutputPathThatIsAFolderIsBadInput) {
 TEST(OutputContract, AnUnwritableFolderIsRefusedBeforeRendering) {
   test::TempDir dir;
   const std::string q = scene(dir);
-  fs::path out;
-  if (::geteuid() == 0) {
-    // Root writes through permission bits; sysfs takes no new files from anyone.
-    if (!fs::is_directory("/sys/kernel")) GTEST_SKIP() << "no /sys to stand for a read-only folder";
-    out = "/sys/kernel/svbrdf-test.exr";
-  } else {
-    fs::create_directories(dir.path() / "ro");
-    fs::permissions(dir.path() / "ro", fs::perms::owner_read | fs::perms::owner_exec);
-    out = dir.path() / "ro" / "o.exr";
-  }
+  const testing::ReadOnlyFolder read_only(dir.path());
+  if (read_only.path().empty()) GTEST_SKIP() << "no folder here that refuses new files";
+  const fs::path out = read_only.path() / "svbrdf-test.exr";
   const test::RenderRun r = test::render({q, "-q", "--res", "64x64", "--spp", "10000000", "-o", out.string()}, dir.path(), 30);
-  if (::geteuid() != 0) fs::permissions(dir.path() / "ro", fs::perms::owner_all);
   ASSERT_TRUE(r.end.exited) << (r.end.timed_out ? "still rendering after 30 s" : "killed");
   EXPECT_EQ(r.end.code, 1) << r.err;
   EXPECT_EQ(test::line_count(r.err), 1) << r.err;
