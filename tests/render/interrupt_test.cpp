@@ -73,9 +73,9 @@ fs::path write_noise_png(const test::TempDir& dir, const std::string& name, int 
   return p;
 }
 
-// A quad whose material's normal map is 1024² noise: its BRDF MIP build takes seconds.
+// A quad whose material's normal map is 512² noise: its BRDF MIP build takes seconds.
 std::string noise_normal_map_scene(const test::TempDir& dir) {
-  write_noise_png(dir, "n.png", 1024);
+  write_noise_png(dir, "n.png", 512);
   test::GltfQuad quad;
   quad.texcoords = {0, 0, 1, 0, 1, 1, 0, 1};
   quad.materials = R"([{"normalTexture": {"index": 0}}])";
@@ -151,7 +151,7 @@ TEST(Interrupt, ASignalWhileTheSceneIsReadEndsTheRunAtOnceWithOneLine) {
   }
 }
 
-// While the BRDF MIP maps are built (here of a 1024² noise normal map: seconds of work): the run ends
+// While the BRDF MIP maps are built (here of a 512² noise normal map: seconds of work): the run ends
 // at once, and the MIP cache is left without the entry, whole or partial, and without a temporary.
 TEST(Interrupt, ASignalWhileTheMipMapsAreBuiltEndsTheRunAtOnceAndLeavesTheCacheWhole) {
   test::TempDir dir;
