@@ -46,7 +46,7 @@ std::string type_name(int type) {
     case TINYGLTF_TYPE_MAT2: return "MAT2";
     case TINYGLTF_TYPE_MAT3: return "MAT3";
     case TINYGLTF_TYPE_MAT4: return "MAT4";
-    default: return "type " + std::to_string(type);
+    default: return "of a type glTF does not define";
   }
 }
 
@@ -118,6 +118,12 @@ const unsigned char* view_bytes(const tinygltf::Model& m, int bv, std::uint64_t 
   const tinygltf::Buffer& buffer = m.buffers[static_cast<std::size_t>(view.buffer)];
   // Every sum below is checked: a byteOffset near 2^64 must not wrap the bound (glTF stores these as
   // JSON integers, which tinygltf reads into 64 bits).
+  // A buffer with no bytes: one without a uri outside a .glb's first, or one whose uri is a URL
+  // (gltf/tinygltf_stand_ins.h).
+  if (buffer.data.empty() && view.byteLength > 0 && (buffer.uri.empty() || buffer.uri.find("://") != std::string::npos))
+    throw input_error(where, bv_name(bv) + " reads buffers[" + std::to_string(view.buffer) + "], " +
+                                 (buffer.uri.empty() ? std::string("which has no uri, so the file holds none of its bytes")
+                                                     : "whose uri '" + buffer.uri + "' is not read: nothing is fetched from a network"));
   if (!range_inside(view.byteOffset, view.byteLength, buffer.data.size()))
     throw input_error(where, bv_name(bv) + " spans bytes [" + std::to_string(view.byteOffset) + ", +" +
                                  std::to_string(view.byteLength) + ") of buffers[" + std::to_string(view.buffer) +

@@ -21,6 +21,7 @@
 #include "gltf/draco_decode.h"
 #include "gltf/json_scan.h"
 #include "gltf/meshopt_decode.h"
+#include "gltf/tinygltf_stand_ins.h"
 
 namespace svbrdf::gltf {
 
@@ -177,13 +178,15 @@ class Reader {
     // placeholders, taken back after.
     const MeshoptPlan meshopt = plan_meshopt(document, binary, path_);
     const std::vector<int> lent = lend_draco_index_views(document);
-    if (meshopt.fallback_buffers.empty() && lent.empty()) {
+    const StandIns stand_ins = lend_stand_ins(document, binary);
+    if (meshopt.fallback_buffers.empty() && lent.empty() && !stand_ins.rewritten) {
       parse(bytes, binary, binary ? glb_length_ : bytes.size());
     } else {
       const std::string rewritten = binary ? glb_with_json(bytes, document.dump()) : document.dump();
       parse(rewritten, binary, rewritten.size());
     }
     return_draco_index_views(lent, doc_.model);
+    return_stand_ins(stand_ins, doc_.model);
     decode_meshopt(meshopt, doc_.model, path_);
     doc_.images.resize(doc_.model.images.size());
     // An image file refused by read_whole_file: say why rather than only that it is missing.
@@ -280,6 +283,7 @@ class Reader {
     }
     if (!j.is_object()) fail("", "not a glTF file: the JSON is not an object");
     check_integers(j, "");
+    check_asset_and_collections(j);
     std::vector<std::optional<std::uint64_t>> buffer_length;
     const fs::path base = path_.has_parent_path() ? path_.parent_path() : fs::path(".");
     if (const auto it = j.find("buffers"); it != j.end() && it->is_array()) {
@@ -317,6 +321,40 @@ class Reader {
       }
     }
     return j;
+  }
+
+  // glTF 2.0 §3.3 and §5.3: every top-level collection is an array (tinygltf 2.7 skips one that is
+  // not, and the file would render without it), and the asset names the version it targets as
+  // MAJOR.MINOR; a reader of glTF 2.0 reads major version 2 only, and no file whose minVersion asks
+  // for a later minor version ("a minimum version that a client implementation must support").
+  void check_asset_and_collections(const nlohmann::json& j) const {
+    for (const char* key : {"accessors", "animations", "buffers", "bufferViews", "cameras", "images", "materials",
+                            "meshes", "nodes", "samplers", "scenes", "skins", "textures", "extensionsUsed",
+                            "extensionsRequired"})
+      if (const auto it = j.find(key); it != j.end() && !it->is_array())
+        fail(key, "is " + std::string(it->type_name()) + ", not an array");
+    const auto asset = j.find("asset");
+    if (asset == j.end() || !asset->is_object()) return;  // tinygltf reports a missing asset
+    auto version = [&](const char* key) -> std::optional<std::pair<unsigned long, unsigned long>> {
+      const auto v = asset->find(key);
+      if (v == asset->end()) return std::nullopt;
+      const std::string text = v->is_string() ? v->get<std::string>() : v->dump();
+      const std::size_t dot = text.find('.');
+      const auto digits = [](const std::string& s) {
+        return !s.empty() && s.size() < 10 && std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; });
+      };
+      if (!v->is_string() || dot == std::string::npos || !digits(text.substr(0, dot)) || !digits(text.substr(dot + 1)))
+        fail(std::string("asset.") + key, "is '" + text + "', not a glTF version MAJOR.MINOR");
+      return std::pair(std::stoul(text.substr(0, dot)), std::stoul(text.substr(dot + 1)));
+    };
+    const auto v = version("version");
+    if (v && v->first != 2)
+      fail("asset.version", "is " + std::to_string(v->first) + "." + std::to_string(v->second) +
+                                "; this reader reads glTF 2.x");
+    const auto min = version("minVersion");
+    if (min && (min->first != 2 || min->second > 0))
+      fail("asset.minVersion", "is " + std::to_string(min->first) + "." + std::to_string(min->second) +
+                                   ": the file needs a glTF reader of that version; this one reads glTF 2.0");
   }
 
   // tinygltf 2.7 stores indices (bufferView, material, texture, node, ...) and every integer inside

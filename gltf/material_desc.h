@@ -30,6 +30,13 @@ struct TextureRef {
 
 enum class AlphaMode { opaque, mask, blend };
 
+// The index of refraction that stands for an infinite one (KHR_materials_ior: a file's ior 0, "the
+// effective IOR becomes positive infinity and the Fresnel term must evaluate to 1.0"): in float,
+// ((n − 1)/(n + 1))² and the exact dielectric Fresnel both round to 1 at this n, and n² stays finite,
+// so no formula that divides by or squares the index makes an infinity or a NaN of it. Dispersion,
+// which has no effect at an infinite index, is read as 0 there.
+inline constexpr float kIorInfinity = 1e9f;
+
 struct MaterialDesc {
   std::string name;
   std::string where;  // "materials[3]", for messages
@@ -53,7 +60,8 @@ struct MaterialDesc {
   float alpha_cutoff = 0.5f;
   bool double_sided = false;
 
-  float ior = 1.5f;  // KHR_materials_ior
+  // KHR_materials_ior: at least 1, at most kIorInfinity (the file's 0, and anything larger).
+  float ior = 1.5f;
   // KHR_materials_specular: the dielectric Fresnel's weight and F0 color.
   float specular = 1.0f;
   TextureRef specular_texture;  // A channel

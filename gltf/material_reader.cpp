@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <span>
 #include <sstream>
@@ -54,11 +55,24 @@ class MaterialReader {
       const tinygltf::Texture& t = model_.textures[i];
       TextureDesc d;
       d.where = json_index("textures", int(i));
-      if (t.source >= 0) {
-        if (static_cast<std::size_t>(t.source) >= model_.images.size())
-          fail(d.where + ".source", "names " + json_index("images", t.source) + ", but the file has " +
-                                        std::to_string(model_.images.size()) + " images");
-        d.image = t.source;
+      // EXT_texture_webp README: its source, a WebP image, is the texture's image for a reader that
+      // supports the extension; the texture's own source, if any, is the fallback for one that does not.
+      int source = t.source;
+      std::string source_where = d.where + ".source";
+      if (const auto webp = t.extensions.find("EXT_texture_webp"); webp != t.extensions.end()) {
+        source_where = d.where + ".extensions.EXT_texture_webp.source";
+        const auto& e = webp->second;
+        if (!e.IsObject()) fail(d.where + ".extensions.EXT_texture_webp", "is not an object");
+        if (e.Has("source")) {
+          source = whole_index(e.Get("source")).value_or(-1);
+          if (source < 0) fail(source_where, "is not an image index (a whole number from 0)");
+        }
+      }
+      if (source >= 0) {
+        if (static_cast<std::size_t>(source) >= model_.images.size())
+          fail(source_where, "names " + json_index("images", source) + ", but the file has " +
+                                 std::to_string(model_.images.size()) + " images");
+        d.image = source;
       }
       if (t.sampler >= 0) {
         if (static_cast<std::size_t>(t.sampler) >= model_.samplers.size())
@@ -105,14 +119,19 @@ class MaterialReader {
     r.transform = TextureTransform::make(vec2("offset", glm::vec2(0)), float(rot), vec2("scale", glm::vec2(1)), override_set);
   }
 
-  TextureRef texture_ref(int index, int tex_coord, const tinygltf::ExtensionMap& ext, const std::string& where) const {
+  TextureRef texture_ref(int index, int tex_coord, const tinygltf::ExtensionMap& ext, const std::string& where) {
     TextureRef r;
     if (index < 0) return r;
     if (static_cast<std::size_t>(index) >= out_.textures.size())
       fail(where + ".index", "names " + json_index("textures", index) + ", but the file has " +
                                  std::to_string(out_.textures.size()) + " textures");
-    if (out_.textures[static_cast<std::size_t>(index)].image < 0)
-      fail(where + ".index", json_index("textures", index) + " has no image this renderer can read");
+    // glTF 2.0 §5.29: a texture's source is optional, and without one (or an extension's) what it
+    // shows is undefined: the material renders as if the texture were absent, and says so.
+    if (out_.textures[static_cast<std::size_t>(index)].image < 0) {
+      out_.warnings.push_back(where + ".index: " + json_index("textures", index) +
+                              " has no image (no source); the material renders without it");
+      return r;
+    }
     if (tex_coord != 0 && tex_coord != 1)
       fail(where + ".texCoord", "is " + std::to_string(tex_coord) + "; TEXCOORD_0 and _1 are read");
     r.texture = index;
@@ -123,7 +142,7 @@ class MaterialReader {
   }
 
   // A textureInfo inside an extension object (tinygltf leaves those as generic values).
-  TextureRef texture_ref(const tinygltf::Value& ext_obj, const char* key, const std::string& where) const {
+  TextureRef texture_ref(const tinygltf::Value& ext_obj, const char* key, const std::string& where) {
     if (!ext_obj.IsObject() || !ext_obj.Has(key)) return {};
     const tinygltf::Value& ti = ext_obj.Get(key);
     const std::string w = where + "." + key;
@@ -134,7 +153,7 @@ class MaterialReader {
     if (!tc) fail(w + ".texCoord", "is not a TEXCOORD set number (a whole number from 0)");
     tinygltf::ExtensionMap none;
     TextureRef r = texture_ref(*index, *tc, none, w);
-    if (ti.Has("extensions")) apply_texture_transform(r, ti.Get("extensions"), w);
+    if (r.present() && ti.Has("extensions")) apply_texture_transform(r, ti.Get("extensions"), w);
     return r;
   }
 
@@ -209,9 +228,11 @@ class MaterialReader {
       d.emissive_strength = checked(number_or(*e, "emissiveStrength", 1.0), 0, 1e30, we);
     }
     if (const auto* e = get("KHR_materials_ior")) {
+      // KHR_materials_ior README and schema: "valid values for ior are numbers greater than or equal
+      // to one", and zero, the specular-glossiness compatibility mode of an infinite index.
       const double ior = number_or(*e, "ior", 1.5);
-      // The extension allows ior = 0 as "specular off" in older drafts; glTF says ior ≥ 1.
-      d.ior = checked(ior, 1.0, 1e3, w + "KHR_materials_ior.ior");
+      if (ior != 0.0) checked(ior, 1.0, std::numeric_limits<double>::max(), w + "KHR_materials_ior.ior");
+      d.ior = ior == 0.0 ? kIorInfinity : float(std::min(ior, double(kIorInfinity)));
     }
     if (const auto* e = get("KHR_materials_specular")) {
       const std::string ws = w + "KHR_materials_specular";
@@ -266,6 +287,7 @@ class MaterialReader {
     }
     if (const auto* e = get("KHR_materials_dispersion"))
       d.dispersion = checked(number_or(*e, "dispersion", 0.0), 0, 1e3, w + "KHR_materials_dispersion.dispersion");
+    if (d.ior == kIorInfinity) d.dispersion = 0.0f;  // KHR_materials_ior: no effect at an infinite index
     if (const auto* e = get("KHR_materials_sheen")) {
       const std::string ws = w + "KHR_materials_sheen";
       d.sheen_color = rgb_or(*e, "sheenColorFactor", Rgb(0.0f), 1.0, ws);
@@ -323,7 +345,7 @@ const std::vector<std::string>& supported_extensions() {
       "KHR_draco_mesh_compression",   "EXT_meshopt_compression",         "KHR_materials_variants",
       "KHR_materials_clearcoat",      "KHR_materials_anisotropy",        "KHR_materials_sheen",
       "KHR_materials_iridescence",    "KHR_materials_volume",            "KHR_materials_diffuse_transmission",
-      "KHR_materials_dispersion"};
+      "KHR_materials_dispersion",     "EXT_texture_webp"};
   return k;
 }
 

@@ -63,10 +63,15 @@ class Loader {
   }
 
   // Images, textures and materials: the reader the MIP build shares (gltf/material_reader.h). Every
-  // image is decoded, one at a time (decode_image's note on OpenImageIO).
+  // image a texture shows is decoded, one at a time (decode_image's note on OpenImageIO); one no
+  // texture names is never drawn, and its pixels stay empty.
   void read_appearance() {
     gltf::Materials m = gltf::read_materials(doc_);
-    for (std::size_t i = 0; i < m.images.size(); ++i) gltf::decode_image(doc_, m, i);
+    std::vector<char> shown(m.images.size(), 0);
+    for (const TextureDesc& t : m.textures)
+      if (t.image >= 0) shown[std::size_t(t.image)] = 1;
+    for (std::size_t i = 0; i < m.images.size(); ++i)
+      if (shown[i]) gltf::decode_image(doc_, m, i);
     doc_.images.clear();
     scene_.images = std::move(m.images);
     scene_.textures = std::move(m.textures);
@@ -222,7 +227,12 @@ class Loader {
       prim.material = p.material;
     }
     prim.material = apply_variant(p, where, prim.material);
-    if (!p.attributes.count("POSITION")) fail(where + ".attributes", "has no POSITION");
+    // glTF 2.0 §3.7.2.1: "When positions are not specified, client implementations SHOULD skip
+    // primitive's rendering".
+    if (!p.attributes.count("POSITION")) {
+      scene_.warnings.push_back(path_.string() + ": " + where + ".attributes: has no POSITION; skipped");
+      return false;
+    }
     prim.positions = read_attribute<glm::vec3>(p, "POSITION", {TINYGLTF_TYPE_VEC3}, where, 0);
     const std::size_t nv = prim.positions.size();
     for (std::size_t i = 0; i < nv; ++i) {
@@ -250,9 +260,14 @@ class Loader {
       for (std::size_t k = 0; k < nv; ++k) idxs[k] = static_cast<std::uint32_t>(k);
     }
     if (mode == TINYGLTF_MODE_TRIANGLES) {
-      if (idxs.size() % 3 != 0)
-        fail(where + (draco_ ? ".extensions.KHR_draco_mesh_compression" : p.indices >= 0 ? ".indices" : ".attributes.POSITION"),
-             std::to_string(idxs.size()) + " vertices do not make whole triangles");
+      // glTF 2.0 §3.7.2.1 makes triangle i of vertices 3i, 3i+1, 3i+2: vertices past the last whole
+      // triangle belong to none (the validator warns, MESH_PRIMITIVE_INCOMPATIBLE_MODE), as on a GPU.
+      if (const std::size_t rest = idxs.size() % 3; rest != 0) {
+        scene_.warnings.push_back(path_.string() + ": " + where + ": " + std::to_string(idxs.size()) +
+                                  " vertices do not make whole triangles; the last " + std::to_string(rest) +
+                                  " belong to none");
+        idxs.resize(idxs.size() - rest);
+      }
       prim.indices = std::move(idxs);
     } else {
       // Strips and fans as lists, keeping each triangle's winding (glTF §3.7.2.1).
@@ -300,7 +315,14 @@ class Loader {
       if (l.type == "directional") d.type = LightDesc::Type::directional;
       else if (l.type == "point") d.type = LightDesc::Type::point;
       else if (l.type == "spot") d.type = LightDesc::Type::spot;
-      else fail(w + ".type", "is '" + l.type + "'; expected directional, point or spot");
+      else {
+        // KHR_lights_punctual defines these three; a light of another type (a later extension's)
+        // is not drawn, and nodes that place it place nothing.
+        scene_.warnings.push_back(path_.string() + ": " + w + ".type: is '" + l.type +
+                                  "', not directional, point or spot; the light is not drawn");
+        light_templates_.push_back(std::nullopt);
+        continue;
+      }
       if (!l.color.empty()) {
         if (l.color.size() != 3) fail(w + ".color", "must be three numbers");
         for (int c = 0; c < 3; ++c) d.color[c] = checked(l.color[std::size_t(c)], 0, 1e30, w + ".color");
@@ -366,7 +388,8 @@ class Loader {
       if (!(li >= 0) || li >= double(light_templates_.size()))
         fail(wl, "names light " + std::to_string(li) + ", but the file has " +
                      std::to_string(light_templates_.size()) + " lights");
-      LightDesc d = light_templates_[std::size_t(li)];
+      if (!light_templates_[std::size_t(li)]) return;
+      LightDesc d = *light_templates_[std::size_t(li)];
       d.node = node;
       d.position = glm::vec3(world * glm::dvec4(0, 0, 0, 1));
       const glm::dvec3 dir = glm::dmat3(world) * glm::dvec3(0, 0, -1);
@@ -422,6 +445,37 @@ class Loader {
     return d;
   }
 
+  // Each node's parent (−1 for a root), after checking the whole node graph, not only the part the
+  // scene reaches, is a forest (glTF 2.0 §3.5.3: "node hierarchy MUST be a set of disjoint strict
+  // trees"): no node is the child of two, and no chain of parents returns to where it began.
+  std::vector<int> node_parents() const {
+    const std::size_t nn = model_.nodes.size();
+    std::vector<int> parent(nn, -1);
+    for (std::size_t i = 0; i < nn; ++i)
+      for (const int c : model_.nodes[i].children) {
+        const std::string wc = json_index("nodes", int(i)) + ".children";
+        if (std::size_t(c) == i) fail(wc, "names the node itself: the node graph has a cycle");
+        if (parent[std::size_t(c)] >= 0)
+          fail(wc, "names " + json_index("nodes", c) + ", which " + json_index("nodes", parent[std::size_t(c)]) +
+                       " lists too: glTF nodes form a tree");
+        parent[std::size_t(c)] = int(i);
+      }
+    // With one parent each, a cycle is a chain of parents that meets itself: walk each chain once,
+    // marking its nodes with the walk's number.
+    std::vector<std::size_t> walk(nn, 0);
+    for (std::size_t i = 0; i < nn; ++i) {
+      std::size_t n = i;
+      while (walk[n] == 0) {
+        walk[n] = i + 1;
+        if (parent[n] < 0) break;
+        n = std::size_t(parent[n]);
+      }
+      if (walk[n] == i + 1 && parent[n] >= 0)
+        fail(json_index("nodes", int(n)), "is its own ancestor: the node graph has a cycle");
+    }
+    return parent;
+  }
+
   void read_nodes() {
     const std::size_t nn = model_.nodes.size();
     auto check_node = [&](int n, const std::string& where) {
@@ -432,8 +486,12 @@ class Loader {
       for (std::size_t c = 0; c < model_.nodes[i].children.size(); ++c)
         check_node(model_.nodes[i].children[c], json_index("nodes", int(i)) + ".children[" + std::to_string(c) + "]");
 
+    const std::vector<int> parent = node_parents();
+
     std::vector<int> roots;
     std::string roots_where;
+    if (model_.scenes.empty() && model_.defaultScene >= 0)
+      fail("scene", "names " + json_index("scenes", model_.defaultScene) + ", but the file has no scenes");
     if (model_.scenes.empty()) {
       // No scene: glTF leaves what to show to the application; show every parentless node.
       std::vector<char> child(nn, 0);
@@ -450,7 +508,14 @@ class Loader {
                           " scenes");
       roots = model_.scenes[static_cast<std::size_t>(s)].nodes;
       roots_where = json_index("scenes", s) + ".nodes";
-      for (std::size_t r = 0; r < roots.size(); ++r) check_node(roots[r], roots_where + "[" + std::to_string(r) + "]");
+      for (std::size_t r = 0; r < roots.size(); ++r) {
+        const std::string wr = roots_where + "[" + std::to_string(r) + "]";
+        check_node(roots[r], wr);
+        // glTF 2.0 §5.28 (scene.nodes): "the indices of each root node"; a child listed too is drawn twice.
+        if (const int p = parent[std::size_t(roots[r])]; p >= 0)
+          fail(wr, "names " + json_index("nodes", roots[r]) + ", a child of " + json_index("nodes", p) +
+                       "; a scene lists root nodes only");
+      }
     }
 
     // Depth-first with an explicit stack, so a deep or cyclic graph can neither overflow nor hang.
@@ -497,7 +562,7 @@ class Loader {
   gltf::Document doc_;
   tinygltf::Model& model_ = doc_.model;  // the document's, read by every step
   Scene scene_;
-  std::vector<LightDesc> light_templates_;
+  std::vector<std::optional<LightDesc>> light_templates_;  // none: a light of a type not drawn
   std::vector<std::string> variant_names_;  // KHR_materials_variants, in the file's order
   int variant_ = -1;                         // the one --variant selects; −1: none
   std::optional<gltf::DracoPrimitive> draco_;  // the primitive being read, when Draco-compressed

@@ -94,6 +94,11 @@ std::string extension_for(std::span<const std::byte> bytes, std::string_view mim
   if (starts({0x76, 0x2f, 0x31, 0x01})) return ".exr";
   if (starts({'#', '?'})) return ".hdr";
   if (starts({'I', 'I', 0x2a, 0x00}) || starts({'M', 'M', 0x00, 0x2a})) return ".tif";
+  // WebP (RFC 9649 §2.5): a RIFF container whose form type, at byte 8, is "WEBP".
+  if (starts({'R', 'I', 'F', 'F'}) && bytes.size() >= 12 && std::to_integer<char>(bytes[8]) == 'W' &&
+      std::to_integer<char>(bytes[9]) == 'E' && std::to_integer<char>(bytes[10]) == 'B' &&
+      std::to_integer<char>(bytes[11]) == 'P')
+    return ".webp";
   // A file name as the hint: its extension.
   if (const std::size_t dot = mime.rfind('.'); dot != std::string_view::npos && mime.substr(0, 6) != "image/") {
     std::string ext(mime.substr(dot));
@@ -106,6 +111,7 @@ std::string extension_for(std::span<const std::byte> bytes, std::string_view mim
   if (mime == "image/x-exr" || mime == "image/aces") return ".exr";
   if (mime == "image/vnd.radiance") return ".hdr";
   if (mime == "image/tiff") return ".tif";
+  if (mime == "image/webp") return ".webp";
   return "";
 }
 

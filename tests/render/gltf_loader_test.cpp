@@ -183,11 +183,16 @@ TEST(GltfLoader, NaNPosition) {
   expect_error(dir.write("n.gltf", q.json()), "meshes[0].primitives[0].attributes.POSITION: vertex 1 is not finite");
 }
 
-TEST(GltfLoader, IndicesNotWholeTriangles) {
+// glTF 2.0 §3.7.2.1: triangle i is vertices 3i, 3i+1, 3i+2; a vertex past the last whole triangle
+// belongs to none (the validator only warns).
+TEST(GltfLoader, IndicesPastTheLastWholeTriangleBelongToNone) {
   TempDir dir;
   GltfQuad q;
   q.indices = {0, 1, 2, 0};
-  expect_error(dir.write("t.gltf", q.json()), "meshes[0].primitives[0].indices");
+  const Scene s = load_gltf(dir.write("t.gltf", q.json()));
+  EXPECT_EQ(s.meshes[0].primitives[0].triangle_count(), 1u);
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_NE(s.warnings[0].find("meshes[0].primitives[0]: 4 vertices"), std::string::npos) << s.warnings[0];
 }
 
 // Zero-area triangles are legal glTF: they load (and render as nothing) with one warning.
@@ -238,7 +243,7 @@ TEST(GltfLoader, CorruptImage) {
   TempDir dir;
   dir.write("bad.png", "this is not a PNG file at all");
   GltfQuad q;
-  q.top_extra = R"(, "images": [{"uri": "bad.png"}])";
+  q.top_extra = R"(, "images": [{"uri": "bad.png"}], "textures": [{"source": 0}])";
   expect_error(dir.write("i.gltf", q.json()), "images[0]");
 }
 
