@@ -62,7 +62,7 @@ asan: deps $(ASAN_BUILD)/build.ninja
 # The programs' contract with their input and output under the sanitizers, always affordable (about
 # two minutes of tests): hostile and corrupt files, resource limits, output writes, interrupts and
 # command lines. CI runs it on every run; `make asan` runs every unit suite.
-CONTRACT_TESTS := ^(HostileInput|GltfConformance|JsonScan|CorruptInput|OutputContract|OutputLocation|AtomicFile|TempFileRegistry|Interrupt|CliBounds|BakeContract|BakeCli|Image|MipFile|FilterTaps)\.
+CONTRACT_TESTS := ^(HostileInput|GltfConformance|GltfVertexData|JsonScan|CorruptInput|OutputContract|OutputLocation|AtomicFile|TempFileRegistry|Interrupt|CliBounds|BakeContract|BakeCli|Image|MipFile|FilterTaps)\.
 # Only the suites that hold these tests (and the programs they run) are built: the appearance and
 # LOD suites, the report and the plots are not needed here (about a sixth of the sanitizer build).
 asan-contract: deps $(ASAN_BUILD)/build.ninja

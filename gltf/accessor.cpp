@@ -1,7 +1,9 @@
 #include "gltf/accessor.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <sstream>
 #include <limits>
 
 #include "base/checked_number.h"
@@ -190,6 +192,45 @@ void apply_sparse(const tinygltf::Model& m, const tinygltf::Accessor& a, int ind
   }
 }
 
+// The bound `b` of accessor.min/max (stated in the stored values, glTF 2.0 §5.1: "normalized has no
+// effect on array values") in the values read_floats returns.
+double bound_as_read(double b, int ct, bool normalized) {
+  if (!normalized) return b;
+  switch (ct) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE: return std::max(b / 127.0, -1.0);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return b / 255.0;
+    case TINYGLTF_COMPONENT_TYPE_SHORT: return std::max(b / 32767.0, -1.0);
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return b / 65535.0;
+    default: return b;
+  }
+}
+
+// The values an accessor holds, as a renderer would draw them: finite (glTF 2.0 §3.6.2.2: "values
+// of FLOAT components MUST NOT be NaN or infinite") and within its min and max where it states them
+// (§5.1: min and max bound every component, sparse substitution applied). The bounds get the room of
+// a float's rounding: a writer may print them from the doubles it computed in.
+void check_values(const tinygltf::Accessor& a, int index, int comps, const std::vector<float>& v,
+                  const std::string& where) {
+  const bool bounded = a.minValues.size() == std::size_t(comps) && a.maxValues.size() == std::size_t(comps);
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const double x = v[i];
+    const auto c = static_cast<std::size_t>(i % std::size_t(comps));
+    if (!std::isfinite(x))
+      throw input_error(where, acc_name(index) + " element " + std::to_string(i / std::size_t(comps)) +
+                                   " is not finite (NaN or infinity)");
+    if (!bounded) continue;
+    const double lo = bound_as_read(a.minValues[c], a.componentType, a.normalized);
+    const double hi = bound_as_read(a.maxValues[c], a.componentType, a.normalized);
+    const double slack = 1e-6 * std::max({1.0, std::abs(lo), std::abs(hi)});
+    if (x < lo - slack || x > hi + slack) {
+      std::ostringstream m;
+      m << acc_name(index) << " element " << i / std::size_t(comps) << " component " << c << " is " << x
+        << ", outside the accessor's min " << lo << " and max " << hi;
+      throw input_error(where, m.str());
+    }
+  }
+}
+
 }  // namespace
 
 std::size_t element_count(const tinygltf::Model& model, int index, const std::string& where) {
@@ -220,6 +261,12 @@ std::vector<float> read_floats(const tinygltf::Model& m, int index, const Access
   const tinygltf::Accessor& a = m.accessors[static_cast<std::size_t>(index)];
   const int csz = component_size(a.componentType);
   if (components_out) *components_out = comps;
+  // glTF 2.0 §5.1 (accessor.normalized, accessor.byteOffset).
+  if (a.normalized && (a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+                       a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
+    throw input_error(where, acc_name(index) + " is normalized, which a FLOAT or UNSIGNED_INT accessor must not be");
+  if (a.bufferView < 0 && a.byteOffset != 0)
+    throw input_error(where, acc_name(index) + " has a byteOffset but no bufferView to offset into");
   // The bytes are checked present before the output is allocated, so a count of 10^9 in a small
   // file is refused rather than allocated; an accessor with no buffer view (zeros, §3.6.2.2) is held
   // to check_zeros.
@@ -247,6 +294,7 @@ std::vector<float> read_floats(const tinygltf::Model& m, int index, const Access
         out[i * comps + c] = component_value(p + i * stride + std::uint64_t(c) * csz, a.componentType, a.normalized);
   }  // no buffer view: zeros, then the sparse values if any (glTF 2.0 §3.6.2.2)
   if (a.sparse.isSparse) apply_sparse(m, a, index, comps, out, where);
+  check_values(a, index, comps, out, where);
   return out;
 }
 
@@ -264,8 +312,10 @@ std::vector<std::uint32_t> read_indices(const tinygltf::Model& m, int index, con
   const unsigned char* p = nullptr;
   std::uint64_t stride = isz;
   if (a.bufferView >= 0) {
+    // glTF 2.0 §3.6.2.4 (via bufferView.byteStride): "for indices, byteStride must not be defined".
     if (static_cast<std::size_t>(a.bufferView) < m.bufferViews.size() && m.bufferViews[a.bufferView].byteStride != 0)
-      stride = m.bufferViews[a.bufferView].byteStride;
+      throw input_error(where, acc_name(index) + " reads " + bv_name(a.bufferView) +
+                                   ", which has a byteStride; index data are tightly packed");
     p = view_bytes(m, a.bufferView, a.byteOffset, a.count, stride, isz, where, acc_name(index));
   }
   if (!p) check_zeros(m, a.count, sizeof(std::uint32_t), index, where);
@@ -294,6 +344,14 @@ std::vector<std::uint32_t> read_indices(const tinygltf::Model& m, int index, con
       out[target] = index_value(vp + k * isz, ct);
     }
   }
+  // glTF 2.0 §3.7.2.1: indices "MUST NOT contain the maximum possible value for the component
+  // type" (the primitive restart value of graphics APIs, which would break the strip or list).
+  const std::uint32_t restart = ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE    ? 0xFFu
+                                : ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 0xFFFFu
+                                                                               : 0xFFFFFFFFu;
+  if (const auto it = std::find(out.begin(), out.end(), restart); it != out.end())
+    throw input_error(where, acc_name(index) + " element " + std::to_string(it - out.begin()) + " is " +
+                                 std::to_string(restart) + ", the primitive restart value, which glTF forbids in indices");
   return out;
 }
 

@@ -28,7 +28,8 @@ int accessor_components(const tinygltf::Model& model, int index, const AccessorS
 
 // Reads accessor `index` as floats, `count × components` of them, components per element taken
 // from its type. Normalized integers map to [0, 1] / [−1, 1] as glTF §3.11 says; other integers
-// convert to their value. Throws svbrdf::Error "where: ..." on any violation.
+// convert to their value. The values must be finite and within the accessor's min and max where it
+// states them. Throws svbrdf::Error "where: ..." on any violation.
 std::vector<float> read_floats(const tinygltf::Model& model, int index, const AccessorShape& shape,
                                const std::string& where, int* components_out);
 

@@ -311,6 +311,9 @@ class Reader {
         const std::uint64_t offset = unsigned_member(v, "byteOffset").value_or(0);
         if (!buffer || !length) continue;  // tinygltf reports a missing required member
         const std::string w = json_index("bufferViews", int(i));
+        // glTF 2.0 §5.11 (bufferView.byteStride): within [4, 252], a multiple of 4.
+        if (const auto stride = unsigned_member(v, "byteStride"); stride && (*stride < 4 || *stride > 252 || *stride % 4))
+          fail(w + ".byteStride", "is " + std::to_string(*stride) + "; glTF allows multiples of 4 from 4 to 252");
         if (*buffer >= buffer_length.size())
           fail(w + ".buffer", "names buffers[" + std::to_string(*buffer) + "], but the file has " +
                                   std::to_string(buffer_length.size()) + " buffers");

@@ -6,6 +6,7 @@
 #include <optional>
 #include <span>
 #include <sstream>
+#include <string_view>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -28,6 +29,12 @@ using gltf::AccessorShape;
 using gltf::json_index;
 
 using gltf::finite_all;
+
+// The component types a vertex attribute may have: glTF 2.0 §3.7.2.1's and KHR_mesh_quantization's
+// tables together; UNSIGNED_INT is in neither.
+const std::vector<int> kAttributeComponentTypes = {
+    TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT,
+    TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_COMPONENT_TYPE_FLOAT};
 
 class Loader {
  public:
@@ -176,8 +183,15 @@ class Loader {
       comps = gltf::accessor_components(model_, it->second, AccessorShape{types, {}}, path_.string() + ": " + w);
       f = std::move(decoded->second.values);
     } else {
-      f = gltf::read_floats(model_, it->second, AccessorShape{types, {}}, path_.string() + ": " + w, &comps);
+      f = gltf::read_floats(model_, it->second, AccessorShape{types, kAttributeComponentTypes}, path_.string() + ": " + w,
+                            &comps);
     }
+    // glTF 2.0 §3.7.2.1: COLOR_n is a linear multiplier in [0, 1] (normalized integers are so by type).
+    if (std::string_view(name) == "COLOR_0")
+      for (std::size_t i = 0; i < f.size(); ++i)
+        if (!(f[i] >= 0.0f && f[i] <= 1.0f))
+          fail(w, "vertex " + std::to_string(i / std::size_t(comps)) + " has a color component of " +
+                      std::to_string(f[i]) + ", outside [0, 1]");
     const std::size_t n = f.size() / std::size_t(comps);
     if (vertex_count != 0 && n != vertex_count)
       fail(w, json_index("accessors", it->second) + " has " + std::to_string(n) + " elements, POSITION has " +
@@ -235,7 +249,8 @@ class Loader {
     }
     prim.positions = read_attribute<glm::vec3>(p, "POSITION", {TINYGLTF_TYPE_VEC3}, where, 0);
     const std::size_t nv = prim.positions.size();
-    for (std::size_t i = 0; i < nv; ++i) {
+    // read_floats holds every accessor to finite values; a Draco primitive's are decoded elsewhere.
+    for (std::size_t i = 0; draco_ && i < nv; ++i) {
       const glm::vec3& v = prim.positions[i];
       if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
         fail(where + ".attributes.POSITION", "vertex " + std::to_string(i) + " is not finite (NaN or infinity)");
