@@ -54,16 +54,6 @@ float in_range(double x, double lo, double hi, const std::filesystem::path& file
   return static_cast<float>(x);
 }
 
-namespace {
-
-// What the document says of the files beside it, read before tinygltf opens any of them.
-struct FileRules {
-  std::map<fs::path, std::uint64_t> buffer_bytes;  // a buffer's file → its byteLength
-  std::string error;                               // the first file refused, for the message
-  std::map<fs::path, std::string> refused;         // every file refused → why
-};
-
-// Percent-decoding of a URI reference (RFC 3986 §2.1), as glTF §3.2 asks of relative paths.
 std::string uri_decode(const std::string& s) {
   std::string out;
   for (std::size_t i = 0; i < s.size(); ++i) {
@@ -77,6 +67,15 @@ std::string uri_decode(const std::string& s) {
   }
   return out;
 }
+
+namespace {
+
+// What the document says of the files beside it, read before tinygltf opens any of them.
+struct FileRules {
+  std::map<fs::path, std::uint64_t> buffer_bytes;  // a buffer's file → its byteLength
+  std::string error;                               // the first file refused, for the message
+  std::map<fs::path, std::string> refused;         // every file refused → why
+};
 
 fs::path normal(const fs::path& p) {
   std::error_code ec;

@@ -31,6 +31,10 @@ struct Document {
 // read or violates the container's and the buffers' bounds.
 Document read_document(const std::filesystem::path& path);
 
+// Percent-decoding of a URI reference (RFC 3986 §2.1), as glTF §3.2 asks of relative paths and
+// RFC 2397 of a data: URI that is not base64.
+std::string uri_decode(const std::string& s);
+
 // "images[3]"-style JSON path pieces.
 std::string json_index(const char* array, int i);
 

@@ -8,6 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "gltf/document.h"
+
 namespace svbrdf::gltf {
 
 namespace {
@@ -38,21 +40,6 @@ std::string base64(const std::string& bytes) {
   return out;
 }
 
-// RFC 3986 §2.1 percent-decoding (RFC 2397: a data: URI without ";base64" holds its bytes so).
-std::string percent_decoded(const std::string& s) {
-  std::string out;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    const auto hex = [](char c) { return std::isxdigit(static_cast<unsigned char>(c)) != 0; };
-    if (s[i] == '%' && i + 2 < s.size() && hex(s[i + 1]) && hex(s[i + 2])) {
-      out += static_cast<char>(std::stoi(s.substr(i + 1, 2), nullptr, 16));
-      i += 2;
-    } else {
-      out += s[i];
-    }
-  }
-  return out;
-}
-
 // A data: URI tinygltf does not decode, as one it does; anything else unchanged.
 std::string decodable(const std::string& uri) {
   if (uri.rfind("data:", 0) != 0 || tinygltf_decodes(uri)) return uri;
@@ -60,7 +47,7 @@ std::string decodable(const std::string& uri) {
   if (comma == std::string::npos) return uri;  // not a data: URI at all; tinygltf says so
   const std::string header = uri.substr(0, comma), data = uri.substr(comma + 1);
   const bool is_base64 = header.size() >= 7 && header.compare(header.size() - 7, 7, ";base64") == 0;
-  return kOctetStream + (is_base64 ? data : base64(percent_decoded(data)));
+  return kOctetStream + (is_base64 ? data : base64(uri_decode(data)));
 }
 
 // A URI with a scheme (RFC 3986 §3.1: a letter, then letters, digits, '+', '-', '.', then ':') other
