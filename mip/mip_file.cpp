@@ -360,7 +360,15 @@ void write_mip_file(const fs::path& path, const ParamPyramid& param, const BrdfP
 
 MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
   check_exr_file_header(path, where(path));  // no allocation at a size only the file states
-  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path.string());
+  // OpenEXR's reader only: ImageInput::open tries every other format's reader on a file OpenEXR's
+  // refuses (LibRaw's alone clears tens of megabytes to say no), and a MIP file is OpenEXR.
+  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::create("openexr");
+  if (OIIO::ImageSpec opened; in && !in->open(path.string(), opened)) {
+    const std::string why = in->geterror();
+    in.reset();
+    (void)OIIO::geterror();
+    throw input_error(where(path), "cannot read the MIP file: " + (fs::exists(path) ? why : "no such file"));
+  }
   if (!in) {
     std::string why = OIIO::geterror();
     if (!fs::exists(path)) why = "no such file";
