@@ -3,7 +3,9 @@
 // size the file states (a 32-bit count, up to 2 GiB) before it reads a byte of it, so a file of a few
 // kilobytes that states a huge attribute makes a program allocate gigabytes and spend seconds before
 // the read fails at the end of the file. Here every attribute's stated size must fit in the bytes the
-// file has after it; nothing is allocated by what the file states.
+// file has after it, and the value of a type OpenEXR knows must take exactly that size (OpenEXR reads
+// those by their type, so a value of another length moves it to where the header says something else);
+// nothing is allocated by what the file states.
 //
 // The layout (OpenEXR, "OpenEXR File Layout", sections "Magic Number", "Version Field" and "Header"):
 // the magic 20000630 and a version field whose bit 12 marks a multi-part file and bit 10 long
