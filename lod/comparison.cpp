@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <memory>
@@ -132,7 +133,11 @@ LodResults run_lod_comparison(const LodManifest& m, const LodOptions& o, const C
   const auto say = [&](const std::string& s) {
     if (o.progress) o.progress(s);
   };
-  const auto wanted = [&](double k) { return k >= o.min_distance && k <= o.max_distance; };
+  const auto wanted = [&](double k) {
+    const bool listed = o.distances.empty() ||
+                        std::any_of(o.distances.begin(), o.distances.end(), [&](double d) { return std::abs(k - d) <= 1e-9 * d; });
+    return listed && k >= o.min_distance && k <= o.max_distance;
+  };
 
   // Which filters the renderer offers (see the header): probed on the first selected case.
   std::vector<std::pair<std::string, TextureFilter>> filters;

@@ -39,6 +39,7 @@ struct LodOptions {
   std::vector<std::string> filters{"param", "toksvig", "vmf", "brdf"};
   double min_distance = 0.0;        // skip cameras nearer than this multiple of d₁
   double max_distance = INFINITY;   // and farther than this one
+  std::vector<double> distances;    // empty: every distance in that range; else only these multiples
   std::vector<std::string> cases;   // empty: all
   std::vector<std::string> lights;  // empty: all
   std::vector<std::string> views;   // empty: all

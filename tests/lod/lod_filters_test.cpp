@@ -1,6 +1,7 @@
 // The BRDF-averaged MIP maps' claims, rendered: the LOD scenes (scenes/lod.json)
-// at every distance ≥ 16× and every light, in the default size (48×48 pixels, 256 samples per pixel
-// for every render; `svbrdf-lod-report --full` renders the same at 4096). Each camera sample filters
+// at distances ≥ 16× (every other one by default, all of them under the `long` label) and every light,
+// in the default size (48×48 pixels, 256 samples per pixel for every render; `svbrdf-lod-report --full`
+// renders the same at 4096). Each camera sample filters
 // 1/√spp of its pixel, so at 256 spp k × d₁ reads MIP level log₂ k − 4: the tests go to 4096×, the
 // first distance that reads the coarsest level (coarsest_level_distance). The noise floor is the
 // relative MSE between two ground-truth renders (--filter level0) that differ only in their seed;
@@ -54,8 +55,9 @@ double coarsest_level_distance(const LodManifest& m, int spp) {
 
 // The shots from `min_distance` on, up to the first distance that reads the coarsest level.
 LodResults render(const std::vector<std::string>& cases, double min_distance, const std::vector<std::string>& lights = {},
-                  int spp = 256) {
+                  int spp = 256, const std::vector<double>& distances = {}) {
   LodOptions o;
+  o.distances = distances;
   o.spp = spp;
   o.min_distance = min_distance;
   o.max_distance = coarsest_level_distance(manifest(), spp);
@@ -90,10 +92,8 @@ std::vector<std::string> family_names() {
   return families;
 }
 
-// One render of the five families at 16× and beyond (one ctest entry, so the renders are shared).
-TEST(LodFilters, FamiliesFromSixteenTimesOn) {
-  REQUIRE_FILTERS();
-  const LodResults r = render(family_names(), 16);
+// The five families' shots from 16× on, rendered once for all the checks below.
+void check_families(const LodResults& r, int distances) {
 
   // At every distance ≥ 16× and every light: brdf within 1.5× the noise floor and 1 % of the flux.
   // (Polished granite at its highlight — head-on under the overhead sun, and the mirror view — from
@@ -106,7 +106,7 @@ TEST(LodFilters, FamiliesFromSixteenTimesOn) {
     expect_matches(s, "brdf", 1.5);
     ++n;
   }
-  EXPECT_EQ(n, (5 * 4 + 2) * 5);  // five families × four lights + two mirror views, 16× to 4096×
+  EXPECT_EQ(n, (5 * 4 + 2) * distances);  // five families × four lights + two mirror views, per distance
 
   // The control: printed paper varies only in albedo, so averaging parameters is exact for it and
   // both filters agree with the ground truth within 1.5× the noise floor.
@@ -116,7 +116,7 @@ TEST(LodFilters, FamiliesFromSixteenTimesOn) {
     expect_matches(s, "param", 1.5);
     ++n;
   }
-  EXPECT_EQ(n, 4 * 5);
+  EXPECT_EQ(n, 4 * distances);
 
   // The mission's contrast, at 64× and beyond. Measured at this size (256 spp), at
   // 64×, 256×, 1024× and 4096×:
@@ -143,7 +143,23 @@ TEST(LodFilters, FamiliesFromSixteenTimesOn) {
                                      << ", param flux " << p->metrics.flux_bias << ", peak " << p->metrics.peak_ratio;
     ++n;
   }
-  EXPECT_EQ(n, (5 + 1) * 4);  // metal-tray: four lights head-on + the mirror view; painted-wall: sun-0
+  EXPECT_EQ(n, (5 + 1) * (distances - 1));  // metal-tray: four lights head-on + the mirror view; painted-wall:
+                                             // sun-0; every distance but 16×
+}
+
+// Every family at every other distance from 16×: 16×, 256× and 4096×, levels 0, 4 and 8 of the
+// default size, the first that reads the coarsest level among them (the long test below renders the
+// distances between as well).
+TEST(LodFilters, FamiliesAtEveryOtherDistanceFromSixteenTimesOn) {
+  REQUIRE_FILTERS();
+  check_families(render(family_names(), 16, {}, 256, {16, 256, 4096}), 3);
+}
+
+// All five distances from 16× to 4096× (ctest label `long`, about three minutes on 2 cores).
+TEST(LodFiltersLong, FamiliesFromSixteenTimesOn) {
+  if (!std::getenv("SVBRDF_LONG")) GTEST_SKIP() << "set SVBRDF_LONG=1 (ctest -L long, make test-long)";
+  REQUIRE_FILTERS();
+  check_families(render(family_names(), 16), 5);
 }
 
 // The same assertion at the report's --full size (4096 samples per pixel, a noise floor 16× lower) on
