@@ -98,6 +98,14 @@ MaterialTexels MipTexture::level0_texels() const { return pyramids_->param.level
 
 bool MipTexture::tintable() const { return pyramids_->tint; }
 
+Rgb MipTexture::base_color(TextureFilter filter, const Footprint& f) const {
+  if (filter == TextureFilter::level0) {
+    const glm::ivec2 t = nearest_texel(f.uv);
+    return pyramids_->level0(t.x, t.y).base_color;
+  }
+  return filter_params(pyramids_->param, folded(f), kMaxProbes).base_color;
+}
+
 float MipTexture::level(const Footprint& f) const { return mip_level(extent_, f); }
 
 float mip_level(Extent level0, const Footprint& f) { return filter_level(level0, level_count(level0), f); }

@@ -107,6 +107,12 @@ class MipTexture {
     return lobes(choose(filter, footprint, tint, u), scratch);
   }
 
+  // The base colour of the parameter pyramid at a footprint: level0's nearest texel, under every other
+  // filter the parameter filters' trilinear taps (base colour is linear in the BRDF, so its average is
+  // exact). For a texture that holds a material's base colour apart from its other parameters
+  // (render/material_mips.h); the parameter pyramid must be prepared.
+  Rgb base_color(TextureFilter filter, const Footprint& footprint) const;
+
   // Whether brdf answers tinted lookups from its pyramid (built with `tint`, or read from a MIP file
   // built so).
   bool tintable() const;

@@ -133,7 +133,11 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
     MipTexture::Choice choice;
     if (mip) {
       fp = mip->to_texture(footprint(sp, mip->uv_set(), dpdx, dpdy));
-      choice = mip->texture().choose(s.filter, fp, Rgb(sp.color), u_select);
+      // COLOR_0, and a base colour texture held apart from the grid (material_mips.h), tint the texel.
+      Rgb tint(sp.color);
+      if (mip->separate_base_color())
+        tint *= mip->base_color(s.filter, footprint(sp, mip->base_color_uv_set(), dpdx, dpdy));
+      choice = mip->texture().choose(s.filter, fp, tint, u_select);
       prefetch_emission(sp, *w.textures);
       // A level-0 texel of a normal-mapped material is shaded as a material without MIP data
       // shades it (below: the normal turned toward the viewer, or the microsurface), not by its lone

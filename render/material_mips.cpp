@@ -30,11 +30,46 @@ Image replicate(const Image& im, Extent e) {
 
 std::string label(const MaterialDesc& m) { return m.where + (m.name.empty() ? "" : " '" + m.name + "'"); }
 
+// Whether the texture slots can share one texel grid (see the header): empty, with the grid's size in
+// `e`, or why not.
+std::string grid_of(const MaterialDesc& m, const std::vector<const TexelInput*>& slots, const TextureSet& textures,
+                    Extent& e) {
+  const TexelInput& first = *slots.front();
+  const TextureRef& g = *first.texture;
+  const Sampler& gs = textures.sampler(g);
+  e = {0, 0};
+  for (const TexelInput* in : slots) {
+    const TextureRef& r = *in->texture;
+    const Sampler& rs = textures.sampler(r);
+    const std::string pair = in->name + " and " + first.name;
+    if (r.uv_set() != g.uv_set()) return pair + " read different TEXCOORD sets";
+    if (!same_transform(r.transform, g.transform)) return pair + " have different KHR_texture_transforms";
+    if (rs.wrap_s != gs.wrap_s || rs.wrap_t != gs.wrap_t) return pair + " have different wrap modes";
+    if (&r == &m.normal_texture && textures.image(r, false).channels < 3) return "its normal map has fewer than three channels";
+    const glm::ivec2 size = textures.size(r);
+    e.width = std::max(e.width, size.x), e.height = std::max(e.height, size.y);
+  }
+  for (const TexelInput* in : slots) {
+    const glm::ivec2 size = textures.size(*in->texture);
+    if (e.width % size.x != 0 || e.height % size.y != 0)
+      return in->name + " (" + std::to_string(size.x) + "x" + std::to_string(size.y) +
+             ") does not divide the largest texture (" + std::to_string(e.width) + "x" + std::to_string(e.height) + ")";
+  }
+  return {};
+}
+
 }  // namespace
 
-Footprint MaterialMip::to_texture(const Footprint& f) const {
-  const TextureTransform& t = grid_.transform;
+namespace {
+Footprint transformed(const TextureTransform& t, const Footprint& f) {
   return {t.apply(f.uv), t.apply_linear(f.duv_dx), t.apply_linear(f.duv_dy)};
+}
+}  // namespace
+
+Footprint MaterialMip::to_texture(const Footprint& f) const { return transformed(grid_.transform, f); }
+
+Rgb MaterialMip::base_color(TextureFilter filter, const Footprint& f) const {
+  return base_color_->texture->base_color(filter, transformed(base_color_->ref.transform, f));
 }
 
 SceneMips::SceneMips(const Scene& scene, const TextureSet& textures)
@@ -48,29 +83,24 @@ SceneMips::SceneMips(const Scene& scene, const TextureSet& textures)
       if (in.texture && in.texture->present()) slots.push_back(&in);
     if (slots.empty()) continue;  // untextured: nothing to filter
     std::string why = mip_unsupported(m);
-    const TexelInput& first = *slots.front();
-    const TextureRef& g = *first.texture;
-    const Sampler& gs = textures.sampler(g);
     Extent e{0, 0};
-    for (const TexelInput* in : slots) {
-      if (!why.empty()) break;
-      const TextureRef& r = *in->texture;
-      const Sampler& rs = textures.sampler(r);
-      const std::string pair = in->name + " and " + first.name;
-      if (r.uv_set() != g.uv_set()) why = pair + " read different TEXCOORD sets";
-      else if (!same_transform(r.transform, g.transform)) why = pair + " have different KHR_texture_transforms";
-      else if (rs.wrap_s != gs.wrap_s || rs.wrap_t != gs.wrap_t) why = pair + " have different wrap modes";
-      else if (&r == &m.normal_texture && textures.image(r, false).channels < 3) why = "its normal map has fewer than three channels";
-      const glm::ivec2 size = textures.size(r);
-      e.width = std::max(e.width, size.x), e.height = std::max(e.height, size.y);
+    if (why.empty()) why = grid_of(m, slots, textures, e);
+    // A base colour texture looked up otherwise than the rest is held apart, as a tint (see the header).
+    bool separate_base = false;
+    if (!why.empty() && mip_unsupported(m).empty() && m.base_color_texture.present() && slots.size() > 1) {
+      std::vector<const TexelInput*> rest;
+      for (const TexelInput* in : slots)
+        if (in->texture != &m.base_color_texture) rest.push_back(in);
+      Extent rest_extent{0, 0};
+      if (grid_of(m, rest, textures, rest_extent).empty()) {
+        why.clear();
+        separate_base = true;
+        slots = std::move(rest);
+        e = rest_extent;
+      }
     }
-    for (const TexelInput* in : slots) {
-      if (!why.empty()) break;
-      const glm::ivec2 size = textures.size(*in->texture);
-      if (e.width % size.x != 0 || e.height % size.y != 0)
-        why = in->name + " (" + std::to_string(size.x) + "x" + std::to_string(size.y) +
-              ") does not divide the largest texture (" + std::to_string(e.width) + "x" + std::to_string(e.height) + ")";
-    }
+    const TextureRef& g = *slots.front()->texture;
+    const Sampler& gs = textures.sampler(g);
     if (!why.empty()) {
       warnings_.push_back(label(m) + ": " + why + "; it is shaded with level0 lookups under every filter");
       continue;
@@ -83,6 +113,12 @@ SceneMips::SceneMips(const Scene& scene, const TextureSet& textures)
     mip.grid_ = g;
     mip.sampler_ = gs;
     mip.extent_ = e;
+    mip.grid_material_ = m;
+    if (separate_base) {
+      mip.grid_material_.base_color_texture = TextureRef{};  // the texels take the factor alone
+      mip.base_color_.emplace(MaterialMip::BaseColorTint{m.base_color_texture, textures.sampler(m.base_color_texture), std::nullopt});
+      mip.tint_ = true;
+    }
     slot_[i] = static_cast<int>(mips_.size()) - 1;
     source_.push_back(i);
   }
@@ -113,6 +149,20 @@ void SceneMips::use_cache(MipCache* cache, std::string color_identity) {
 
 void SceneMips::prepare(TextureFilter filter, SetupProgress* progress) {
   const std::lock_guard<std::mutex> lock(mutex_);
+  // The base colours held apart (see the header): their own parameter pyramids, whatever the filter
+  // (level0 reads their level 0), their texels decoded as the grid's would be. Not cached: a parameter
+  // pyramid builds in less time than an entry takes to read.
+  tbb::parallel_for(std::size_t(0), mips_.size(), [&](std::size_t i) {
+    MaterialMip& mip = mips_[i];
+    if (!mip.base_color_ || mip.base_color_->texture) return;
+    MaterialDesc base;
+    base.base_color_texture = mip.base_color_->ref;
+    const MaterialImages in = material_images(base, [&](const TextureRef& r, bool color) -> SlotImage {
+      return {&textures_.image(r, color), color && textures_.linearized(r)};
+    });
+    mip.base_color_->texture.emplace(decode_material_texels(in), mip.base_color_->sampler.wrap_s,
+                                     mip.base_color_->sampler.wrap_t, TextureFilter::param);
+  });
   std::vector<std::size_t> todo;
   for (std::size_t i = 0; i < mips_.size(); ++i)
     if (!mips_[i].texture_ || !mips_[i].texture_->prepared(filter)) todo.push_back(i);
@@ -151,7 +201,7 @@ void SceneMips::read_cached(std::vector<std::size_t>& todo, std::vector<std::str
     const SetupProgress::Stage stage(progress, "reading the materials' MIP maps from the MIP cache", todo.size());
     tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t t) {
       MaterialMip& mip = mips_[todo[t]];
-      all[t] = mip_cache_key(scene_, textures_, scene_.materials[source_[todo[t]]], mip.extent_, color_identity_, mip.tint_);
+      all[t] = mip_cache_key(scene_, textures_, mip.grid_material_, mip.extent_, color_identity_, mip.tint_);
       if (std::optional<MipData> data = cache_->load(all[t])) {
         mip.texture_.emplace(std::move(*data), mip.sampler_.wrap_s, mip.sampler_.wrap_t);
         read[t] = 1;
@@ -177,7 +227,7 @@ void SceneMips::build(std::size_t i, TextureFilter filter) {
     mip.texture_->prepare(filter);
     return;
   }
-  const MaterialDesc& m = scene_.materials[source_[i]];
+  const MaterialDesc& m = mip.grid_material_;
   // The images as TextureSet holds them (base color already scene-linear: decoded once), smaller
   // ones replicated onto the grid.
   std::vector<Image> replicas;

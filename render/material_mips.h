@@ -15,8 +15,15 @@
 // One texel grid per material: the five textures must share their uv set, KHR_texture_transform
 // and wrap modes. Their sizes may differ by integer factors along each axis: the smaller ones are
 // replicated (nearest) onto the largest grid, which is exact — the texel of the small texture that
-// contains a uv is the one whose replica contains it. Anything else (different uv sets, transforms,
-// wrap modes, sizes that do not divide) leaves the material out, with a warning naming the textures.
+// contains a uv is the one whose replica contains it. A base colour texture that is looked up
+// otherwise than the rest (another uv set, transform, wrap mode or size) is held apart: the grid's
+// texels take the base colour factor, the pyramid is built tintable, and a lookup tints it by the
+// base colour texture filtered on its own (its parameter pyramid: base colour is linear in the BRDF
+// (mip/lobe.h tinted), so this is exact wherever the colour and the other parameters vary
+// independently over the footprint — the premise of giving them different mappings; a colour that
+// follows the other maps' features through another mapping is averaged apart from them). Anything
+// else (the other textures' uv sets, transforms, wrap modes or sizes differing) leaves the material
+// out, with a warning naming the textures.
 //
 // COLOR_0 is the lookups' tint. A material drawn by a primitive whose COLOR_0 is not white has its
 // BRDF pyramid built tintable (mip.h; 6 bytes a stored lobe more), found by the scene scan, so brdf
@@ -56,12 +63,26 @@ class MaterialMip {
   // The texture; SceneMips::prepare must have built it.
   const MipTexture& texture() const { return *texture_; }
 
+  // Whether the base colour texture is held apart from the grid, as a tint (see the file's header);
+  // then its uv set, and its colour under `filter` at a footprint of that uv set.
+  bool separate_base_color() const { return base_color_.has_value(); }
+  int base_color_uv_set() const { return base_color_->ref.uv_set(); }
+  Rgb base_color(TextureFilter filter, const Footprint& uvset_footprint) const;
+
  private:
   friend class SceneMips;
+  // A base colour texture held apart: its slot, sampler and its own parameter pyramid.
+  struct BaseColorTint {
+    TextureRef ref;
+    Sampler sampler;
+    std::optional<MipTexture> texture;
+  };
   TextureRef grid_;  // the slot whose uv set and transform the grid follows
   Sampler sampler_;  // the grid's wrap modes
   Extent extent_{};  // the grid's size: the largest of its textures
-  bool tint_ = false;  // drawn with a COLOR_0 tint: the BRDF pyramid is built tintable
+  bool tint_ = false;  // drawn with a COLOR_0 tint or a base colour held apart: the BRDF pyramid is tintable
+  MaterialDesc grid_material_;  // what the grid's texels are made of: the material, less a base colour held apart
+  std::optional<BaseColorTint> base_color_;
   std::optional<MipTexture> texture_;
 };
 
