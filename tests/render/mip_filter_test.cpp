@@ -18,6 +18,7 @@
 #include "appearance/rng.h"
 #include "render/material_mips.h"
 #include "render/surface.h"
+#include "mip_quad.h"
 #include "render_test_scenes.h"
 #include "textures/color.h"
 #include "textures/normal_map.h"
@@ -25,165 +26,7 @@
 namespace svbrdf {
 namespace {
 
-using test::ortho_camera;
-
-// One texel as stored in the three glTF textures.
-struct TexelSpec {
-  glm::vec3 srgb;  // base color, sRGB-encoded as glTF stores it
-  float metallic;
-  float roughness;
-  glm::vec3 normal;  // unit, tangent space
-};
-
-glm::vec3 tilted(float deg, float azimuth_deg) {
-  const float t = glm::radians(deg), p = glm::radians(azimuth_deg);
-  return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
-}
-
-// Four texels that differ in every parameter, normals 20° apart around the geometric normal.
-const TexelSpec kA{{0.8f, 0.25f, 0.1f}, 0.0f, 0.6f, tilted(20, 0)};
-const TexelSpec kB{{0.9f, 0.75f, 0.35f}, 1.0f, 0.35f, tilted(20, 180)};
-const TexelSpec kC{{0.15f, 0.4f, 0.85f}, 0.0f, 0.45f, tilted(20, 90)};
-const TexelSpec kD{{0.95f, 0.95f, 0.95f}, 1.0f, 0.25f, tilted(20, 270)};
-// The specular layer of A B C D for the specular tests: specularTexture.a and specularColorTexture
-// (sRGB-encoded).
-constexpr float kSpecularWeight[4] = {1.0f, 0.05f, 0.2f, 0.8f};
-const glm::vec3 kSpecularSrgb[4] = {{1.0f, 1.0f, 1.0f}, {0.9f, 0.5f, 0.2f}, {0.3f, 0.8f, 0.9f}, {0.7f, 0.7f, 0.7f}};
-// A plain texel for the other squares of the checkerboard.
-const TexelSpec kE{{0.5f, 0.6f, 0.4f}, 0.0f, 0.7f, {0, 0, 1}};
-
-Rgb linear(const glm::vec3& srgb) {
-  const ColorConfig& c = ColorConfig::builtin();
-  return {c.srgb_texture_to_linear(srgb.x), c.srgb_texture_to_linear(srgb.y), c.srgb_texture_to_linear(srgb.z)};
-}
-
-// The normal as the renderer reads it back from the map (rgb = n/2 + 1/2, spec: n = normalize(2·rgb − 1)).
-glm::vec3 stored_normal(const glm::vec3& n) { return glm::normalize(2.0f * (0.5f * n + 0.5f) - 1.0f); }
-
-// f_eff of brdf-mip.md in double-checked float: the glTF BRDF about n, times max(0, n·wi)/wi.z.
-glm::dvec3 f_eff(const Rgb& base, float metallic, float roughness, const glm::vec3& n, const glm::vec3& wi,
-                 const glm::vec3& wo) {
-  if (wi.z <= 0 || wo.z <= 0 || glm::dot(n, wi) <= 0 || glm::dot(n, wo) <= 0) return glm::dvec3(0);
-  const Frame f = Frame::from_normal(n);
-  return glm::dvec3(gltf_eval({base, metallic, roughness}, f.to_local(wi), f.to_local(wo))) *
-         double(glm::dot(n, wi)) / double(wi.z);
-}
-glm::dvec3 f_eff(const TexelSpec& t, const glm::vec3& wi, const glm::vec3& wo) {
-  return f_eff(linear(t.srgb), t.metallic, t.roughness, stored_normal(t.normal), wi, wo);
-}
-
-// The mean f_eff of a set of texels (a coarse texel's exact BRDF).
-glm::dvec3 mean_f_eff(std::initializer_list<TexelSpec> texels, const glm::vec3& wi, const glm::vec3& wo) {
-  glm::dvec3 s(0);
-  for (const TexelSpec& t : texels) s += f_eff(t, wi, wo);
-  return s / double(texels.size());
-}
-
-// f_eff of one texel with the texels' mean parameters (brdf-mip.md, `param`).
-glm::dvec3 param_f_eff(std::initializer_list<TexelSpec> texels, const glm::vec3& wi, const glm::vec3& wo) {
-  Rgb c(0);
-  float m = 0, r = 0;
-  glm::vec3 n(0);
-  for (const TexelSpec& t : texels) c += linear(t.srgb), m += t.metallic, r += t.roughness, n += stored_normal(t.normal);
-  const float k = float(texels.size());
-  return f_eff(c / k, m / k, r / k, glm::normalize(n), wi, wo);
-}
-
-// A material of three float textures (base color, metallic-roughness, normal) of size×size texels,
-// texel (i, j) given by `at`, on a square of side 8 in z = 0 (front +z, tangent +x, bitangent +y)
-// whose uv runs over [0, 4]² (repeat), uv (0, 0) at the top-left corner (−4, +4).
-template <class At>
-Scene textured_quad(int size, At at) {
-  Scene s;
-  Image base(size, size, 3), mr(size, size, 3), normal(size, size, 3);
-  for (int j = 0; j < size; ++j)
-    for (int i = 0; i < size; ++i) {
-      const TexelSpec t = at(i, j);
-      const glm::vec3 enc = 0.5f * t.normal + 0.5f;
-      for (int c = 0; c < 3; ++c) base.at(i, j, c) = t.srgb[c], normal.at(i, j, c) = enc[c];
-      mr.at(i, j, 0) = 1.0f, mr.at(i, j, 1) = t.roughness, mr.at(i, j, 2) = t.metallic;
-    }
-  for (Image* im : {&base, &mr, &normal}) test::add_image_texture(s, std::move(*im));
-  MaterialDesc m;
-  m.where = "materials[0]";
-  m.base_color_texture.texture = 0;
-  m.metallic_roughness_texture.texture = 1;
-  m.normal_texture.texture = 2;
-  s.materials.push_back(m);
-  MeshPrimitive p;
-  p.positions = {{-4, -4, 0}, {4, -4, 0}, {4, 4, 0}, {-4, 4, 0}};
-  p.normals.assign(4, {0, 0, 1});
-  p.texcoords[0] = {{0, 4}, {4, 4}, {4, 0}, {0, 0}};
-  p.tangents.assign(4, {1, 0, 0, 1});
-  p.indices = {0, 1, 2, 0, 2, 3};
-  p.material = 0;
-  p.where = "meshes[0].primitives[0]";
-  Mesh mesh;
-  mesh.primitives.push_back(std::move(p));
-  s.meshes.push_back(std::move(mesh));
-  s.instances.push_back({0, 0, glm::dmat4(1.0)});
-  return s;
-}
-
-// The 2×2 pattern A B / C D everywhere: every texel of level ≥ 1 covers the same texels.
-Scene periodic_quad(int size = 256) {
-  return textured_quad(size, [](int i, int j) { return (j % 2 ? (i % 2 ? kD : kC) : (i % 2 ? kB : kA)); });
-}
-
-// Blocks of 8×8 texels (the texels of level 3) in a checkerboard: the pattern A B / C D on even
-// blocks (P), plain E on odd ones (Q).
-Scene checker_quad(int size = 256) {
-  return textured_quad(size, [](int i, int j) {
-    if ((i / 8 + j / 8) % 2) return kE;
-    return (j % 2 ? (i % 2 ? kD : kC) : (i % 2 ? kB : kA));
-  });
-}
-
-const glm::vec3 kWi = tilted(35, 20);  // toward the light
-constexpr float kE0 = 2.0f;            // its irradiance
-
-// The quad under the sun from kWi, seen by an orthographic camera from `view` (a unit direction
-// toward the camera) with half height 1 at 32×32 pixels: head-on, a pixel spans 1/16 of the square,
-// 256·4/8/16 = 8 texels of a 256² texture: level 3.
-Film render_quad(Scene s, TextureFilter filter, int spp, const glm::vec3& view = {0, 0, 1}, float footprint_scale = 1.0f,
-                 int threads = 0, bool aovs = false) {
-  LightDesc sun;
-  sun.type = LightDesc::Type::directional;
-  sun.intensity = kE0;
-  sun.direction = -kWi;
-  s.lights.push_back(sun);
-  s.cameras.push_back(ortho_camera(5.0f * view, {0, 0, 0}, 1.0f, std::abs(view.y) > 0.9f ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0)));
-  SceneSetup setup;
-  setup.width = setup.height = 32;
-  setup.env = "0,0,0";
-  const PreparedScene prepared(std::move(s), setup);
-  RenderOptions o;
-  o.spp = spp;
-  o.threads = threads;
-  o.seed = 3;
-  o.aovs = aovs;
-  o.integrator.filter = filter;
-  o.integrator.max_depth = 1;  // light reflected once; what leaves the plane meets the black sky
-  o.integrator.footprint_scale = footprint_scale;
-  o.integrator.footprints = aovs;
-  return render(prepared.world(), o);
-}
-
-glm::dvec3 pixel(const Image& im, int x, int y) {
-  const float* p = &im.pixels[(std::size_t(y) * im.width + x) * im.channels];
-  return {p[0], p[1], p[2]};
-}
-
-glm::dvec3 image_mean(const Image& im) {
-  glm::dvec3 s(0);
-  for (int y = 0; y < im.height; ++y)
-    for (int x = 0; x < im.width; ++x) s += pixel(im, x, y);
-  return s / double(im.width * im.height);
-}
-
-void expect_rgb_near(const glm::dvec3& got, const glm::dvec3& want, double rel, const std::string& what) {
-  for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], want[c], rel * std::max(want[c], 1e-3)) << what << " channel " << c;
-}
+using namespace mip_quad;
 
 // The premise of the tests below: the closed forms of `brdf` and `param` differ, by far more than
 // the tolerances, at the pairs the renders look at.
@@ -204,23 +47,6 @@ TEST(MipFilters, BrdfIsTheMeanOfTheCoveredTexels) {
     expect_rgb_near(image_mean(im), want, 5e-3, "brdf, view z " + std::to_string(wo.z));
     expect_rgb_near(pixel(im, 7, 20), want, 5e-3, "brdf, one pixel, view z " + std::to_string(wo.z));
   }
-}
-
-// Under a COLOR_0 tint, `brdf` is still the mean f_eff of the covered texels, now of their tinted
-// base colors (glTF 2.0 §3.9.2: COLOR_0 multiplies the base color), metals (B, D) and dielectrics
-// (A, C) alike: the material's pyramid is built tintable because its primitive is tinted.
-TEST(MipFilters, BrdfUnderATintIsTheMeanOfTheTintedTexels) {
-  const glm::vec3 tint(0.9f, 0.35f, 0.6f);
-  Scene s = periodic_quad();
-  s.meshes[0].primitives[0].colors.assign(4, glm::vec4(tint, 1.0f));
-  auto tinted = [&](TexelSpec t) {
-    const Rgb c = linear(t.srgb) * tint;
-    return f_eff(c, t.metallic, t.roughness, stored_normal(t.normal), kWi, glm::vec3(0, 0, 1));
-  };
-  const glm::dvec3 want = kE0 * double(kWi.z) * (tinted(kA) + tinted(kB) + tinted(kC) + tinted(kD)) / 4.0;
-  const Image im = render_quad(s, TextureFilter::brdf, 16).radiance();
-  expect_rgb_near(image_mean(im), want, 5e-3, "brdf under a tint");
-  expect_rgb_near(pixel(im, 7, 20), want, 5e-3, "brdf under a tint, one pixel");
 }
 
 // `param`: the f_eff of the averaged parameters (mean linear color, metallic, roughness; normal
@@ -316,20 +142,6 @@ TEST(MipFilters, MipLevelAovReflectsTheFootprint) {
 
 // --- lookups, without rendering ---------------------------------------------------------------
 
-struct Prepared {
-  Scene scene;
-  std::unique_ptr<TextureSet> textures;
-  std::unique_ptr<SceneMips> mips;
-  explicit Prepared(Scene s) : scene(std::move(s)) {
-    textures = std::make_unique<TextureSet>(scene);
-    mips = std::make_unique<SceneMips>(scene, *textures);
-  }
-};
-
-bool same_lobes(std::span<const Lobe> a, std::span<const Lobe> b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Lobe)) == 0;
-}
-
 // level0 and brdf agree exactly on the same texel: at a texel's centre with no footprint the filter
 // has one tap, and brdf returns the very lobe level0 does; off-centre, whichever of the four
 // bilinear neighbours brdf selects, its lobe is level0's at that neighbour's centre.
@@ -368,83 +180,6 @@ TEST(MipFilters, Level0AndBrdfAgreeExactlyAtLevel0) {
       }
     EXPECT_TRUE(found) << "uv " << f.uv.x << "," << f.uv.y;
   }
-}
-
-// A base colour texture looked up otherwise than the other textures — through another
-// KHR_texture_transform, another TEXCOORD set, another wrap mode — is held apart as a tint of the
-// grid (render/material_mips.h): the material takes part with no warning, and `brdf` is the mean f_eff
-// of the covered texels with the base colour texture's colour (uniform here, so the tint is exact).
-TEST(MipFilters, BaseColorOnItsOwnMappingTintsTheGrid) {
-  const glm::vec3 srgb(0.7f, 0.3f, 0.5f);
-  glm::dvec3 want(0);
-  for (const TexelSpec& t : {kA, kB, kC, kD})
-    want += f_eff(linear(srgb), t.metallic, t.roughness, stored_normal(t.normal), kWi, glm::vec3(0, 0, 1)) / 4.0;
-  want *= kE0 * double(kWi.z);
-  for (const std::string variant : {"transform", "uv set", "wrap"}) {
-    Scene s = periodic_quad();
-    Image base(4, 4, 3);
-    for (int j = 0; j < 4; ++j)
-      for (int i = 0; i < 4; ++i)
-        for (int c = 0; c < 3; ++c) base.at(i, j, c) = srgb[c];
-    s.images[0].pixels = base;
-    if (variant == "transform") s.materials[0].base_color_texture.transform = TextureTransform::make({0.5f, 0}, 0.3f, {3, 3});
-    if (variant == "uv set") {
-      s.materials[0].base_color_texture.tex_coord = 1;
-      s.meshes[0].primitives[0].texcoords[1] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-    }
-    if (variant == "wrap") s.textures[0].sampler.wrap_t = WrapMode::mirrored_repeat;
-    {
-      Prepared p(s);
-      ASSERT_NE(p.mips->find(0), nullptr) << variant;
-      EXPECT_TRUE(p.mips->find(0)->separate_base_color()) << variant;
-      EXPECT_TRUE(p.mips->warnings(TextureFilter::brdf).empty()) << variant;
-    }
-    const Image im = render_quad(s, TextureFilter::brdf, 16).radiance();
-    expect_rgb_near(image_mean(im), want, 5e-3, "brdf, base colour by " + variant);
-    expect_rgb_near(pixel(im, 7, 20), want, 5e-3, "brdf, base colour by " + variant + ", one pixel");
-  }
-  // The tint is the base colour filtered over the footprint: a 64² checker of two colours, scaled 8×,
-  // spans 16 of its texels per pixel and 4 per sample (the filters' footprint is a sample's, 1/√16 of
-  // the pixel's), where the coarse levels hold its mean: every pixel sees its linear mean (the BRDF is
-  // linear in the base colour).
-  const glm::vec3 srgb2(0.2f, 0.9f, 0.6f);
-  const Rgb mean_color = 0.5f * (linear(srgb) + linear(srgb2));
-  glm::dvec3 want2(0);
-  for (const TexelSpec& t : {kA, kB, kC, kD})
-    want2 += f_eff(mean_color, t.metallic, t.roughness, stored_normal(t.normal), kWi, glm::vec3(0, 0, 1)) / 4.0;
-  want2 *= kE0 * double(kWi.z);
-  Scene s = periodic_quad();
-  Image checker(64, 64, 3);
-  for (int j = 0; j < 64; ++j)
-    for (int i = 0; i < 64; ++i)
-      for (int c = 0; c < 3; ++c) checker.at(i, j, c) = ((i + j) % 2 ? srgb : srgb2)[c];
-  s.images[0].pixels = checker;
-  s.materials[0].base_color_texture.transform = TextureTransform::make({0, 0}, 0, {8.0f, 8.0f});
-  const Image im = render_quad(s, TextureFilter::brdf, 16).radiance();
-  expect_rgb_near(image_mean(im), want2, 5e-3, "brdf, a filtered base colour");
-  expect_rgb_near(pixel(im, 7, 20), want2, 5e-3, "brdf, a filtered base colour, one pixel");
-}
-
-// COLOR_0 tints the base color: exact for level0 and param; on a texture not built for tints (no
-// primitive of the material has a COLOR_0 that is not white) brdf answers a tinted hit as level0.
-TEST(MipFilters, VertexColorTint) {
-  Prepared p(periodic_quad(16));
-  p.mips->prepare(TextureFilter::brdf);
-  p.mips->prepare(TextureFilter::param);
-  const MaterialMip* mip = p.mips->find(0);
-  ASSERT_NE(mip, nullptr);
-  const Rgb tint(0.5f, 1.0f, 0.25f);
-  const Footprint f{{0.5f / 16, 0.5f / 16}, {0.2f, 0}, {0, 0.2f}};
-  MipTexture::Scratch s0, s1;
-  const Lobe l0 = mip->texture().lobes(TextureFilter::level0, f, tint, 0.3f, s0)[0];
-  EXPECT_TRUE(same_lobes(mip->texture().lobes(TextureFilter::brdf, f, tint, 0.3f, s1), {&l0, 1}));
-  // Texel A is a dielectric: ρ = c·tint, F0 = 0.04.
-  const Rgb c = linear(kA.srgb);
-  for (int k = 0; k < 3; ++k) EXPECT_NEAR(l0.diffuse[k], c[k] * tint[k], 1e-6f);
-  const Lobe pl = mip->texture().lobes(TextureFilter::param, f, tint, 0.0f, s0)[0];
-  const Lobe pw = mip->texture().lobes(TextureFilter::param, f, Rgb(1), 0.0f, s1)[0];
-  EXPECT_NEAR(pl.diffuse.x, 0.5f * pw.diffuse.x, 1e-6f);
-  EXPECT_NEAR(pl.diffuse.z, 0.25f * pw.diffuse.z, 1e-6f);
 }
 
 // KHR_materials_specular and KHR_materials_ior take part in every filter: on the periodic quad with a
