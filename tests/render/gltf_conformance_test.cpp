@@ -108,15 +108,22 @@ struct ReportError {
 // The report's errors that are not tolerated: neither in kTolerated nor inside an object the same
 // report calls unused (UNUSED_OBJECT): the renderer draws the default scene's meshes, materials and
 // their textures, and reads what they name.
+// A message's JSON pointer, empty where it has none (a const json's operator[] on a missing key is
+// undefined behaviour: find, not [] on the reports).
+std::string pointer_of(const nlohmann::json& m) {
+  const auto it = m.find("pointer");
+  return it != m.end() && it->is_string() ? it->get<std::string>() : std::string();
+}
+
 std::vector<ReportError> untolerated_errors(const nlohmann::json& report) {
+  const nlohmann::json& messages = report.at("issues").at("messages");
   std::vector<std::string> unused;
-  for (const auto& m : report["issues"]["messages"])
-    if (m.value("code", "") == "UNUSED_OBJECT" && m["pointer"].is_string()) unused.push_back(m["pointer"]);
+  for (const auto& m : messages)
+    if (m.value("code", "") == "UNUSED_OBJECT" && !pointer_of(m).empty()) unused.push_back(pointer_of(m));
   std::vector<ReportError> out;
-  for (const auto& m : report["issues"]["messages"]) {
+  for (const auto& m : messages) {
     if (m.value("severity", 9) != 0) continue;
-    ReportError e{m.value("code", ""), m["pointer"].is_string() ? m["pointer"].get<std::string>() : "",
-                  m.value("message", "")};
+    ReportError e{m.value("code", ""), pointer_of(m), m.value("message", "")};
     const bool in_unused = std::any_of(unused.begin(), unused.end(), [&](const std::string& u) {
       return e.pointer == u || e.pointer.rfind(u + "/", 0) == 0;
     });
@@ -146,7 +153,7 @@ std::vector<Asset> assets() {
     a.name = fs::relative(e.path(), suite_dir()).generic_string();
     std::ifstream in(e.path().string() + ".report.json");
     const nlohmann::json report = nlohmann::json::parse(in);
-    a.errors = report["issues"]["numErrors"].get<int>();
+    a.errors = report.at("issues").at("numErrors").get<int>();
     a.untolerated = untolerated_errors(report);
     out.push_back(std::move(a));
   }
