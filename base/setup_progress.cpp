@@ -1,5 +1,7 @@
 #include "base/setup_progress.h"
 
+#include <fcntl.h>
+#include <cerrno>
 #include <unistd.h>
 
 namespace svbrdf {
@@ -16,6 +18,7 @@ double seconds(std::chrono::steady_clock::duration d) { return std::chrono::dura
 
 SetupProgress::SetupProgress(std::string program, bool quiet, std::FILE* out)
     : program_(std::move(program)), quiet_(quiet), tty_(::isatty(::fileno(out)) != 0), out_(out) {
+  if (!quiet_) fd_ = ::fcntl(::fileno(out), F_DUPFD_CLOEXEC, 3);
   if (!quiet_) watcher_ = std::thread([this] { watch(); });
 }
 
@@ -27,6 +30,7 @@ SetupProgress::~SetupProgress() {
   }
   wake_.notify_all();
   if (watcher_.joinable()) watcher_.join();
+  if (fd_ >= 0) ::close(fd_);
 }
 
 void SetupProgress::begin(const std::string& activity, std::size_t total) {
@@ -55,14 +59,25 @@ void SetupProgress::print_locked(bool final) {
   if (total_ > 0) count = ", " + std::to_string(final ? total_ : std::min(done, total_)) + "/" + std::to_string(total_);
   char time[32];
   std::snprintf(time, sizeof time, final ? "done in %.1f s" : "%.0f s", s);
+  std::string line;
   if (tty_) {
-    std::fprintf(out_, "\r%s: %s%s, %s\x1b[K", program_.c_str(), activity_.c_str(), count.c_str(), time);
-    if (final) std::fputc('\n', out_);
+    line = "\r" + program_ + ": " + activity_ + count + ", " + time + "\x1b[K" + (final ? "\n" : "");
     drawn_ = !final;
   } else {
-    std::fprintf(out_, "%s: %s%s, %s\n", program_.c_str(), activity_.c_str(), count.c_str(), time);
+    line = program_ + ": " + activity_ + count + ", " + time + "\n";
   }
-  std::fflush(out_);
+  std::fflush(out_);  // what the program wrote through out_ before comes first
+  if (fd_ < 0) {
+    std::fputs(line.c_str(), out_);
+    std::fflush(out_);
+  } else {
+    for (std::size_t at = 0; at < line.size();) {
+      const ssize_t n = ::write(fd_, line.data() + at, line.size() - at);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) break;  // a progress line that cannot be written is not worth failing the run for
+      at += std::size_t(n);
+    }
+  }
   printed_ = true;
   last_line_ = Clock::now();
 }

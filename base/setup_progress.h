@@ -5,7 +5,9 @@
 // it took when it ends. Stages shorter than a second print nothing, nor does a quiet reporter.
 //
 // A watcher thread does the printing, so a stage made of one long call (a MIP build) still shows
-// that it is alive; step() may be called from any thread.
+// that it is alive; step() may be called from any thread. It writes to a duplicate of the output's
+// descriptor taken when the reporter is made: the image decoder points descriptor 2 at /dev/null
+// while a PNG is decoded (textures/image.cpp), and a line printed then must not be lost with libpng's.
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -54,6 +56,7 @@ class SetupProgress {
   std::string program_;
   bool quiet_, tty_;
   std::FILE* out_;
+  int fd_ = -1;  // the duplicate written to; −1 where none could be made (then out_ itself)
   std::mutex mutex_;
   std::condition_variable wake_;
   bool running_ = false, stop_ = false;

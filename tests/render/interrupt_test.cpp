@@ -122,23 +122,36 @@ TEST(Interrupt, TheTimeLimitStopsWithinTheSamplesOfAPixel) {
 }
 
 // While the scene is read: images are decoded one after another inside the image library, which
-// polls nothing. A scene of many large images (hard links to one noise PNG, each an image of its own)
-// keeps the program in that stage for seconds.
+// polls nothing. A scene of many large images (hard links to one noise PNG, each an image of its own),
+// each the base colour of a material of its own primitive, keeps the program in that stage for seconds:
+// the reader decodes only the images a drawn material uses.
 TEST(Interrupt, ASignalWhileTheSceneIsReadEndsTheRunAtOnceWithOneLine) {
   test::TempDir dir;
   const fs::path noise = write_noise_png(dir, "noise.png", 1024);
-  std::string images;
-  for (int i = 0; i < 64; ++i) {
+  constexpr int kImages = 64;
+  std::string images, textures, materials, primitives;
+  test::GltfQuad quad;
+  quad.texcoords = {0, 0, 1, 0, 1, 1, 0, 1};
+  const std::string one_primitive = R"({"attributes": {"POSITION": 0, "TEXCOORD_0": 2}, "indices": 1})";
+  for (int i = 0; i < kImages; ++i) {
     // Appended piece by piece: GCC 12 warns falsely (-Wrestrict, PR 105651) on "n" + std::string.
     std::string name = "n";
     name += std::to_string(i);
     name += ".png";
     fs::create_hard_link(noise, dir.path() / name);
-    images += std::string(i ? ", " : "") + R"({"uri": ")" + name + R"("})";
+    const std::string comma = i ? ", " : "", index = std::to_string(i);
+    images += comma + R"({"uri": ")" + name + R"("})";
+    textures += comma + R"({"source": )" + index + "}";
+    materials += comma + R"({"pbrMetallicRoughness": {"baseColorTexture": {"index": )" + index + "}}}";
+    primitives += comma + R"({"attributes": {"POSITION": 0, "TEXCOORD_0": 2}, "indices": 1, "material": )" + index + "}";
   }
-  test::GltfQuad quad;
-  quad.top_extra = R"(, "images": [)" + images + "]";
-  const std::string scene = dir.write("n.gltf", quad.json()).string();
+  quad.materials = "[" + materials + "]";
+  quad.top_extra = R"(, "images": [)" + images + R"(], "textures": [)" + textures + "]";
+  std::string json = quad.json();
+  const std::size_t at = json.find(one_primitive);
+  ASSERT_NE(at, std::string::npos) << "the quad's primitive is not written as this test expects: " << json;
+  json.replace(at, one_primitive.size(), primitives);
+  const std::string scene = dir.write("n.gltf", json).string();
   for (const int sig : {SIGINT, SIGTERM}) {
     SCOPED_TRACE(signal_text(sig));
     const fs::path out = dir.path() / "o.exr";
