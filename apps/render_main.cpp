@@ -86,6 +86,14 @@ fs::path find_showcase(const char* argv0) {
                             "or build it (make render)");
 }
 
+// "the 16 samples per pixel", or "the 16 to 32 samples per pixel" for a render stopped within a pass
+// (renderer.h), with the count asked for.
+std::string samples_text(const svbrdf::RenderStats& stats, int spp) {
+  std::string text = "the " + std::to_string(stats.pixel_samples_min);
+  if (stats.pixel_samples_max != stats.pixel_samples_min) text += " to " + std::to_string(stats.pixel_samples_max);
+  return text + " samples per pixel that had accumulated, of " + std::to_string(spp);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -116,7 +124,8 @@ int main(int argc, char** argv) {
       ->check(svbrdf::cli::whole_in(0, INT_MAX));
   app.add_option("--max-depth", max_depth, "maximum number of scattering events (0.." + std::to_string(kMaxDepth) + ")")
       ->check(svbrdf::cli::whole_in(0, kMaxDepth));
-  app.add_option("--time-limit", time_limit, "stop after this many seconds and write what accumulated")
+  app.add_option("--time-limit", time_limit,
+                 "stop after this many seconds (once every pixel has a sample) and write what accumulated, exit 0")
       ->check(svbrdf::cli::non_negative);
   app.add_option("--max-texels", max_texels,
                  "the most texels one image may have: a texture, a MIP level, the frame (default 2^26 = 8192x8192; "
@@ -256,11 +265,14 @@ int main(int argc, char** argv) {
     svbrdf::write_outputs(film, oo, color);
     if (!quiet) std::fprintf(stderr, "svbrdf-render: wrote %s\n", out.c_str());
     if (const int sig = svbrdf::interrupt_signal()) {
-      std::fprintf(stderr, "svbrdf-render: %s; wrote the %llu samples that had accumulated\n",
-                   sig == SIGTERM ? "terminated (SIGTERM)" : "interrupted (SIGINT)",
-                   static_cast<unsigned long long>(stats.samples));
+      std::fprintf(stderr, "svbrdf-render: %s; wrote %s\n", sig == SIGTERM ? "terminated (SIGTERM)" : "interrupted (SIGINT)",
+                   samples_text(stats, spp).c_str());
       return 128 + sig;
     }
+    // Stopped early by the budget the user set: not a failure (exit 0), but the image has fewer
+    // samples than asked for, which --quiet must not hide.
+    if (stats.timed_out && stats.pixel_samples_min < std::uint32_t(spp))
+      std::fprintf(stderr, "svbrdf-render: stopped at the time limit (%g s); wrote %s\n", time_limit, samples_text(stats, spp).c_str());
     return 0;
   });
 }

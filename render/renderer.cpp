@@ -53,6 +53,13 @@ Rng pixel_rng(std::uint64_t seed, int x, int y, int width, std::uint32_t index) 
   return Rng(pixel_seed(seed, x, y, width), index);
 }
 
+std::vector<int> pass_starts(int spp) {
+  std::vector<int> starts = {0};
+  // In 64 bits: twice 2^30 passes INT_MAX.
+  for (long long next = 1; starts.back() < spp; next = 2LL * starts.back()) starts.push_back(int(std::min<long long>(spp, next)));
+  return starts;
+}
+
 float resolve_footprint_scale(float scale, int spp) {
   if (scale > 0.0f) return scale;
   return 1.0f / std::sqrt(static_cast<float>(std::max(spp, 1)));
@@ -67,12 +74,14 @@ Film render(const RenderWorld& world, const RenderOptions& opt, RenderStats* sta
   IntegratorSettings integrator = opt.integrator;
   integrator.aovs = opt.aovs;
   integrator.footprint_scale = resolve_footprint_scale(integrator.footprint_scale, spp);
-  // Four passes over the image, each a quarter of the samples of every pixel, back to back: a pixel's
-  // samples that follow one another find its texels in the cache (with 16 passes of 4 samples the
-  // texture streamed through the cache 16 times: 7 % of the frame on DamagedHelmet,
-  // bench/results/render.md). Each pixel's samples accumulate in the same order whatever the pass size.
-  constexpr int kPasses = 4;
-  const int pass_spp = std::max(1, (spp + kPasses - 1) / kPasses);
+  // Passes over the whole frame of 1, 1, 2, 4, 8, ... samples per pixel: after pass k every pixel has
+  // 2^k samples, so a render stopped between passes is the whole image at that count, and one stopped
+  // within a pass has that count everywhere and up to twice it where the pass reached. The last passes
+  // take most samples, so a pixel's samples still follow one another and find its texels in the cache
+  // (16 passes of 4 samples streamed the texture through the cache 16 times: 7 % of the frame on
+  // DamagedHelmet; bench/results/render.md). Each pixel's samples accumulate in index order whatever
+  // the passes, so the image is the same bit for bit as one pass would give.
+  const std::vector<int> passes = pass_starts(spp);
   constexpr int kTile = 16;
   const int tiles_x = (w + kTile - 1) / kTile, tiles_y = (h + kTile - 1) / kTile;
 
@@ -85,8 +94,9 @@ Film render(const RenderWorld& world, const RenderOptions& opt, RenderStats* sta
 
   // A watcher thread: the time limit and the cancel flag every 50 ms, progress reports every 0.2 s.
   // The workers read `stop` before every sample (a relaxed load, nothing beside a path's cost), so a
-  // stop takes effect within 50 ms plus one sample per thread, whatever the tile size and the number
-  // of samples per pixel: checked per tile, a 64×64 image at 10^7 spp ran minutes past its limit.
+  // stop takes effect within 50 ms plus one sample per thread (after the first pass), whatever the
+  // tile size and the number of samples per pixel: checked per tile, a 64×64 image at 10^7 spp ran
+  // minutes past its limit.
   std::mutex m;
   std::condition_variable cv;
   bool finished = false;
@@ -111,8 +121,11 @@ Film render(const RenderWorld& world, const RenderOptions& opt, RenderStats* sta
 
   tbb::task_arena arena(opt.threads > 0 ? opt.threads : tbb::task_arena::automatic);
   try {
-    for (int first = 0; first < spp && !stop; first += pass_spp) {
-      const int last = std::min(spp, first + pass_spp);
+    for (std::size_t pass = 0; pass + 1 < passes.size() && (pass == 0 || !stop); ++pass) {
+      const int first = passes[pass], last = passes[pass + 1];
+      // The first pass runs to its end whatever stops the render: an image with a sample in every
+      // pixel is worth one sample per pixel's wait (a second Ctrl-C abandons the render: base/interrupt.h).
+      const bool stoppable = pass > 0;
       arena.execute([&] {
         tbb::parallel_for(tbb::blocked_range2d<int>(0, tiles_y, 1, 0, tiles_x, 1), [&](const tbb::blocked_range2d<int>& r) {
           set_denormals_zero();  // DEPENDENCIES.md pitfall 6: in every thread that traces
@@ -125,7 +138,7 @@ Film render(const RenderWorld& world, const RenderOptions& opt, RenderStats* sta
                   const std::uint64_t seed = pixel_seed(opt.seed, x, y, w);  // once per pixel, not per sample
                   for (int s = first; s < last; ++s) {
                     // Stopped: this pixel keeps the samples it has; the loops run out without tracing.
-                    if (stop.load(std::memory_order_relaxed)) break;
+                    if (stoppable && stop.load(std::memory_order_relaxed)) break;
                     Rng rng(seed, std::uint32_t(s));  // pixel_rng(opt.seed, x, y, w, s)
                     const float jx = rng.next_float(), jy = rng.next_float();
                     const PathSample ps = trace_path(world, integrator, float(x) + jx, float(y) + jy, rng);
@@ -171,6 +184,9 @@ Film render(const RenderWorld& world, const RenderOptions& opt, RenderStats* sta
     stats->samples = samples_done.load();
     stats->timed_out = timed_out;
     stats->interrupted = !timed_out && stop.load();
+    const auto [fewest, most] = std::minmax_element(film.samples.begin(), film.samples.end());
+    stats->pixel_samples_min = film.samples.empty() ? 0 : *fewest;
+    stats->pixel_samples_max = film.samples.empty() ? 0 : *most;
   }
   return film;
 }

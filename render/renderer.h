@@ -1,8 +1,10 @@
 #pragma once
-// Rendering an image: samples per pixel in four passes over 16×16 tiles spread over oneTBB, every
-// sample seeded by (seed, pixel, sample index) so the image is bit-identical for any thread count and
-// any pass split. An interruption (Ctrl-C, --time-limit) stops within a fraction of a second, before
-// each thread's next sample; every pixel then holds the mean of the samples it got.
+// Rendering an image: passes over the whole frame of 1, 1, 2, 4, ... samples per pixel (pass_starts),
+// each in 16×16 tiles spread over oneTBB, every sample seeded by (seed, pixel, sample index) so the
+// image is bit-identical for any thread count and any pass split. An interruption (Ctrl-C,
+// --time-limit) stops within a fraction of a second, before each thread's next sample, once the first
+// pass is done: every pixel then holds the mean of the samples it got, at least the count of the last
+// finished pass and at most twice it.
 #include <atomic>
 #include <cstdint>
 #include <functional>
@@ -58,11 +60,17 @@ struct RenderStats {
   std::uint64_t samples = 0;
   bool interrupted = false;  // cancelled (Ctrl-C)
   bool timed_out = false;    // stopped by the time limit
+  // The fewest and the most samples a pixel got: spp both when the render ran to its end.
+  std::uint32_t pixel_samples_min = 0, pixel_samples_max = 0;
 };
 
 // Prepares world.mips for options.integrator.filter first (material_mips.h; the time that takes is
 // not in stats), and resolves a footprint_scale of 0 to 1/√spp (resolve_footprint_scale).
 Film render(const RenderWorld& world, const RenderOptions& options, RenderStats* stats = nullptr);
+
+// Where the passes of a render of `spp` samples per pixel begin, and spp where the last ends:
+// {0, 1, 2, 4, ..., spp}. Pass k takes samples [starts[k], starts[k+1]) of every pixel.
+std::vector<int> pass_starts(int spp);
 
 // The footprint scale a render uses: `scale` where given (> 0), else 1/√spp — each of the pixel's spp
 // jittered samples filters its share of the pixel, so the MIP lookups read log2(1/scale) levels finer

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gltf_test_files.h"
@@ -119,6 +120,68 @@ TEST(Interrupt, TheTimeLimitStopsWithinTheSamplesOfAPixel) {
   EXPECT_LT(r.seconds, 10.0);
   ASSERT_TRUE(fs::exists(out));
   EXPECT_EQ(read_image(out).width, 16);
+}
+
+// The line that says how many samples per pixel were written: "the N samples per pixel" or "the N
+// to M samples per pixel" (renderer.h: a render stopped within a pass). {N, M}, or {0, 0} when absent.
+std::pair<long, long> written_samples(const std::string& line) {
+  const std::size_t the = line.find("wrote the "), per = line.find(" samples per pixel");
+  if (the == std::string::npos || per == std::string::npos || per < the) return {0, 0};
+  const std::string counts = line.substr(the + 10, per - the - 10);
+  const std::size_t to = counts.find(" to ");
+  const long fewest = std::stol(counts.substr(0, to));
+  return {fewest, to == std::string::npos ? fewest : std::stol(counts.substr(to + 4))};
+}
+
+// An image of the whole frame: every pixel has a sample. Every pixel of these scenes is lit (the quad
+// under the white environment, or the environment itself), so a pixel without samples is black.
+void expect_every_pixel_lit(const fs::path& exr) {
+  const Image im = read_image(exr);
+  int black = 0, first = -1;
+  for (int y = 0; y < im.height; ++y)
+    for (int x = 0; x < im.width; ++x)
+      if (im.at(x, y, 0) + im.at(x, y, 1) + im.at(x, y, 2) <= 0.0f) {
+        if (first < 0) first = y * im.width + x;
+        ++black;
+      }
+  EXPECT_EQ(black, 0) << black << " of " << im.width * im.height << " pixels black, the first at (" << first % im.width << ", "
+                      << first / im.width << ")";
+}
+
+// The time limit stops a render of many tiles in the first tiles' samples: what is written is the
+// whole frame at the count every pixel reached, and one line says that the render stopped early and
+// with how many samples per pixel, even under --quiet; the exit status is 0 (the limit was the user's).
+TEST(Interrupt, ATimeLimitedRenderWritesTheWholeFrameAndSaysItStoppedEarly) {
+  test::TempDir dir;
+  const std::string q = dir.write("q.gltf", test::GltfQuad().json()).string();
+  const fs::path out = dir.path() / "t.exr";
+  // 16 tiles of 16×16 and far more samples than a second takes: tile by tile, two or so were done.
+  const test::RenderRun r =
+      test::render({q, "-q", "--res", "64x64", "--spp", "10000000", "--time-limit", "1", "-o", out.string()}, dir.path(), 60);
+  ASSERT_TRUE(r.end.exited) << r.err;
+  EXPECT_EQ(r.end.code, 0) << r.err;
+  ASSERT_EQ(test::line_count(r.err), 1) << r.err;
+  EXPECT_TRUE(test::all_prefixed(r.err)) << r.err;
+  EXPECT_NE(r.err.find("stopped at the time limit (1 s); wrote the "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(", of 10000000"), std::string::npos) << r.err;
+  const auto [fewest, most] = written_samples(r.err);
+  EXPECT_GE(fewest, 1) << r.err;
+  // The passes double the count: a pass cut short leaves at most twice what the previous one left.
+  EXPECT_LE(fewest, most) << r.err;
+  EXPECT_LE(most, 2 * fewest) << r.err;
+  expect_every_pixel_lit(out);
+  expect_every_pixel_lit(fs::path(out).replace_extension(".png"));
+}
+
+// A render that ends before its limit says nothing of it.
+TEST(Interrupt, ARenderThatEndsWithinItsTimeLimitSaysNothingOfIt) {
+  test::TempDir dir;
+  const std::string q = dir.write("q.gltf", test::GltfQuad().json()).string();
+  const test::RenderRun r = test::render(
+      {q, "-q", "--res", "8x8", "--spp", "2", "--time-limit", "600", "-o", (dir.path() / "t.exr").string()}, dir.path());
+  ASSERT_TRUE(r.end.exited) << r.err;
+  EXPECT_EQ(r.end.code, 0) << r.err;
+  EXPECT_EQ(r.err, "");
 }
 
 // While the scene is read: images are decoded one after another inside the image library, which
@@ -228,9 +291,16 @@ TEST(Interrupt, ASignalWhileRenderingWritesWhatAccumulated) {
     EXPECT_EQ(mentions, 1) << s.err;
     ASSERT_FALSE(s.after.empty());
     EXPECT_NE(s.after.back().find(signal_text(sig) + "; wrote the"), std::string::npos) << s.err;
+    EXPECT_NE(s.after.back().find(" samples per pixel that had accumulated, of 10000000"), std::string::npos) << s.err;
+    const auto [fewest, most] = written_samples(s.after.back());
+    EXPECT_GE(fewest, 1) << s.err;
+    EXPECT_LE(fewest, most) << s.err;
+    EXPECT_LE(most, 2 * fewest) << s.err;
     ASSERT_TRUE(fs::exists(out)) << s.err;
     EXPECT_EQ(read_image(out).width, 32);
     EXPECT_EQ(read_image(fs::path(out).replace_extension(".png")).width, 32);
+    // 4 tiles of 16×16 rendered by 2 threads: tile by tile, half the frame stayed black.
+    expect_every_pixel_lit(out);
     EXPECT_TRUE(test::temp_files(dir.path()).empty());
   }
 }
