@@ -112,7 +112,7 @@ int main(int argc, char** argv) {
   std::uint64_t seed = 0, max_texels = svbrdf::resource_limits().max_texels;
   double time_limit = 0.0;
   float exposure = 0.0f, footprint_scale = 0.0f, clamp = 0.0f;
-  bool use_float = false, quiet = false, aovs = false;
+  bool use_float = false, quiet = false, aovs = false, transparent = false;
   app.add_option("scene", scene_file, "glTF file (.gltf or .glb); none renders the project's showcase scene");
   app.add_option("-o,--out", out, "output OpenEXR file (linear radiance); default out/<scene>.exr");
   app.add_option("--png", png, "display PNG (default: beside the EXR, same stem)");
@@ -166,6 +166,9 @@ int main(int argc, char** argv) {
   svbrdf::MipCacheOptions mip_cache_options;
   mip_cache_options.add_to(&app);
   app.add_flag("--float", use_float, "write 32-bit float EXR (default half)");
+  app.add_flag("--transparent", transparent,
+               "a transparent background: the camera does not see the environment (which still lights the scene), "
+               "so the EXR's alpha is what the scene covers of each pixel, and the PNG has alpha too");
   app.add_flag("--aov", aovs, "also write albedo, normal, depth and MIP-level EXRs beside the output");
   app.add_flag("-q,--quiet", quiet, "no progress output or notes (warnings and errors are still printed)");
   return svbrdf::run_program("svbrdf-render", app, argc, argv, [&] {
@@ -193,6 +196,7 @@ int main(int argc, char** argv) {
     oo.float32 = use_float;
     oo.exposure = exposure;
     oo.aovs = aovs;
+    oo.transparent = transparent;
     // Before the scene is read: a render must not end in "cannot write" for a path that was wrong
     // from the start. Also removes the temporaries a killed run left there.
     svbrdf::prepare_outputs(oo);
@@ -245,6 +249,7 @@ int main(int argc, char** argv) {
     options.integrator.normal_mapping =
         normal_mapping == "microfacet" ? svbrdf::NormalMapping::microfacet : svbrdf::NormalMapping::shading;
     options.aovs = aovs;
+    options.integrator.background = !transparent;
     options.integrator.light_sampling = light_sampling == "nee"    ? svbrdf::LightSampling::nee
                                         : light_sampling == "bsdf" ? svbrdf::LightSampling::bsdf
                                                                    : svbrdf::LightSampling::mis;

@@ -353,9 +353,11 @@ PathSample trace_path(const RenderWorld& w, const IntegratorSettings& s, float f
   const RayHit hit = w.bvh->intersect(ray.origin, ray.dir, ray.tnear, ray.tfar, hit_seed);
   out.rays = 1;
   if (hit.found()) {
+    out.opaque = true;
     continue_path(w, s, cr, hit, rng, out);
-  } else if (!w.environment.black()) {
+  } else if (s.background && !w.environment.black()) {
     // What the camera sees of the environment: an impulse's view, weight 1 under every strategy.
+    out.opaque = true;
     out.radiance = w.environment.radiance(ray.dir, nullptr);
   }
   return out;

@@ -73,6 +73,10 @@ struct IntegratorSettings {
   // The most radiance a path may carry back from one of its indirect light samples (after the
   // first bounce), per channel; 0: no clamp. A biased cap on fireflies, off unless asked for.
   float clamp = 0.0f;
+  // Whether the camera sees the environment where its rays escape. Off (--transparent), they bring
+  // back nothing and the pixel's alpha is what geometry covers; the environment lights the scene all
+  // the same.
+  bool background = true;
 };
 
 // One camera sample's results: radiance and the first hit's auxiliary values.
@@ -82,6 +86,10 @@ struct PathSample {
   glm::vec3 normal{0.0f};
   float depth = 0.0f;      // distance to the first hit (0 when the ray escapes)
   float mip_level = 0.0f;  // the MIP level λ the filters read at the first hit (MipTexture::level)
+  // Whether the sample is opaque: its camera ray found geometry, or escaped to a background that is
+  // drawn (an environment, not black, with IntegratorSettings::background). Its mean is the pixel's
+  // alpha, by which its radiance is premultiplied as OpenEXR means RGBA.
+  bool opaque = false;
   std::uint32_t rays = 0;  // rays traced (closest-hit and shadow)
 };
 

@@ -24,6 +24,25 @@ fs::path aov_path(const OutputOptions& o, const char* name) {
 
 constexpr const char* kAovs[] = {"albedo", "normal", "depth", "level"};
 
+// RGB with an alpha channel after it; `clear_transparent` zeroes the colour where alpha is 0.
+Image with_alpha(const Image& rgb, const Image& alpha, bool clear_transparent) {
+  Image out(rgb.width, rgb.height, 4);
+  for (std::size_t p = 0; p < alpha.pixels.size(); ++p) {
+    const float a = alpha.pixels[p];
+    for (int c = 0; c < 3; ++c) out.pixels[p * 4 + c] = clear_transparent && a <= 0.0f ? 0.0f : rgb.pixels[p * 3 + c];
+    out.pixels[p * 4 + 3] = a;
+  }
+  return out;
+}
+
+// Premultiplied colour divided by its alpha: the colour of what covers the pixel.
+Image unpremultiplied(Image rgb, const Image& alpha) {
+  for (std::size_t p = 0; p < alpha.pixels.size(); ++p)
+    if (alpha.pixels[p] > 0.0f)
+      for (int c = 0; c < 3; ++c) rgb.pixels[p * 3 + c] /= alpha.pixels[p];
+  return rgb;
+}
+
 }  // namespace
 
 Image to_display(const Image& linear, float exposure, const ColorConfig& color) {
@@ -57,14 +76,21 @@ void write_outputs(const Film& film, const OutputOptions& o, const ColorConfig& 
   // Again after the render: a folder removed meanwhile is made anew, and a path turned into a folder
   // is refused before anything is encoded.
   for (const fs::path& p : output_paths(o)) check_output_location(p);
-  const Image radiance = film.radiance();
+  const Image radiance = film.radiance(), alpha = film.alpha();
   const PixelFormat f = o.float32 ? PixelFormat::float32 : PixelFormat::half;
   // Each file is encoded and written before the next is encoded: one encoded image in memory at a
   // time, and nothing renamed until the last is on disk.
   StagedFiles files;
-  files.stage(o.exr, encode_image(o.exr, radiance, f));
+  files.stage(o.exr, encode_exr(o.exr, with_alpha(radiance, alpha, false), {"R", "G", "B", "A"}, std::vector<PixelFormat>(4, f)));
   const fs::path png = png_path(o);
-  files.stage(png, encode_image(png, to_display(radiance, o.exposure, color), PixelFormat::uint8));
+  if (o.transparent) {
+    // PNG's alpha is straight (PNG 1.2, §12.8): the display transform reads the colour before it was
+    // premultiplied, and the PNG stores it with the alpha beside it.
+    files.stage(png, encode_image(png, with_alpha(to_display(unpremultiplied(radiance, alpha), o.exposure, color), alpha, true),
+                                  PixelFormat::uint8));
+  } else {
+    files.stage(png, encode_image(png, to_display(radiance, o.exposure, color), PixelFormat::uint8));
+  }
   if (o.aovs) {
     const auto aov = [&](const char* name, const Image& image, PixelFormat format) {
       const fs::path p = aov_path(o, name);

@@ -1,6 +1,7 @@
 #pragma once
-// Writing a render: the radiance as linear OpenEXR (half by default, float on request; no exposure
-// applied), a display-referred PNG beside it, and optional AOVs. They are written as one set: every
+// Writing a render: the radiance as linear OpenEXR RGBA (half by default, float on request; no
+// exposure applied; alpha and premultiplied colour as Film::alpha says), a display-referred PNG beside
+// it (RGBA with straight alpha for a transparent background), and optional AOVs. They are written as one set: every
 // file is encoded and written to its temporary first, and only when all are complete are they renamed
 // into place (base/atomic_file.h), so a failure leaves no new file and never an EXR that does not
 // match its PNG.
@@ -17,6 +18,7 @@ struct OutputOptions {
   std::filesystem::path png;  // empty: beside the EXR with the same stem
   bool float32 = false;
   float exposure = 0.0f;      // stops, PNG only
+  bool transparent = false;   // the PNG has alpha (the render's background was not drawn)
   bool aovs = false;          // <stem>.albedo.exr, .normal.exr, .depth.exr, .level.exr
 };
 

@@ -20,6 +20,7 @@ Film::Film(int w, int h)
       height(h),
       radiance_sum(std::size_t(w) * h, glm::dvec3(0.0)),
       samples(std::size_t(w) * h, 0u),
+      opaque(std::size_t(w) * h, 0u),
       albedo_sum(std::size_t(w) * h, glm::vec3(0.0f)),
       normal_sum(std::size_t(w) * h, glm::vec3(0.0f)),
       depth_sum(std::size_t(w) * h, 0.0f),
@@ -39,6 +40,7 @@ Image mean_image(const Film& f, int channels, F&& value) {
 }  // namespace
 
 Image Film::radiance() const { return mean_image(*this, 3, [&](std::size_t p, int c) { return radiance_sum[p][c]; }); }
+Image Film::alpha() const { return mean_image(*this, 1, [&](std::size_t p, int) { return double(opaque[p]); }); }
 Image Film::albedo() const { return mean_image(*this, 3, [&](std::size_t p, int c) { return double(albedo_sum[p][c]); }); }
 Image Film::normal() const { return mean_image(*this, 3, [&](std::size_t p, int c) { return double(normal_sum[p][c]); }); }
 Image Film::depth() const { return mean_image(*this, 1, [&](std::size_t p, int) { return double(depth_sum[p]); }); }
@@ -153,6 +155,7 @@ Film render(const RenderWorld& world, const RenderOptions& opt, RenderStats* sta
                       film.level_sum[p] += ps.mip_level;
                     }
                     ++film.samples[p];
+                    film.opaque[p] += ps.opaque;
                     ++tile_samples;
                   }
                 }

@@ -15,22 +15,26 @@
 
 namespace svbrdf {
 
-// Accumulated samples: per pixel the sum of radiance and the number of samples, plus the first-hit
-// AOVs (sums too).
+// Accumulated samples: per pixel the sum of radiance, the number of samples and of opaque ones
+// (PathSample::opaque), plus the first-hit AOVs (sums too).
 struct Film {
   int width = 0, height = 0;
   std::vector<glm::dvec3> radiance_sum;
-  std::vector<std::uint32_t> samples;
+  std::vector<std::uint32_t> samples, opaque;
   std::vector<glm::vec3> albedo_sum, normal_sum;
   std::vector<float> depth_sum, level_sum;
 
-  // What one pixel costs while rendering: the sums above, plus the images written at the end.
-  static constexpr std::uint64_t kBytesPerPixel = sizeof(glm::dvec3) + sizeof(std::uint32_t) + 2 * sizeof(glm::vec3) +
-                                                  2 * sizeof(float) + 2 * 3 * sizeof(float);
+  // What one pixel costs while rendering: the sums above, plus the images written at the end (RGBA
+  // radiance and its display image).
+  static constexpr std::uint64_t kBytesPerPixel = sizeof(glm::dvec3) + 2 * sizeof(std::uint32_t) + 2 * sizeof(glm::vec3) +
+                                                  2 * sizeof(float) + 2 * 4 * sizeof(float);
 
   Film(int w, int h);
-  // Means per pixel (zero where no sample landed): RGB radiance, RGB albedo, XYZ normal, depth, MIP level.
+  // Means per pixel (zero where no sample landed): RGB radiance; alpha, the share of opaque samples
+  // (the radiance is premultiplied by it: a sample that is not opaque brings back zero); RGB albedo,
+  // XYZ normal, depth, MIP level.
   Image radiance() const;
+  Image alpha() const;
   Image albedo() const;
   Image normal() const;
   Image depth() const;

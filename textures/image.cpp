@@ -13,6 +13,7 @@
 #include <fstream>
 #include <mutex>
 #include <optional>
+#include <utility>
 
 #include "base/atomic_file.h"
 #include "base/error.h"
@@ -280,7 +281,10 @@ Image read_image_from_memory(std::span<const std::byte> bytes, std::string_view 
   return decode_memory(bytes, mime_type, name, nullptr);
 }
 
-std::vector<std::byte> encode_image(const std::filesystem::path& path, const Image& image, PixelFormat format) {
+namespace {
+
+// `spec` written through OpenImageIO into memory, the format chosen by `path`'s extension.
+std::vector<std::byte> encode_with_spec(const std::filesystem::path& path, const Image& image, OIIO::ImageSpec spec) {
   check_image_size(path.string(), image.width, image.height);
   auto out = OIIO::ImageOutput::create(path.string());
   if (!out) throw input_error(path.string(), "no image writer for this extension: " + reason(OIIO::geterror(), "unknown"));
@@ -290,8 +294,6 @@ std::vector<std::byte> encode_image(const std::filesystem::path& path, const Ima
   std::vector<unsigned char> encoded;
   OIIO::Filesystem::IOVecOutput proxy(encoded);
   OIIO::Filesystem::IOProxy* proxy_ptr = &proxy;
-  OIIO::ImageSpec spec(image.width, image.height, image.channels, to_oiio(format));
-  spec.attribute("oiio:UnassociatedAlpha", 1);  // our alpha is straight: store it as it is
   spec.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy_ptr);
   if (!out->supports("ioproxy"))
     throw Error(path.string() + ": the image writer for this extension cannot encode to memory", Error::Kind::internal);
@@ -300,6 +302,32 @@ std::vector<std::byte> encode_image(const std::filesystem::path& path, const Ima
   std::vector<std::byte> bytes(encoded.size());
   std::memcpy(bytes.data(), encoded.data(), encoded.size());
   return bytes;
+}
+
+}  // namespace
+
+std::vector<std::byte> encode_image(const std::filesystem::path& path, const Image& image, PixelFormat format) {
+  OIIO::ImageSpec spec(image.width, image.height, image.channels, to_oiio(format));
+  spec.attribute("oiio:UnassociatedAlpha", 1);  // our alpha is straight: store it as it is
+  return encode_with_spec(path, image, std::move(spec));
+}
+
+std::vector<std::byte> encode_exr(const std::filesystem::path& path, const Image& image, const std::vector<std::string>& names,
+                                  const std::vector<PixelFormat>& formats) {
+  if (names.size() != std::size_t(image.channels) || formats.size() != names.size())
+    throw Error(path.string() + ": " + std::to_string(names.size()) + " channel names and " + std::to_string(formats.size()) +
+                    " formats for an image of " + std::to_string(image.channels) + " channels",
+                Error::Kind::internal);
+  OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::FLOAT);
+  spec.channelnames = names;
+  spec.channelformats.clear();
+  for (const PixelFormat f : formats) spec.channelformats.push_back(to_oiio(f));
+  spec.alpha_channel = spec.z_channel = -1;
+  for (int c = 0; c < image.channels; ++c) {
+    if (names[std::size_t(c)] == "A") spec.alpha_channel = c;
+    if (names[std::size_t(c)] == "Z") spec.z_channel = c;
+  }
+  return encode_with_spec(path, image, std::move(spec));
 }
 
 void write_image(const std::filesystem::path& path, const Image& image, PixelFormat format) {

@@ -44,6 +44,13 @@ void write_image(const std::filesystem::path& path, const Image& image, PixelFor
 // outputs written together (base/atomic_file.h, StagedFiles).
 std::vector<std::byte> encode_image(const std::filesystem::path& path, const Image& image, PixelFormat format);
 
+// An OpenEXR file of named channels, each stored in a format of its own, as bytes in memory:
+// `names` and `formats` give one per channel of `image`. Layers are named as OpenEXR's "Interpreting
+// OpenEXR Images" names them ("albedo.R": channel R of layer albedo); "A" is the alpha of R, G and B,
+// which are premultiplied by it as OpenEXR means them (written as given), and "Z" is depth.
+std::vector<std::byte> encode_exr(const std::filesystem::path& path, const Image& image, const std::vector<std::string>& names,
+                                  const std::vector<PixelFormat>& formats);
+
 // Largest image the project reads or makes: a side of 32768 texels, 2^28 texels in all (1 GiB per
 // float channel). Anything larger, or an empty image, is refused as bad input.
 inline constexpr int kMaxImageSide = 32768;
