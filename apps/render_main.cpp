@@ -107,7 +107,7 @@ int main(int argc, char** argv) {
 
   CLI::App app{"svbrdf-render: path-trace a textured glTF 2.0 scene"};
   std::string scene_file, out = "", png, res, camera, env, sun, filter = "brdf", light_sampling = "mis", ocio,
-      light_units = "photometric", normal_mapping = "shading", variant;
+      light_units = "photometric", normal_mapping = "shading", variant, display, view;
   int spp = 64, threads = 0, max_depth = 16;
   std::uint64_t seed = 0, max_texels = svbrdf::resource_limits().max_texels;
   double time_limit = 0.0;
@@ -163,6 +163,10 @@ int main(int argc, char** argv) {
   app.add_option("--exposure", exposure, "exposure in stops for the PNG, in [-64, 64] (the EXR is never scaled)")
       ->check(svbrdf::cli::number_in(-kMaxExposure, kMaxExposure));
   app.add_option("--ocio-config", ocio, "OpenColorIO config for texture decoding and the PNG (default: $OCIO, else the built-in one)");
+  app.add_option("--display", display, "the OCIO display the PNG is encoded for (default: the config's default display)");
+  app.add_option("--view", view,
+                 "the OCIO view of that display the PNG shows, e.g. Standard or Filmic in Blender's config (default: "
+                 "the display's default view; the EXR is always scene-linear)");
   svbrdf::MipCacheOptions mip_cache_options;
   mip_cache_options.add_to(&app);
   app.add_flag("--float", use_float, "write 32-bit float EXR (default half)");
@@ -203,6 +207,8 @@ int main(int argc, char** argv) {
 
     const svbrdf::ColorConfig color =
         svbrdf::ColorConfig::resolve(ocio.empty() ? std::nullopt : std::optional<fs::path>(ocio));
+    // Before the scene is read: a display or view the config lacks is refused at once.
+    std::tie(oo.display, oo.view) = color.display_view(display, view);
     svbrdf::LoadOptions load;
     load.light_units = light_units == "radiometric" ? svbrdf::LightUnits::radiometric : svbrdf::LightUnits::photometric;
     load.variant = variant;

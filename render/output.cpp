@@ -45,11 +45,12 @@ Image unpremultiplied(Image rgb, const Image& alpha) {
 
 }  // namespace
 
-Image to_display(const Image& linear, float exposure, const ColorConfig& color) {
+Image to_display(const Image& linear, float exposure, const ColorConfig& color, const std::string& display,
+                 const std::string& view) {
   Image out = linear;
   const float scale = std::exp2(exposure);
   for (float& v : out.pixels) v *= scale;
-  color.linear_to_display(out);
+  color.linear_to_display(out, display, view);
   return out;
 }
 
@@ -86,10 +87,12 @@ void write_outputs(const Film& film, const OutputOptions& o, const ColorConfig& 
   if (o.transparent) {
     // PNG's alpha is straight (PNG 1.2, §12.8): the display transform reads the colour before it was
     // premultiplied, and the PNG stores it with the alpha beside it.
-    files.stage(png, encode_image(png, with_alpha(to_display(unpremultiplied(radiance, alpha), o.exposure, color), alpha, true),
+    files.stage(png, encode_image(png,
+                                  with_alpha(to_display(unpremultiplied(radiance, alpha), o.exposure, color, o.display, o.view),
+                                             alpha, true),
                                   PixelFormat::uint8));
   } else {
-    files.stage(png, encode_image(png, to_display(radiance, o.exposure, color), PixelFormat::uint8));
+    files.stage(png, encode_image(png, to_display(radiance, o.exposure, color, o.display, o.view), PixelFormat::uint8));
   }
   if (o.aovs) {
     const auto aov = [&](const char* name, const Image& image, PixelFormat format) {

@@ -6,6 +6,7 @@
 // into place (base/atomic_file.h), so a failure leaves no new file and never an EXR that does not
 // match its PNG.
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "render/renderer.h"
@@ -19,6 +20,7 @@ struct OutputOptions {
   bool float32 = false;
   float exposure = 0.0f;      // stops, PNG only
   bool transparent = false;   // the PNG has alpha (the render's background was not drawn)
+  std::string display, view;  // the PNG's OCIO display and view; empty: the config's defaults
   bool aovs = false;          // <stem>.albedo.exr, .normal.exr, .depth.exr, .level.exr
 };
 
@@ -33,7 +35,8 @@ void prepare_outputs(const OutputOptions& options);
 
 void write_outputs(const Film& film, const OutputOptions& options, const ColorConfig& color = ColorConfig::builtin());
 
-// Scene-linear → display values: 2^exposure, then the config's default display and view.
-Image to_display(const Image& linear, float exposure, const ColorConfig& color = ColorConfig::builtin());
+// Scene-linear → display values: 2^exposure, then the config's display and view (empty: its defaults).
+Image to_display(const Image& linear, float exposure, const ColorConfig& color = ColorConfig::builtin(),
+                 const std::string& display = {}, const std::string& view = {});
 
 }  // namespace svbrdf

@@ -138,7 +138,10 @@ PreparedScene::PreparedScene(Scene scene, const SceneSetup& setup, const ColorCo
     world_.environment = Environment::uniform(*c);
     if (!world_.environment.black()) environment_note_ = "a uniform environment of radiance " + setup.env;
   } else {
-    world_.environment = Environment::from_image(read_image(setup.env), setup.env);
+    // An HDR or EXR file is scene-linear; which space is the config's file rules' to say.
+    Image sky = read_image(setup.env);
+    color.file_to_linear(sky, setup.env);
+    world_.environment = Environment::from_image(std::move(sky), setup.env);
     environment_note_ = "the equirectangular environment " + setup.env;
   }
 }

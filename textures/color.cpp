@@ -4,11 +4,14 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdlib>
 #include <sstream>
+#include <vector>
 
 #include "base/error.h"
+#include "textures/color_spaces.h"
 
 namespace OCIO = OCIO_NAMESPACE;
 
@@ -26,21 +29,6 @@ namespace {
 constexpr auto kOptimization =
     static_cast<OCIO::OptimizationFlags>(OCIO::OPTIMIZATION_DEFAULT & ~OCIO::OPTIMIZATION_FAST_LOG_EXP_POW);
 
-// Names under which configs in the wild (ours, the ACES 1.x and OCIO 2 ACES configs, Blender's)
-// carry linear Rec.709 and the sRGB texture encoding; the first one the config knows is used.
-constexpr std::array<const char*, 5> kLinearRec709Names = {"Linear Rec.709 (sRGB)", "lin_rec709", "Utility - Linear - sRGB",
-                                                          "Linear Rec.709", "lin_srgb"};
-constexpr std::array<const char*, 6> kSrgbTextureNames = {
-    "sRGB - Texture", "srgb_tx", "Utility - sRGB - Texture", "Input - Generic - sRGB - Texture", "srgb_texture",
-    "sRGB"};
-
-template <std::size_t N>
-std::string first_known(const OCIO::ConstConfigRcPtr& config, const std::array<const char*, N>& names) {
-  for (const char* name : names)
-    if (const auto cs = config->getColorSpace(name)) return cs->getName();
-  return {};
-}
-
 OCIO::ConstCPUProcessorRcPtr cpu_processor(const OCIO::ConstConfigRcPtr& config, const char* from, const char* to) {
   return config->getProcessor(from, to)->getOptimizedCPUProcessor(OCIO::BIT_DEPTH_F32, OCIO::BIT_DEPTH_F32,
                                                                   kOptimization);
@@ -51,23 +39,17 @@ OCIO::ConstCPUProcessorRcPtr cpu_processor(const OCIO::ConstConfigRcPtr& config,
 struct ColorConfig::Impl {
   std::string source;
   OCIO::ConstConfigRcPtr config;
-  std::string linear, srgb_texture, display, view;
+  ResolvedColorSpaces spaces;
+  std::string display, view;
   OCIO::ConstCPUProcessorRcPtr srgb_to_linear, linear_to_srgb;
 
   Impl(std::string src, OCIO::ConstConfigRcPtr cfg) : source(std::move(src)), config(std::move(cfg)) {
     config->validate();
-    linear = first_known(config, kLinearRec709Names);
-    if (linear.empty())
-      throw input_error(source, "OCIO config has no linear Rec.709 color space (looked for \"Linear Rec.709 (sRGB)\", "
-                                "\"lin_rec709\", \"Utility - Linear - sRGB\", \"Linear Rec.709\")");
-    srgb_texture = first_known(config, kSrgbTextureNames);
-    if (srgb_texture.empty())
-      throw input_error(source, "OCIO config has no sRGB texture color space (looked for \"sRGB - Texture\", "
-                                "\"srgb_tx\", \"Utility - sRGB - Texture\", \"sRGB\")");
+    spaces = resolve_color_spaces(config, source);
     display = config->getDefaultDisplay();
     view = config->getDefaultView(display.c_str());
-    srgb_to_linear = cpu_processor(config, srgb_texture.c_str(), linear.c_str());
-    linear_to_srgb = cpu_processor(config, linear.c_str(), srgb_texture.c_str());
+    srgb_to_linear = cpu_processor(config, spaces.srgb_texture.c_str(), spaces.linear.c_str());
+    linear_to_srgb = cpu_processor(config, spaces.linear.c_str(), spaces.srgb_texture.c_str());
   }
 };
 
@@ -154,15 +136,16 @@ ColorConfig ColorConfig::resolve(const std::optional<std::filesystem::path>& exp
 }
 
 const std::string& ColorConfig::source() const { return impl_->source; }
-const std::string& ColorConfig::linear_space() const { return impl_->linear; }
-const std::string& ColorConfig::srgb_texture_space() const { return impl_->srgb_texture; }
+const std::string& ColorConfig::linear_space() const { return impl_->spaces.linear; }
+const std::string& ColorConfig::srgb_texture_space() const { return impl_->spaces.srgb_texture; }
+const std::string& ColorConfig::data_space() const { return impl_->spaces.data; }
 const std::string& ColorConfig::default_display() const { return impl_->display; }
 const std::string& ColorConfig::default_view() const { return impl_->view; }
 
 std::string ColorConfig::identity() const {
   std::ostringstream text;
   impl_->config->serialize(text);
-  text << "\nlinear: " << impl_->linear << "\nsrgb texture: " << impl_->srgb_texture
+  text << "\nlinear: " << impl_->spaces.linear << "\nsrgb texture: " << impl_->spaces.srgb_texture
        << "\nsrgb to linear: " << impl_->srgb_to_linear->getCacheID() << '\n';
   return text.str();
 }
@@ -173,21 +156,85 @@ void ColorConfig::linear_to_srgb_texture(Image& image) const { apply_processor(i
 float ColorConfig::srgb_texture_to_linear(float v) const { return apply_one(impl_->srgb_to_linear, v); }
 float ColorConfig::linear_to_srgb_texture(float v) const { return apply_one(impl_->linear_to_srgb, v); }
 
-void ColorConfig::linear_to_display(Image& image, const std::string& display, const std::string& view) const {
+namespace {
+
+// "a, b, c" for a message.
+std::string listed(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "\"" : ", \"") + n + "\"";
+  return out;
+}
+
+std::vector<std::string> displays_of(const OCIO::ConstConfigRcPtr& config) {
+  std::vector<std::string> names;
+  for (int i = 0; i < config->getNumDisplaysAll(); ++i) names.emplace_back(config->getDisplayAll(i));
+  return names;
+}
+
+// A display's views, its own and the shared ones it lists.
+std::vector<std::string> views_of(const OCIO::ConstConfigRcPtr& config, const std::string& display) {
+  std::vector<std::string> names;
+  for (const OCIO::ViewType type : {OCIO::VIEW_DISPLAY_DEFINED, OCIO::VIEW_SHARED})
+    for (int i = 0; i < config->getNumViews(type, display.c_str()); ++i)
+      names.emplace_back(config->getView(type, display.c_str(), i));
+  return names;
+}
+
+// "the built-in OCIO config" or "the OCIO config FILE", for messages.
+std::string config_name(const std::string& source) {
+  return source.starts_with("built-in") ? "the " + source : "the OCIO config " + source;
+}
+
+bool contains(const std::vector<std::string>& names, const std::string& name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+}  // namespace
+
+std::pair<std::string, std::string> ColorConfig::display_view(const std::string& display, const std::string& view) const {
+  const OCIO::ConstConfigRcPtr& config = impl_->config;
   const std::string d = display.empty() ? impl_->display : display;
-  std::string v = view;
-  if (v.empty()) {
-    const char* default_view = impl_->config->getDefaultView(d.c_str());
-    v = default_view ? default_view : "";
+  const std::vector<std::string> displays = displays_of(config);
+  if (!contains(displays, d))
+    throw input_error("--display " + d, "not a display of " + config_name(impl_->source) + " (its displays: " +
+                                            listed(displays) + ")");
+  if (view.empty()) {
+    const char* default_view = config->getDefaultView(d.c_str());
+    return {d, default_view ? default_view : ""};
   }
+  const std::vector<std::string> views = views_of(config, d);
+  if (!contains(views, view))
+    throw input_error("--view " + view, "not a view of display \"" + d + "\" in " + config_name(impl_->source) +
+                                            " (its views: " + listed(views) + ")");
+  return {d, view};
+}
+
+void ColorConfig::linear_to_display(Image& image, const std::string& display, const std::string& view) const {
+  const auto [d, v] = display_view(display, view);
   try {
     const auto cpu = impl_->config
-                         ->getProcessor(impl_->linear.c_str(), d.c_str(), v.c_str(), OCIO::TRANSFORM_DIR_FORWARD)
+                         ->getProcessor(impl_->spaces.linear.c_str(), d.c_str(), v.c_str(), OCIO::TRANSFORM_DIR_FORWARD)
                          ->getOptimizedCPUProcessor(OCIO::BIT_DEPTH_F32, OCIO::BIT_DEPTH_F32, kOptimization);
     apply_processor(cpu, image);
   } catch (const OCIO::Exception& e) {
     throw input_error(impl_->source, "display \"" + d + "\", view \"" + v + "\": " + e.what());
   }
+}
+
+std::string ColorConfig::file_color_space(const std::filesystem::path& file) const {
+  const OCIO::ConstConfigRcPtr& config = impl_->config;
+  // OCIO 1 configs have no file rules (OCIO emulates them by the default role: no rule of the config's own).
+  if (config->getMajorVersion() < 2 || config->filepathOnlyMatchesDefaultRule(file.c_str())) return {};
+  // A rule may name a role or an alias: the space's own name.
+  const auto cs = config->getColorSpace(config->getColorSpaceFromFilepath(file.c_str()));
+  return cs ? cs->getName() : std::string();
+}
+
+void ColorConfig::file_to_linear(Image& image, const std::filesystem::path& file) const {
+  const std::string space = file_color_space(file);
+  if (space.empty() || space == impl_->spaces.linear) return;
+  if (const auto cs = impl_->config->getColorSpace(space.c_str()); cs && cs->isData()) return;
+  convert(image, space, impl_->spaces.linear);
 }
 
 void ColorConfig::convert(Image& image, const std::string& from, const std::string& to) const {

@@ -1,17 +1,19 @@
 #pragma once
 // Color through OpenColorIO (DESIGN.md, "Data through the house"): color textures (base color,
 // emissive) are sRGB-encoded and go sRGB → linear; data textures (normal, metallic-roughness,
-// occlusion) stay raw; rendered output goes linear → display. "Linear" is the project's working
-// space, linear Rec.709 (DESIGN.md, "Conventions"), whatever the config's scene_linear role is: an
-// ACES config renders in ACEScg, but our BRDFs, palettes and MaterialTexels are Rec.709, so the
-// config is asked for its linear Rec.709 space by name. The project's own config
-// (textures/ocio/config.ocio) is compiled into the library, so an installed binary needs no file;
-// $OCIO or an explicit path (the programs' --ocio-config) replaces it, e.g. with an ACES config.
+// occlusion) stay raw; rendered output goes linear → a display and view of the config. "Linear" is
+// the project's working space, linear Rec.709 (DESIGN.md, "Conventions"), whatever the config's
+// scene_linear role is: an ACES config renders in ACEScg, but our BRDFs, palettes and MaterialTexels
+// are Rec.709. The config's color spaces are found through its roles, checked by what they do
+// (textures/color_spaces.h), and by name only where the roles do not give them. The project's own
+// config (textures/ocio/config.ocio) is compiled into the library, so an installed binary needs no
+// file; $OCIO or an explicit path (the programs' --ocio-config) replaces it: Blender's, an ACES one.
 #include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include "textures/image.h"
 
@@ -22,9 +24,7 @@ class ColorConfig {
   // The config compiled into the library (textures/ocio/config.ocio).
   static const ColorConfig& builtin();
   // A config file; throws svbrdf::Error naming the file when it is missing or invalid, or when it
-  // has no linear Rec.709 or no sRGB texture color space (under any of the names configs in the
-  // wild use: "Linear Rec.709 (sRGB)", "lin_rec709", "Utility - Linear - sRGB", "Linear Rec.709";
-  // "sRGB - Texture", "srgb_tx", "Utility - sRGB - Texture", "sRGB").
+  // has no linear Rec.709 or no sRGB texture color space (textures/color_spaces.h).
   static ColorConfig from_file(const std::filesystem::path& path);
   // The config a program should use: `explicit_path` if given, else $OCIO if set and non-empty,
   // else the built-in one.
@@ -35,8 +35,13 @@ class ColorConfig {
   // The color-space names this config uses for the encodings the project needs.
   const std::string& linear_space() const;  // linear Rec.709, the working space
   const std::string& srgb_texture_space() const;
+  const std::string& data_space() const;  // empty when the config has none
   const std::string& default_display() const;
   const std::string& default_view() const;
+  // The display and view a display-referred image goes through: an empty display is the config's
+  // default display, an empty view that display's default view. Throws bad input naming the option
+  // (--display, --view) and listing what the config has when it lacks either.
+  std::pair<std::string, std::string> display_view(const std::string& display, const std::string& view) const;
   // What decoding a color texture depends on, as text: the config's content (serialized), the
   // color spaces chosen and the sRGB → linear transform's own identity (OpenColorIO's cache ID, which
   // covers the LUT files it reads). Two configs with the same identity decode texels alike; a key of
@@ -51,6 +56,14 @@ class ColorConfig {
   void linear_to_display(Image& image, const std::string& display = {}, const std::string& view = {}) const;
   // Any two color spaces of the config (names or aliases); throws svbrdf::Error for an unknown name.
   void convert(Image& image, const std::string& from, const std::string& to) const;
+  // The color space the config's file rules (OCIO 2) give `file`; empty when only the Default rule
+  // matches it, which says nothing particular of the file, or the config has no file rules (OCIO 1).
+  std::string file_color_space(const std::filesystem::path& file) const;
+  // An image whose format leaves its encoding open (an environment map), read from `file`: converted
+  // to linear Rec.709 from the space file_color_space gives it; left as read where that is empty, the
+  // linear space itself or a data space. glTF fixes its textures' encodings (sRGB color, linear data:
+  // glTF 2.0 §3.9), so no rule applies to them.
+  void file_to_linear(Image& image, const std::filesystem::path& file) const;
 
   // Per-value versions for tests and small lookups (through the same processors).
   // The built-in sRGB curve is OCIO's ExponentWithLinearTransform (gamma 2.4, offset 0.055), the

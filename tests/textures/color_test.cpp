@@ -1,10 +1,15 @@
 #include "textures/color.h"
 
+#include <OpenColorIO/OpenColorIO.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
+#include <tuple>
+#include <utility>
+#include <vector>
 
 #include "base/error.h"
 #include "tests/common/temp_dir.h"
@@ -17,6 +22,77 @@ using testing::TempDir;
 // IEC 61966-2-1:1999 §5.2 (sRGB → linear) and its inverse, written here independently of OCIO.
 double iec_decode(double v) { return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4); }
 double iec_encode(double l) { return l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1.0 / 2.4) - 0.055; }
+
+constexpr const char* kBlenderConfig = "/usr/share/blender/datafiles/colormanagement/config.ocio";
+
+// A small config in the shape of OCIO 2's ACES configs: scene_linear ACEScg, aces_interchange
+// ACES2065-1, the ACES 1.0 SDR output transform as a view, file rules. Its Rec.709 spaces are built
+// from IEC 61966-2-1's XYZ matrix and OCIO's built-in AP0 ↔ XYZ transform; of its two sRGB
+// encodings, color_picking names the second.
+constexpr const char* kAcesStyleConfig = R"(ocio_profile_version: 2.1
+roles:
+  aces_interchange: ACES2065-1
+  color_picking: Encoded BT.709 texture
+  color_timing: ACEScct
+  compositing_log: ACEScct
+  data: Raw
+  default: ACES2065-1
+  matte_paint: ACEScct
+  scene_linear: ACEScg
+  texture_paint: ACEScct
+file_rules:
+  - !<Rule> {name: ACEScg images, colorspace: ACEScg, pattern: "*_acescg", extension: "*"}
+  - !<Rule> {name: Default, colorspace: default}
+displays:
+  sRGB - Display:
+    - !<View> {name: ACES 1.0 - SDR Video, view_transform: ACES 1.0 - SDR Video, display_colorspace: sRGB - Display}
+    - !<View> {name: Un-tone-mapped, view_transform: Un-tone-mapped, display_colorspace: sRGB - Display}
+view_transforms:
+  - !<ViewTransform>
+    name: ACES 1.0 - SDR Video
+    from_scene_reference: !<BuiltinTransform> {style: ACES-OUTPUT - ACES2065-1_to_CIE-XYZ-D65 - SDR-VIDEO_1.0}
+  - !<ViewTransform>
+    name: Un-tone-mapped
+    from_scene_reference: !<BuiltinTransform> {style: UTILITY - ACES-AP0_to_CIE-XYZ-D65_BFD}
+display_colorspaces:
+  - !<ColorSpace>
+    name: sRGB - Display
+    isdata: false
+    from_display_reference: !<BuiltinTransform> {style: DISPLAY - CIE-XYZ-D65_to_sRGB}
+colorspaces:
+  - !<ColorSpace>
+    name: ACES2065-1
+    isdata: false
+  - !<ColorSpace>
+    name: ACEScg
+    isdata: false
+    to_scene_reference: !<BuiltinTransform> {style: ACEScg_to_ACES2065-1}
+  - !<ColorSpace>
+    name: ACEScct
+    isdata: false
+    to_scene_reference: !<BuiltinTransform> {style: ACEScct_to_ACES2065-1}
+  - !<ColorSpace>
+    name: Raw
+    isdata: true
+  - !<ColorSpace>
+    name: Scene-linear BT.709
+    isdata: false
+    to_scene_reference: !<GroupTransform>
+      children:
+        - !<MatrixTransform> {matrix: [0.4124, 0.3576, 0.1805, 0, 0.2126, 0.7152, 0.0722, 0, 0.0193, 0.1192, 0.9505, 0, 0, 0, 0, 1]}
+        - !<BuiltinTransform> {style: UTILITY - ACES-AP0_to_CIE-XYZ-D65_BFD, direction: inverse}
+  - !<ColorSpace>
+    name: Another BT.709 encoding
+    isdata: false
+    to_scene_reference: !<ColorSpaceTransform> {src: Encoded BT.709 texture, dst: ACES2065-1}
+  - !<ColorSpace>
+    name: Encoded BT.709 texture
+    isdata: false
+    to_scene_reference: !<GroupTransform>
+      children:
+        - !<ExponentWithLinearTransform> {gamma: 2.4, offset: 0.055}
+        - !<ColorSpaceTransform> {src: Scene-linear BT.709, dst: ACES2065-1}
+)";
 
 TEST(Color, SrgbDecodeMatchesIec61966At256Points) {
   const ColorConfig& cfg = ColorConfig::builtin();
@@ -135,8 +211,129 @@ TEST(Color, ConfigResolution) {
     }
   };
   expect_refused(minimal("no_srgb.ocio", "lin_rec709"), "no sRGB texture color space");
-  expect_refused(minimal("no_linear.ocio", "sRGB - Texture"), "no linear Rec.709 color space");
+  // An ACES config's scene_linear is ACEScg: with no space of Rec.709 primaries it has no working space.
+  std::string aces_only = kAcesStyleConfig;
+  aces_only = aces_only.substr(0, aces_only.find("  - !<ColorSpace>\n    name: Scene-linear BT.709"));
+  aces_only.replace(aces_only.find("color_picking: Encoded BT.709 texture"), 37, "color_picking: ACEScct");
+  expect_refused(write("no_linear.ocio", aces_only), "no linear Rec.709 color space");
   EXPECT_THROW(ColorConfig::from_file(dir / "absent.ocio"), Error);
+}
+
+// An ACES-style config (OCIO 2: view transforms, display color spaces, file rules) whose spaces carry
+// none of the names the project knows: everything is found through its roles.
+TEST(Color, AcesStyleConfigResolvesThroughRoles) {
+  const TempDir dir;
+  std::ofstream(dir / "aces.ocio") << kAcesStyleConfig;
+  const ColorConfig cfg = ColorConfig::from_file(dir / "aces.ocio");
+  // scene_linear is ACEScg, which aces_interchange shows is not Rec.709; color_picking decodes by sRGB.
+  EXPECT_EQ(cfg.linear_space(), "Scene-linear BT.709");
+  EXPECT_EQ(cfg.srgb_texture_space(), "Encoded BT.709 texture");
+  EXPECT_EQ(cfg.data_space(), "Raw");
+  for (int k = 0; k < 256; k += 15)
+    EXPECT_NEAR(cfg.srgb_texture_to_linear(k / 255.0f), iec_decode(k / 255.0), 1e-5) << "code " << k;
+
+  EXPECT_EQ(cfg.default_display(), "sRGB - Display");
+  EXPECT_EQ(cfg.default_view(), "ACES 1.0 - SDR Video");
+  // The un-tone-mapped view is Rec.709 → AP0 → XYZ → sRGB: the sRGB encoding of the value itself.
+  Image gray(1, 1, 3), toned(1, 1, 3);
+  gray.pixels = {0.18f, 0.18f, 0.18f};
+  toned.pixels = gray.pixels;
+  cfg.linear_to_display(gray, "", "Un-tone-mapped");
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(gray.at(0, 0, c), iec_encode(0.18), 2e-3) << c;
+  // The ACES output transform darkens mid-gray (the RRT's S-curve): another value, still on screen.
+  cfg.linear_to_display(toned);
+  EXPECT_GT(std::abs(toned.at(0, 0, 1) - gray.at(0, 0, 1)), 0.02);
+  EXPECT_GT(toned.at(0, 0, 1), 0.0f);
+  EXPECT_LT(toned.at(0, 0, 1), 1.0f);
+
+  // File rules: a rule of the config's own names ACEScg; the Default rule alone says nothing.
+  EXPECT_EQ(cfg.file_color_space("sky_acescg.exr"), "ACEScg");
+  EXPECT_EQ(cfg.file_color_space("sky.exr"), "");
+  Image red(1, 1, 3);
+  red.pixels = {1.0f, 0.0f, 0.0f};
+  Image unchanged = red;
+  cfg.file_to_linear(red, "sky_acescg.exr");
+  // AP1 red in Rec.709: the first column of the ACEScg → Rec.709 matrix (Bradford, ACES white to D65).
+  EXPECT_NEAR(red.at(0, 0, 0), 1.70505, 2e-3);
+  EXPECT_NEAR(red.at(0, 0, 1), -0.13026, 2e-3);
+  EXPECT_NEAR(red.at(0, 0, 2), -0.02400, 2e-3);
+  cfg.file_to_linear(unchanged, "sky.exr");
+  EXPECT_EQ(unchanged.pixels, (std::vector<float>{1.0f, 0.0f, 0.0f}));
+}
+
+// A config without roles is read by the names configs in the wild give the spaces.
+TEST(Color, ConfigWithoutRolesResolvesByNames) {
+  const TempDir dir;
+  std::ofstream(dir / "plain.ocio") << "ocio_profile_version: 2\n"
+                                       "file_rules:\n  - !<Rule> {name: Default, colorspace: Linear Rec.709}\n"
+                                       "displays:\n  Monitor:\n    - !<View> {name: Plain, colorspace: sRGB}\n"
+                                       "colorspaces:\n"
+                                       "  - !<ColorSpace>\n    name: Linear Rec.709\n    isdata: false\n"
+                                       "  - !<ColorSpace>\n    name: sRGB\n    isdata: false\n"
+                                       "    to_scene_reference: !<ExponentWithLinearTransform> {gamma: 2.4, offset: 0.055}\n";
+  const ColorConfig cfg = ColorConfig::from_file(dir / "plain.ocio");
+  EXPECT_EQ(cfg.linear_space(), "Linear Rec.709");
+  EXPECT_EQ(cfg.srgb_texture_space(), "sRGB");
+  EXPECT_EQ(cfg.data_space(), "");
+  EXPECT_NEAR(cfg.srgb_texture_to_linear(0.5f), 0.214041, 1e-6);
+  EXPECT_EQ(cfg.display_view("", ""), (std::pair<std::string, std::string>{"Monitor", "Plain"}));
+}
+
+// A display or view the config lacks is bad input naming the option and listing what there is.
+TEST(Color, UnknownDisplayOrViewIsBadInput) {
+  const ColorConfig& cfg = ColorConfig::builtin();
+  EXPECT_EQ(cfg.display_view("", ""), (std::pair<std::string, std::string>{"sRGB", "Standard"}));
+  EXPECT_EQ(cfg.display_view("sRGB", "Raw"), (std::pair<std::string, std::string>{"sRGB", "Raw"}));
+  for (const auto& [display, view, needle] : {std::tuple{"Cinema", "", "--display Cinema"},
+                                             std::tuple{"sRGB", "Filmic", "--view Filmic"}}) {
+    try {
+      cfg.display_view(display, view);
+      ADD_FAILURE() << "no error for " << display << " / " << view;
+    } catch (const Error& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.rfind(needle, 0), 0u) << what;
+      EXPECT_NE(what.find(std::string(view).empty() ? "\"sRGB\"" : "\"Standard\", \"Raw\""), std::string::npos) << what;
+      EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+      EXPECT_EQ(e.exit_code(), 2);
+    }
+  }
+}
+
+// Blender's shipped config (OCIO 2, Filmic): scene_linear "Linear", sRGB textures "sRGB" (a LUT),
+// data "Non-Color". Its views are checked against OCIO's own display processor from the
+// scene_linear role, a path that asks nothing of ColorConfig.
+TEST(Color, BlenderConfigAndItsViews) {
+  const std::filesystem::path blender = kBlenderConfig;
+  if (!std::filesystem::exists(blender)) GTEST_SKIP() << "Blender's OCIO config is not installed at " << blender;
+  const ColorConfig cfg = ColorConfig::from_file(blender);
+  EXPECT_EQ(cfg.linear_space(), "Linear");
+  EXPECT_EQ(cfg.srgb_texture_space(), "sRGB");
+  EXPECT_EQ(cfg.data_space(), "Non-Color");
+  EXPECT_NEAR(cfg.srgb_texture_to_linear(0.5f), 0.214041, 1e-3);
+  EXPECT_EQ(cfg.display_view("", ""), (std::pair<std::string, std::string>{"sRGB", "Standard"}));
+
+  const auto ocio = OCIO_NAMESPACE::Config::CreateFromFile(blender.c_str());
+  Image standard(4, 1, 3);
+  standard.pixels = {0.01f, 0.02f, 0.03f, 0.18f, 0.18f, 0.18f, 1.0f, 0.5f, 0.25f, 4.0f, 8.0f, 16.0f};
+  Image filmic = standard;
+  const std::vector<float> linear = standard.pixels;
+  cfg.linear_to_display(standard, "sRGB", "Standard");
+  cfg.linear_to_display(filmic, "sRGB", "Filmic");
+  for (const auto& [view, image] : {std::pair{"Standard", &standard}, std::pair{"Filmic", &filmic}}) {
+    const auto cpu = ocio->getProcessor(OCIO_NAMESPACE::ROLE_SCENE_LINEAR, "sRGB", view,
+                                        OCIO_NAMESPACE::TRANSFORM_DIR_FORWARD)->getDefaultCPUProcessor();
+    for (int p = 0; p < 4; ++p) {
+      float rgb[3] = {linear[3 * p], linear[3 * p + 1], linear[3 * p + 2]};
+      cpu->applyRGB(rgb);
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(image->at(p, 0, c), rgb[c], 1e-4) << view << " pixel " << p;
+    }
+  }
+  // Standard is the sRGB encoding, above 1 (clipped in 8 bits) for a highlight; Filmic lifts mid-gray
+  // (0.18 → 0.50 rather than 0.46) and keeps the highlight below 1.
+  EXPECT_NEAR(standard.at(1, 0, 0), iec_encode(0.18), 2e-3);
+  EXPECT_GT(filmic.at(1, 0, 0), standard.at(1, 0, 0) + 0.02f);
+  EXPECT_GT(standard.at(3, 0, 0), 1.0f);
+  EXPECT_LT(filmic.at(3, 0, 0), 1.0f);
 }
 
 }  // namespace
