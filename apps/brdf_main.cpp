@@ -70,10 +70,10 @@ void check_angle(double deg, double hi, const std::string& option) {
     throw input_error(option, "angle " + std::to_string(deg) + " is out of range [0, " + std::to_string(hi) + "]");
 }
 
-void check_svg(const std::string& out) {
+// Before the work: the plot is SVG or PNG, by the file's extension.
+void check_plot_file(const std::string& out) {
   const auto ext = std::filesystem::path(out).extension().string();
-  if (ext == ".png") throw input_error("--out " + out, "PNG is not supported; write .svg");
-  if (ext != ".svg") throw input_error("--out " + out, "the plot is written as SVG: give a .svg file name");
+  if (ext != ".svg" && ext != ".png") throw input_error("--out " + out, "a plot is written as .svg or .png");
 }
 
 }  // namespace
@@ -107,19 +107,19 @@ int main(int argc, char** argv) {
   albedo->add_option("--theta-o", theta_o, "angle of wo from the normal, degrees [0, 90]")->required()->check(cli::number_in(0, 90));
   albedo->add_option("--strata", strata, "estimate with strata^2 stratified samples, 1 to 4096")->check(cli::whole_in(1, 4096));
 
-  CLI::App* plot = app.add_subcommand("plot", "polar plot (SVG): f black, sampling density blue, impulses arrows");
+  CLI::App* plot = app.add_subcommand("plot", "polar plot (SVG or PNG): f black, sampling density blue, impulses arrows");
   add_model_options(plot, m);
   double theta_i = 30;
   std::string out;
   plot->add_option("--theta-i", theta_i, "angle of the light from the normal, degrees [0, 180]")->required()->check(cli::number_in(0, 180));
-  plot->add_option("--out", out, "output file (.svg)")->required();
+  plot->add_option("--out", out, "output file: .svg or .png")->required();
 
-  CLI::App* fresnel = app.add_subcommand("fresnel", "exact Fresnel against Schlick over the angle of incidence (SVG)");
+  CLI::App* fresnel = app.add_subcommand("fresnel", "exact Fresnel against Schlick over the angle of incidence (SVG or PNG)");
   std::string ior_text, eta_text, k_text;
   fresnel->add_option("--ior", ior_text, "relative index of a dielectric");
   fresnel->add_option("--eta", eta_text, "conductor: real part of the index (r,g,b or one number)");
   fresnel->add_option("--k", k_text, "conductor: imaginary part of the index (r,g,b or one number)");
-  fresnel->add_option("--out", out, "output file (.svg)")->required();
+  fresnel->add_option("--out", out, "output file: .svg or .png")->required();
 
   return run_program("svbrdf-brdf", app, argc, argv, [&] {
     if (eval->parsed() || pdf->parsed()) {
@@ -147,14 +147,14 @@ int main(int argc, char** argv) {
                   static_cast<double>(imp.z));
     } else if (plot->parsed()) {
       check_angle(theta_i, 180, "--theta-i");
-      check_svg(out);
+      check_plot_file(out);
       const auto bsdf = m.build();
       std::string title = m.name;
       for (const std::string& p : m.params) title += " " + p;
       for (const std::string& p : m.impulses) title += " +" + p;
-      polar_plot_svg(polar_plot_data(*bsdf, static_cast<float>(theta_i)), title).write(out);
+      polar_plot(polar_plot_data(*bsdf, static_cast<float>(theta_i)), title).write(out);
     } else if (fresnel->parsed()) {
-      check_svg(out);
+      check_plot_file(out);
       FresnelCurves c;
       if (!ior_text.empty()) {
         if (!eta_text.empty() || !k_text.empty()) throw input_error("fresnel", "give --ior, or --eta and --k, not both");
@@ -168,7 +168,7 @@ int main(int argc, char** argv) {
           throw input_error("fresnel", "--eta must be positive and --k non-negative");
         c = fresnel_curves_conductor(eta, k);
       }
-      fresnel_plot_svg(c).write(out);
+      fresnel_plot(c).write(out);
       for (int ch = 0; ch < c.channels; ++ch)
         std::printf("max |exact - schlick| %.6g at %.4g deg\n", static_cast<double>(c.max_difference[static_cast<std::size_t>(ch)]),
                     static_cast<double>(c.max_at_deg[static_cast<std::size_t>(ch)]));

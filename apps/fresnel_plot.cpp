@@ -46,20 +46,20 @@ FresnelCurves fresnel_curves_conductor(const Rgb& eta, const Rgb& k, int steps) 
   return c;
 }
 
-Svg fresnel_plot_svg(const FresnelCurves& c) {
+Figure fresnel_plot(const FresnelCurves& c) {
   const double left = 70, top = 60, w = 540, h = 360;
-  Svg svg(left + w + 30, top + h + 60);
+  Figure fig(left + w + 30, top + h + 60);
   auto at = [&](double deg, double r) { return glm::dvec2(left + w * deg / 90.0, top + h * (1.0 - r)); };
   for (int i = 0; i <= 9; ++i) {
-    svg.line(at(10.0 * i, 0), at(10.0 * i, 1), "#e4e4e4", 1);
-    svg.text(at(10.0 * i, 0) + glm::dvec2(0, 18), g(10.0 * i), 12, "#444444", "middle");
+    fig.line(at(10.0 * i, 0), at(10.0 * i, 1), "#e4e4e4", 1);
+    fig.text(at(10.0 * i, 0) + glm::dvec2(0, 18), g(10.0 * i), 12, "#444444", "middle");
   }
   for (int i = 0; i <= 10; ++i) {
-    svg.line(at(0, 0.1 * i), at(90, 0.1 * i), "#e4e4e4", 1);
-    svg.text(at(0, 0.1 * i) + glm::dvec2(-8, 4), g(0.1 * i), 12, "#444444", "end");
+    fig.line(at(0, 0.1 * i), at(90, 0.1 * i), "#e4e4e4", 1);
+    fig.text(at(0, 0.1 * i) + glm::dvec2(-8, 4), g(0.1 * i), 12, "#444444", "end");
   }
-  svg.line(at(0, 0), at(90, 0), "black", 1.5);
-  svg.line(at(0, 0), at(0, 1), "black", 1.5);
+  fig.line(at(0, 0), at(90, 0), "black", 1.5);
+  fig.line(at(0, 0), at(0, 1), "black", 1.5);
   const char* colors1[] = {"black"};
   const char* colors3[] = {"#d62728", "#2ca02c", "#1f4fd8"};
   std::string summary;
@@ -71,17 +71,17 @@ Svg fresnel_plot_svg(const FresnelCurves& c) {
       e.push_back(at(c.theta_deg[j], c.exact[i][j]));
       s.push_back(at(c.theta_deg[j], c.schlick[i][j]));
     }
-    svg.polyline(e, color, 2);
-    svg.polyline(s, color, 2, "7,5");
+    fig.polyline(e, color, 2);
+    fig.polyline(s, color, 2, "7,5");
     const double md = c.max_difference[i], ma = c.max_at_deg[i];
-    svg.line(at(ma, 0), at(ma, 1), color, 0.8, "2,3");
+    fig.line(at(ma, 0), at(ma, 1), color, 0.8, "2,3");
     summary += (summary.empty() ? "" : "; ") + std::string(c.channels == 3 ? std::string("RGB").substr(i, 1) + ": " : "") +
                "max |exact - Schlick| " + g(md) + " at " + g(ma) + " deg";
   }
-  svg.text({left, 24}, "Fresnel reflectance, " + c.label + ": exact (solid) vs Schlick (dashed)", 15);
-  svg.text({left, 44}, summary, 12, "#444444");
-  svg.text({left + w / 2, top + h + 44}, "angle of incidence (degrees)", 13, "black", "middle");
-  return svg;
+  fig.text({left, 24}, "Fresnel reflectance, " + c.label + ": exact (solid) vs Schlick (dashed)", 15);
+  fig.text({left, 44}, summary, 12, "#444444");
+  fig.text({left + w / 2, top + h + 44}, "angle of incidence (degrees)", 13, "black", "middle");
+  return fig;
 }
 
 }  // namespace svbrdf

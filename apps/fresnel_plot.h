@@ -1,13 +1,13 @@
 #pragma once
 // Exact Fresnel reflectance against Schlick's approximation over the angle of incidence
-// (CGPP Exercises 27.5, 27.6): the curves, the largest difference and where it falls, and an SVG
-// plot of them. Schlick's f0 is the exact reflectance at normal incidence, per channel.
+// (CGPP Exercises 27.5, 27.6): the curves, the largest difference and where it falls, and a plot of
+// them. Schlick's f0 is the exact reflectance at normal incidence, per channel.
 #include <array>
 #include <string>
 #include <vector>
 
 #include "appearance/bsdf.h"
-#include "apps/svg.h"
+#include "apps/figure.h"
 
 namespace svbrdf {
 
@@ -23,6 +23,6 @@ struct FresnelCurves {
 // `steps` samples of θi over [0°, 90°].
 FresnelCurves fresnel_curves_dielectric(float ior, int steps = 9001);
 FresnelCurves fresnel_curves_conductor(const Rgb& eta, const Rgb& k, int steps = 9001);
-Svg fresnel_plot_svg(const FresnelCurves& c);
+Figure fresnel_plot(const FresnelCurves& c);
 
 }  // namespace svbrdf

@@ -29,7 +29,7 @@ PolarPlotData polar_plot_data(const Bsdf& bsdf, float theta_i_deg, int steps) {
   return d;
 }
 
-Svg polar_plot_svg(const PolarPlotData& d, const std::string& title) {
+Figure polar_plot(const PolarPlotData& d, const std::string& title) {
   // Is there anything below the horizon?
   bool lower = false;
   for (std::size_t i = 0; i < d.angles.size(); ++i)
@@ -45,41 +45,41 @@ Svg polar_plot_svg(const PolarPlotData& d, const std::string& title) {
   const double height = top + radius + (lower ? radius + 40 : 60);
   const glm::dvec2 origin(width / 2, top + radius);
   auto at = [&](const glm::vec3& w, double r) { return origin + glm::dvec2(w.x, -w.z) * r; };
-  Svg svg(width, height);
+  Figure fig(width, height);
   // Scale circles, the surface, the normal.
-  for (int c = 1; c <= 4; ++c) svg.circle(origin, radius * c / 4.0, "#dddddd", 1);
-  svg.line(origin - glm::dvec2(radius + 20, 0), origin + glm::dvec2(radius + 20, 0), "#888888", 2);
-  svg.line(origin, origin - glm::dvec2(0, radius + 10), "#aaaaaa", 1, "4,4");
+  for (int c = 1; c <= 4; ++c) fig.circle(origin, radius * c / 4.0, "#dddddd", 1);
+  fig.line(origin - glm::dvec2(radius + 20, 0), origin + glm::dvec2(radius + 20, 0), "#888888", 2);
+  fig.line(origin, origin - glm::dvec2(0, radius + 10), "#aaaaaa", 1, "4,4");
   auto curve = [&](const std::vector<float>& v, const std::string& color) {
     std::vector<glm::dvec2> pts;
     for (std::size_t i = 0; i < d.angles.size(); ++i) {
       const bool visible = lower || std::cos(d.angles[i]) >= -1e-6f;
       const double r = (peak > 0 && std::isfinite(v[i])) ? radius * v[i] / peak : 0.0;
       if (!visible) {
-        svg.polyline(pts, color, 2);
+        fig.polyline(pts, color, 2);
         pts.clear();
         continue;
       }
       pts.push_back(at(glm::vec3(std::sin(d.angles[i]), 0, std::cos(d.angles[i])), r));
     }
-    svg.polyline(pts, color, 2);
+    fig.polyline(pts, color, 2);
   };
   curve(d.density, "#1f4fd8");
   curve(d.bsdf, "black");
   // The incoming light: a gray arrow from d toward the surface point.
-  svg.arrow(at(d.incident, radius + 15), at(d.incident, 12), "#999999", 2);
+  fig.arrow(at(d.incident, radius + 15), at(d.incident, 12), "#999999", 2);
   for (int k = 0; k < d.impulses.count; ++k) {
     const Impulse& imp = d.impulses.items[static_cast<std::size_t>(k)];
     const float m = luminance(imp.magnitude);
-    svg.arrow(origin, at(imp.direction, radius * std::min(m, 1.05f)), "#c0392b", 3);
-    svg.text(at(imp.direction, radius * std::min(m, 1.05f) + 16), g(m), 12, "#c0392b", "middle");
+    fig.arrow(origin, at(imp.direction, radius * std::min(m, 1.05f)), "#c0392b", 3);
+    fig.text(at(imp.direction, radius * std::min(m, 1.05f) + 16), g(m), 12, "#c0392b", "middle");
   }
-  svg.text({16, 26}, title, 16);
-  svg.text({16, 48}, "theta_i = " + g(d.theta_i_deg) + " deg; outer circle = " + g(peak) + " /sr", 13, "#444444");
-  svg.text({width - 16, 26}, "f(wi, wo) (luminance)", 13, "black", "end");
-  svg.text({width - 16, 44}, "pdf(wi = w | wo = d)", 13, "#1f4fd8", "end");
-  svg.text({width - 16, 62}, "impulses (magnitude, 1 = outer circle)", 13, "#c0392b", "end");
-  return svg;
+  fig.text({16, 26}, title, 16);
+  fig.text({16, 48}, "theta_i = " + g(d.theta_i_deg) + " deg; outer circle = " + g(peak) + " /sr", 13, "#444444");
+  fig.text({width - 16, 26}, "f(wi, wo) (luminance)", 13, "black", "end");
+  fig.text({width - 16, 44}, "pdf(wi = w | wo = d)", 13, "#1f4fd8", "end");
+  fig.text({width - 16, 62}, "impulses (magnitude, 1 = outer circle)", 13, "#c0392b", "end");
+  return fig;
 }
 
 }  // namespace svbrdf

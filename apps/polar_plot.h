@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "appearance/bsdf.h"
-#include "apps/svg.h"
+#include "apps/figure.h"
 
 namespace svbrdf {
 
@@ -29,6 +29,6 @@ struct PolarPlotData {
 inline float luminance(const Rgb& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 
 PolarPlotData polar_plot_data(const Bsdf& bsdf, float theta_i_deg, int steps = 1441);
-Svg polar_plot_svg(const PolarPlotData& data, const std::string& title);
+Figure polar_plot(const PolarPlotData& data, const std::string& title);
 
 }  // namespace svbrdf

@@ -2,14 +2,19 @@
 // formats, and bad input (one line on stderr, exit 2).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
+#include <vector>
 
 #include "test_models.h"
 #include "tests/common/run_command.h"
+#include "textures/image.h"
 
 namespace svbrdf::testing {
 namespace {
@@ -101,13 +106,91 @@ TEST(Cli, PlotsAreWrittenAsSvg) {
   EXPECT_TRUE(std::filesystem::exists(dir / "f.svg"));
   EXPECT_EQ(run("fresnel --eta 0.2,0.92,1.1 --k 3.9,2.45,2.14 --out '" + (dir / "c.svg").string() + "'").status, 0);
   // Bad output names and bad options leave nothing behind.
-  EXPECT_EQ(run("plot lambert --theta-i 40 --out '" + (dir / "x.png").string() + "'").status, 2);
+  const CliRun jpeg = run("plot lambert --theta-i 40 --out '" + (dir / "x.jpg").string() + "'");
+  EXPECT_EQ(jpeg.status, 2);
+  EXPECT_EQ(lines(jpeg.err), 1) << jpeg.err;
   EXPECT_EQ(run("plot lambert --theta-i 400 --out '" + (dir / "y.svg").string() + "'").status, 2);
   EXPECT_EQ(run("fresnel --ior 1.5 --eta 1 --k 1 --out '" + (dir / "z.svg").string() + "'").status, 2);
   EXPECT_EQ(run("plot lambert --theta-i 40 --out '" + (dir / "missing" / "w.svg").string() + "'").status, 2);
   int files = 0;
   for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++files;
   EXPECT_EQ(files, 3) << "g.svg, f.svg, c.svg and no temporaries";
+  std::filesystem::remove_all(dir);
+}
+
+// The segments of every SVG polyline stroked in `color`. Found with find, not std::regex: libstdc++'s
+// regex recurses once a character, and a polyline's points run to tens of kilobytes.
+std::vector<std::array<double, 4>> svg_segments(const std::string& svg, const std::string& color) {
+  std::vector<std::array<double, 4>> segments;
+  const std::string open = "<polyline points=\"", stroke = "\" fill=\"none\" stroke=\"" + color + "\"";
+  for (std::size_t at = svg.find(open); at != std::string::npos; at = svg.find(open, at + 1)) {
+    const std::size_t begin = at + open.size(), end = svg.find('"', begin);
+    if (end == std::string::npos || svg.compare(end, stroke.size(), stroke) != 0) continue;
+    std::istringstream points(svg.substr(begin, end - begin));
+    std::vector<double> xy;
+    for (double x, y; points >> x && points.get() == ',' && points >> y;) xy.insert(xy.end(), {x, y});
+    for (std::size_t i = 2; i + 1 < xy.size(); i += 2) segments.push_back({xy[i - 2], xy[i - 1], xy[i], xy[i + 1]});
+  }
+  return segments;
+}
+
+double distance_to(const std::vector<std::array<double, 4>>& segments, double px, double py) {
+  double best = 1e300;
+  for (const auto& [ax, ay, bx, by] : segments) {
+    const double dx = bx - ax, dy = by - ay, len2 = dx * dx + dy * dy;
+    const double t = len2 > 0 ? std::clamp(((px - ax) * dx + (py - ay) * dy) / len2, 0.0, 1.0) : 0.0;
+    best = std::min(best, std::hypot(px - ax - t * dx, py - ay - t * dy));
+  }
+  return best;
+}
+
+// A plot named .png is the same figure in pixels: the SVG's size, the BSDF curve dark where the SVG's
+// black polyline runs, and the sampling density's blue nowhere but along the SVG's blue polyline.
+TEST(Cli, PlotsAreWrittenAsPng) {
+  // Not a TempDir: run() makes the test's own for each command.
+  const auto dir = std::filesystem::temp_directory_path() / ("svbrdf_cli_png_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string args = "plot gltf --param roughness=0.3 --impulse mirror:0.2 --theta-i 40 --out ";
+  ASSERT_EQ(run(args + "'" + (dir / "g.svg").string() + "'").status, 0);
+  const CliRun p = run(args + "'" + (dir / "g.png").string() + "'");
+  ASSERT_EQ(p.status, 0) << p.err;
+  std::ifstream f(dir / "g.svg");
+  std::stringstream s;
+  s << f.rdbuf();
+  const std::string svg = s.str();
+  std::smatch size;
+  ASSERT_TRUE(std::regex_search(svg, size, std::regex("<svg [^>]*width=\"([0-9.]+)\" height=\"([0-9.]+)\"")));
+  const Image png = read_image(dir / "g.png");
+  EXPECT_EQ(png.width, int(std::ceil(std::stod(size[1].str()))));
+  EXPECT_EQ(png.height, int(std::ceil(std::stod(size[2].str()))));
+  ASSERT_GE(png.channels, 3);
+
+  const auto black = svg_segments(svg, "black"), blue = svg_segments(svg, "#1f4fd8");
+  ASSERT_GT(black.size(), 100u);
+  ASSERT_GT(blue.size(), 100u);
+  // Along the black curve (its segments' midpoints): dark pixels, except where an arrow drawn later
+  // crosses it.
+  int dark = 0;
+  for (const auto& [ax, ay, bx, by] : black) {
+    const int x = int((ax + bx) / 2), y = int((ay + by) / 2);
+    if (x < 0 || y < 0 || x >= png.width || y >= png.height) continue;
+    dark += std::max({png.at(x, y, 0), png.at(x, y, 1), png.at(x, y, 2)}) < 0.4f;
+  }
+  EXPECT_GT(dark, int(0.95 * double(black.size())));
+  // Every clearly blue pixel below the legend (whose line "pdf(...)" is blue text) lies on the blue curve.
+  int blue_pixels = 0;
+  for (int y = 75; y < png.height; ++y)
+    for (int x = 0; x < png.width; ++x)
+      if (png.at(x, y, 2) > 0.6f && png.at(x, y, 2) - png.at(x, y, 0) > 0.4f) {
+        ++blue_pixels;
+        EXPECT_LT(distance_to(blue, x + 0.5, y + 0.5), 2.0) << "a blue pixel at " << x << "," << y;
+      }
+  EXPECT_GT(blue_pixels, 200);
+
+  ASSERT_EQ(run("fresnel --ior 1.5 --out '" + (dir / "f.png").string() + "'").status, 0);
+  const Image fresnel = read_image(dir / "f.png");
+  EXPECT_GT(fresnel.width, 100);
+  EXPECT_GT(fresnel.height, 100);
   std::filesystem::remove_all(dir);
 }
 
