@@ -82,14 +82,22 @@ std::string image_name(const ReportScene& g, const LodShot& s, const std::string
 
 constexpr double kErrorScale = 0.5;  // false-color full scale: |ΔY| / mean Y
 
+// The charts' text is 11 px sans-serif (the page's style). An x label's width, bounded above by the
+// advances of DejaVu Sans, the widest of the common sans faces: 0.636 em a digit, 0.838 em for "×".
+constexpr double kFontPx = 11, kLabelGap = 6;
+double x_label_width(double multiple) {
+  return kFontPx * (0.636 * double(number_text(multiple).size()) + 0.838);
+}
+
 }  // namespace
 
 std::string svg_chart(const std::string& title, const std::string& y_label, const std::vector<ChartSeries>& series,
                       bool log_y, int width, int height) {
   // The plot: [left, width − right] × [top, height − bottom]; the bottom margin holds the x labels
-  // and two rows of legend.
-  const double left = 58, right = 10, top = 22, bottom = 64;
-  const double pw = width - left - right, ph = height - top - bottom;
+  // and two rows of legend. The right margin grows to hold half the last x label (below).
+  const double left = 58, top = 22, bottom = 64;
+  double right = 10;
+  const double ph = height - top - bottom;
   double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
   for (const ChartSeries& s : series)
     for (std::size_t i = 0; i < s.x.size(); ++i) {
@@ -116,16 +124,27 @@ std::string svg_chart(const std::string& title, const std::string& y_label, cons
     y0 -= pad, y1 += pad;
   }
   if (x1 - x0 < 1e-9) x0 -= 1, x1 += 1;
+  // x labels k× at powers of two, every `stride` of them (even, counted back from the last even power,
+  // so the farthest distance is labelled) where their widths need it: 1× to 16384× in a 320-pixel
+  // chart would otherwise overlap from 256× on.
+  const int e_first = int(std::ceil(x0 - 1e-9)), e_last = int(std::floor(x1 + 1e-9));
+  const int e_anchor = e_last - ((e_last % 2) + 2) % 2;
+  double widest = 0;
+  for (int e = e_first; e <= e_last; ++e) widest = std::max(widest, x_label_width(std::exp2(e)));
+  right = std::max(right, 0.5 * x_label_width(std::exp2(e_anchor)) + 2);
+  const double pw = width - left - right;
+  int stride = 2;
+  while (stride * pw / (x1 - x0) < widest + kLabelGap && stride < 64) stride += 2;
   const auto X = [&](double x) { return left + (std::log2(x) - x0) / (x1 - x0) * pw; };
   const auto Y = [&](double y) { return top + (1 - ((log_y ? std::log10(y) : y) - y0) / (y1 - y0)) * ph; };
   out += "<rect x=\"" + fmt("%.1f", left) + "\" y=\"" + fmt("%.1f", top) + "\" width=\"" + fmt("%.1f", pw) +
          "\" height=\"" + fmt("%.1f", ph) + "\" class=\"plot\"/>";
   // x ticks at every power of two present, labelled k×.
-  for (int e = int(std::ceil(x0 - 1e-9)); e <= int(std::floor(x1 + 1e-9)); ++e) {
+  for (int e = e_first; e <= e_last; ++e) {
     const double x = left + (e - x0) / (x1 - x0) * pw;
     out += "<line x1=\"" + fmt("%.1f", x) + "\" y1=\"" + fmt("%.1f", top + ph) + "\" x2=\"" + fmt("%.1f", x) + "\" y2=\"" +
            fmt("%.1f", top + ph + 4) + "\" class=\"ax\"/>";
-    if (e % 2 == 0)
+    if ((((e_anchor - e) % stride) + stride) % stride == 0)
       out += "<text x=\"" + fmt("%.1f", x) + "\" y=\"" + fmt("%.1f", top + ph + 15) + "\" class=\"tx\">" +
              number_text(std::exp2(e)) + "×</text>";
   }

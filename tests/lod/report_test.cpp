@@ -1,12 +1,15 @@
 // The LOD report: its charts, and the whole page loaded in headless Chromium (Debian's `chromium`)
 // with no console message — the report carries no script, so any console output means something is
 // broken — and every image it shows present. Skipped with a message where Chromium is absent.
+#include <OpenImageIO/imagebufalgo.h>
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <fstream>
 #include <regex>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "base/markup_escape.h"
 #include "lod/comparison.h"
@@ -44,6 +47,35 @@ TEST(LodReport, ChartPointsLieInThePlot) {
   }
   EXPECT_EQ(n, 5);
   EXPECT_EQ(markup_escape("a<b>&\"c\""), "a&lt;b&gt;&amp;&quot;c&quot;");
+}
+
+// The x labels of a chart over 1× to 16384× (the LOD scenes' distances), measured in DejaVu Sans at the
+// page's 11 px by FreeType (OpenImageIO's text_size): none overlaps the next, all lie inside the chart,
+// and the farthest distance is labelled.
+TEST(LodReport, DistanceLabelsDoNotOverlap) {
+  std::vector<double> x, y;
+  for (double d = 1; d <= 16384; d *= 4) x.push_back(d), y.push_back(1e-3 * d);
+  const std::string svg = svg_chart("relative MSE", "relative MSE", {{"brdf", "#000", false, x, y}}, true, 320, 234);
+  const std::regex label("<text x=\"([0-9.]+)\" y=\"[0-9.]+\" class=\"tx\">([0-9]+)×</text>");
+  std::vector<std::pair<double, double>> spans;  // [left, right] of each label, in order
+  std::string last;
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), label); it != std::sregex_iterator(); ++it) {
+    const std::string text = (*it)[2].str() + "×";
+    const OIIO::ROI size = OIIO::ImageBufAlgo::text_size(text, 11, "DejaVuSans");
+    ASSERT_TRUE(size.defined()) << "no DejaVu Sans font to measure with (Debian: fonts-dejavu-core)";
+    const double cx = std::stod((*it)[1]);
+    spans.emplace_back(cx - size.width() / 2.0, cx + size.width() / 2.0);
+    last = text;
+  }
+  ASSERT_GE(spans.size(), 3u) << svg;
+  EXPECT_EQ(last, "16384×");
+  for (std::size_t i = 0; i < spans.size(); ++i) {
+    EXPECT_GE(spans[i].first, 0.0) << i;
+    EXPECT_LE(spans[i].second, 320.0) << i;
+    if (i > 0) {
+      EXPECT_GE(spans[i].first - spans[i - 1].second, 2.0) << "labels " << i - 1 << " and " << i << " overlap";
+    }
+  }
 }
 
 // Loads file:// `page` in headless Chromium; returns its stderr (console messages are logged there
