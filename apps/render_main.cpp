@@ -173,7 +173,7 @@ int main(int argc, char** argv) {
   app.add_flag("--transparent", transparent,
                "a transparent background: the camera does not see the environment (which still lights the scene), "
                "so the EXR's alpha is what the scene covers of each pixel, and the PNG has alpha too");
-  app.add_flag("--aov", aovs, "also write albedo, normal, depth and MIP-level EXRs beside the output");
+  app.add_flag("--aov", aovs, "also write the albedo, normal, depth and MIP level, as layers of the EXR (albedo.R/G/B, N.X/Y/Z, Z, mip_level.X)");
   app.add_flag("-q,--quiet", quiet, "no progress output or notes (warnings and errors are still printed)");
   return svbrdf::run_program("svbrdf-render", app, argc, argv, [&] {
     // Before any input is read: every image, MIP level and the frame are held to it.

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <string>
+#include <utility>
 
 #include "base/atomic_file.h"
 #include "base/error.h"
@@ -16,14 +18,6 @@ namespace fs = std::filesystem;
 
 fs::path png_path(const OutputOptions& o) { return o.png.empty() ? fs::path(o.exr).replace_extension(".png") : o.png; }
 
-fs::path aov_path(const OutputOptions& o, const char* name) {
-  fs::path p = o.exr;
-  p.replace_extension(std::string(".") + name + ".exr");
-  return p;
-}
-
-constexpr const char* kAovs[] = {"albedo", "normal", "depth", "level"};
-
 // RGB with an alpha channel after it; `clear_transparent` zeroes the colour where alpha is 0.
 Image with_alpha(const Image& rgb, const Image& alpha, bool clear_transparent) {
   Image out(rgb.width, rgb.height, 4);
@@ -34,6 +28,28 @@ Image with_alpha(const Image& rgb, const Image& alpha, bool clear_transparent) {
   }
   return out;
 }
+
+// The channels of an EXR of layers, gathered one image at a time.
+struct ExrChannels {
+  Image image;
+  std::vector<std::string> names;
+  std::vector<PixelFormat> formats;
+
+  void add(const Image& layer, std::vector<std::string> layer_names, PixelFormat format) {
+    if (image.channels == 0) image = Image(layer.width, layer.height, 0);
+    const int before = image.channels, after = before + layer.channels;
+    std::vector<float> pixels(std::size_t(image.width) * image.height * after);
+    for (std::size_t p = 0; p < std::size_t(image.width) * image.height; ++p) {
+      std::copy_n(image.pixels.begin() + std::ptrdiff_t(p * before), before, pixels.begin() + std::ptrdiff_t(p * after));
+      std::copy_n(layer.pixels.begin() + std::ptrdiff_t(p * layer.channels), layer.channels,
+                  pixels.begin() + std::ptrdiff_t(p * after + before));
+    }
+    image.pixels = std::move(pixels);
+    image.channels = after;
+    names.insert(names.end(), layer_names.begin(), layer_names.end());
+    formats.insert(formats.end(), layer_names.size(), format);
+  }
+};
 
 // Premultiplied colour divided by its alpha: the colour of what covers the pixel.
 Image unpremultiplied(Image rgb, const Image& alpha) {
@@ -55,10 +71,7 @@ Image to_display(const Image& linear, float exposure, const ColorConfig& color, 
 }
 
 std::vector<fs::path> output_paths(const OutputOptions& o) {
-  std::vector<fs::path> paths = {o.exr, png_path(o)};
-  if (o.aovs)
-    for (const char* name : kAovs) paths.push_back(aov_path(o, name));
-  return paths;
+  return {o.exr, png_path(o)};
 }
 
 void prepare_outputs(const OutputOptions& o) {
@@ -82,7 +95,6 @@ void write_outputs(const Film& film, const OutputOptions& o, const ColorConfig& 
   // Each file is encoded and written before the next is encoded: one encoded image in memory at a
   // time, and nothing renamed until the last is on disk.
   StagedFiles files;
-  files.stage(o.exr, encode_exr(o.exr, with_alpha(radiance, alpha, false), {"R", "G", "B", "A"}, std::vector<PixelFormat>(4, f)));
   const fs::path png = png_path(o);
   if (o.transparent) {
     // PNG's alpha is straight (PNG 1.2, §12.8): the display transform reads the colour before it was
@@ -94,16 +106,17 @@ void write_outputs(const Film& film, const OutputOptions& o, const ColorConfig& 
   } else {
     files.stage(png, encode_image(png, to_display(radiance, o.exposure, color, o.display, o.view), PixelFormat::uint8));
   }
+  // One EXR of layers, named as OpenEXR names them: the AOVs travel with the image they describe and
+  // cannot be mismatched with it. Depth in float: half's 11-bit mantissa is a step of 1/64 at 32 m.
+  ExrChannels exr;
+  exr.add(with_alpha(radiance, alpha, false), {"R", "G", "B", "A"}, f);
   if (o.aovs) {
-    const auto aov = [&](const char* name, const Image& image, PixelFormat format) {
-      const fs::path p = aov_path(o, name);
-      files.stage(p, encode_image(p, image, format));
-    };
-    aov("albedo", film.albedo(), f);
-    aov("normal", film.normal(), f);
-    aov("depth", film.depth(), PixelFormat::float32);
-    aov("level", film.mip_level(), f);
+    exr.add(film.albedo(), {"albedo.R", "albedo.G", "albedo.B"}, f);
+    exr.add(film.normal(), {"N.X", "N.Y", "N.Z"}, f);
+    exr.add(film.depth(), {"Z"}, PixelFormat::float32);
+    exr.add(film.mip_level(), {"mip_level.X"}, f);
   }
+  files.stage(o.exr, encode_exr(o.exr, exr.image, exr.names, exr.formats));
   files.commit();
 }
 

@@ -1,10 +1,10 @@
 #pragma once
 // Writing a render: the radiance as linear OpenEXR RGBA (half by default, float on request; no
-// exposure applied; alpha and premultiplied colour as Film::alpha says), a display-referred PNG beside
-// it (RGBA with straight alpha for a transparent background), and optional AOVs. They are written as one set: every
-// file is encoded and written to its temporary first, and only when all are complete are they renamed
-// into place (base/atomic_file.h), so a failure leaves no new file and never an EXR that does not
-// match its PNG.
+// exposure applied; alpha and premultiplied colour as Film::alpha says), with the AOVs as layers of
+// the same file when asked for, and a display-referred PNG beside it (RGBA with straight alpha for a
+// transparent background). The two are written as one set: each is encoded and written to its
+// temporary first, and only when both are complete are they renamed into place
+// (base/atomic_file.h), so a failure leaves no new file and never an EXR that does not match its PNG.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -21,10 +21,11 @@ struct OutputOptions {
   float exposure = 0.0f;      // stops, PNG only
   bool transparent = false;   // the PNG has alpha (the render's background was not drawn)
   std::string display, view;  // the PNG's OCIO display and view; empty: the config's defaults
-  bool aovs = false;          // <stem>.albedo.exr, .normal.exr, .depth.exr, .level.exr
+  // Layers of the EXR: albedo.R/G/B, N.X/Y/Z (the shading normal), Z (depth, float) and mip_level.X.
+  bool aovs = false;
 };
 
-// Every file write_outputs writes: the EXR, the PNG, then the AOVs.
+// Every file write_outputs writes: the EXR and the PNG.
 std::vector<std::filesystem::path> output_paths(const OutputOptions& options);
 
 // Before rendering: each output's folder exists (created if missing) and takes a new file, no output

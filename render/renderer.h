@@ -24,10 +24,10 @@ struct Film {
   std::vector<glm::vec3> albedo_sum, normal_sum;
   std::vector<float> depth_sum, level_sum;
 
-  // What one pixel costs while rendering: the sums above, plus the images written at the end (RGBA
-  // radiance and its display image).
+  // What one pixel costs while rendering: the sums above, plus the images written at the end (the
+  // EXR's 12 channels with its AOV layers, the display image's 4).
   static constexpr std::uint64_t kBytesPerPixel = sizeof(glm::dvec3) + 2 * sizeof(std::uint32_t) + 2 * sizeof(glm::vec3) +
-                                                  2 * sizeof(float) + 2 * 4 * sizeof(float);
+                                                  2 * sizeof(float) + (12 + 4) * sizeof(float);
 
   Film(int w, int h);
   // Means per pixel (zero where no sample landed): RGB radiance; alpha, the share of opaque samples

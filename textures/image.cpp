@@ -6,6 +6,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cctype>
 #include <cstdio>
@@ -275,6 +276,24 @@ Image read_image(const std::filesystem::path& path, PixelFormat* stored_format) 
   auto in = OIIO::ImageInput::open(where, &straight_alpha_config());
   if (!in) throw input_error(where, "cannot read image: " + reason(OIIO::geterror(), "unrecognized format"));
   return read_opened(*in, where, stored_format);
+}
+
+Image read_image_channels(const std::filesystem::path& path, const std::vector<std::string>& names) {
+  const Image all = read_image(path);  // every check of a file read, and its channels in the order of its spec
+  auto in = OIIO::ImageInput::open(path.string(), &straight_alpha_config());
+  if (!in) throw input_error(path.string(), "cannot read image: " + reason(OIIO::geterror(), "unrecognized format"));
+  const std::vector<std::string> have = in->spec().channelnames;
+  in->close();
+  Image out(all.width, all.height, int(names.size()));
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    const auto at = std::find(have.begin(), have.end(), names[k]);
+    if (at == have.end() || int(at - have.begin()) >= all.channels)
+      throw input_error(path.string(), "has no channel \"" + names[k] + "\"");
+    const std::size_t c = std::size_t(at - have.begin());
+    for (std::size_t p = 0; p < std::size_t(all.width) * all.height; ++p)
+      out.pixels[p * names.size() + k] = all.pixels[p * std::size_t(all.channels) + c];
+  }
+  return out;
 }
 
 Image read_image_from_memory(std::span<const std::byte> bytes, std::string_view mime_type, const std::string& name) {

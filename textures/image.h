@@ -30,6 +30,10 @@ Image read_image(const std::filesystem::path& path);
 
 enum class PixelFormat { uint8, uint16, half, float32 };
 
+// The channels of an image file named `names`, in that order: e.g. {"N.X", "N.Y", "N.Z"}, a layer of
+// a render's EXR. Throws svbrdf::Error naming the file and the channel when one is missing.
+Image read_image_channels(const std::filesystem::path& path, const std::vector<std::string>& names);
+
 // read_image that also reports how the file stores its values (other integer types report uint16
 // or float32, whichever holds them exactly; other float types float32).
 Image read_image(const std::filesystem::path& path, PixelFormat* stored_format);

@@ -61,9 +61,9 @@ TEST(OutputContract, AFailedWriteIsReportedAndReplacesNothing) {
   EXPECT_TRUE(test::temp_files(dir.path()).empty());
 }
 
-// The disk fills while a later file of the set is written (the depth AOV, the largest here): the EXR
-// and the PNG are already whole in their temporaries, yet neither replaces its previous file, and no
-// temporary stays. Renaming each file as soon as it was written would leave a new EXR by an old PNG.
+// The disk fills while the later file of the set is written (the EXR with its AOV layers, after the
+// PNG): the PNG is already whole in its temporary, yet neither replaces its previous file, and no
+// temporary stays. Renaming each file as soon as it was written would leave a new PNG by an old EXR.
 TEST(OutputContract, AFailedWriteOfALaterFileOfTheSetReplacesNone) {
   test::TempDir dir;
   const std::string q = scene(dir);
@@ -73,24 +73,19 @@ TEST(OutputContract, AFailedWriteOfALaterFileOfTheSetReplacesNone) {
   };
   const test::RenderRun first = test::render(args("1,1,1"), dir.path());
   ASSERT_TRUE(first.end.exited && first.end.code == 0) << first.err;
-  const char* const names[] = {"s.exr", "s.png", "s.albedo.exr", "s.normal.exr", "s.depth.exr", "s.level.exr"};
+  const char* const names[] = {"s.exr", "s.png"};
   std::vector<std::string> previous;
-  std::uintmax_t before_depth = 0;
-  for (const char* name : names) {
-    previous.push_back(testing::slurp(dir.path() / name));
-    if (std::string(name) != "s.depth.exr" && std::string(name) != "s.level.exr")
-      before_depth = std::max(before_depth, fs::file_size(dir.path() / name));
-  }
-  // The limit in blocks of 512 bytes: the files staged before the depth AOV fit, the depth AOV not.
-  const int blocks = static_cast<int>((before_depth + 511) / 512);
-  ASSERT_GT(fs::file_size(dir.path() / "s.depth.exr"), std::uintmax_t(blocks) * 512 + 256)
-      << "the depth AOV must be the first file of the set that does not fit";
+  for (const char* name : names) previous.push_back(testing::slurp(dir.path() / name));
+  // The limit in blocks of 512 bytes: the PNG fits, with 1 KiB to spare for the second image's, the
+  // EXR not.
+  const int blocks = static_cast<int>((fs::file_size(dir.path() / "s.png") + 511) / 512) + 2;
+  ASSERT_GT(fs::file_size(exr), std::uintmax_t(blocks) * 512 + 256) << "the EXR must be the file of the set that does not fit";
 
   const test::RenderRun r = render_with_file_limit(blocks, args("0.5,0.5,0.5"), dir.path());  // another image
   ASSERT_TRUE(r.end.exited) << "killed by signal " << r.end.signal;
   EXPECT_EQ(r.end.code, 1) << r.err;
   EXPECT_EQ(test::line_count(r.err), 1) << r.err;
-  EXPECT_NE(r.err.find("s.depth.exr"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("s.exr"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("File too large"), std::string::npos) << r.err;
   for (std::size_t i = 0; i < previous.size(); ++i)
     EXPECT_EQ(testing::slurp(dir.path() / names[i]), previous[i]) << names[i] << " was replaced by a failed run";
@@ -136,8 +131,7 @@ TEST(OutputContract, TheTemporariesOfAKilledRunAreRemoved) {
   test::TempDir dir;
   const std::string q = scene(dir);
   const std::string dead = std::to_string(testing::dead_pid()), alive = std::to_string(::getpid());
-  const fs::path stale[] = {dir.path() / (".o.tmp" + dead + ".exr"), dir.path() / (".o.tmp" + dead + ".png"),
-                            dir.path() / (".o.albedo.tmp" + dead + ".exr")};
+  const fs::path stale[] = {dir.path() / (".o.tmp" + dead + ".exr"), dir.path() / (".o.tmp" + dead + ".png")};
   // Another run's temporary (its process lives) and a file of another name stay.
   const fs::path kept[] = {dir.path() / (".o.tmp" + alive + ".exr"), dir.path() / (".x.tmp" + dead + ".exr"),
                            dir.path() / (".o.tmp" + dead + ".exr.keep")};
@@ -148,7 +142,7 @@ TEST(OutputContract, TheTemporariesOfAKilledRunAreRemoved) {
   ASSERT_TRUE(r.end.exited && r.end.code == 0) << r.err;
   for (const fs::path& p : stale) EXPECT_FALSE(fs::exists(p)) << p;
   for (const fs::path& p : kept) EXPECT_TRUE(fs::exists(p)) << p;
-  EXPECT_TRUE(fs::exists(dir.path() / "o.albedo.exr"));
+  EXPECT_TRUE(fs::exists(dir.path() / "o.exr"));
 }
 
 // SIGKILL while the outputs are written: nothing of the program runs (no handler, no clean-up), yet
@@ -158,7 +152,7 @@ TEST(OutputContract, ASigkillWhileWritingLeavesEachFileWholeAndTheNextRunRemoves
   test::TempDir dir;
   const std::string q = scene(dir);
   const fs::path exr = dir.path() / "k.exr";
-  // Float EXRs and the four AOVs: the writes last long enough (tens of milliseconds) to be caught.
+  // A float EXR with its four AOV layers: the writes last long enough (tens of milliseconds) to be caught.
   const auto args = [&](const std::string& res) {
     return std::vector<std::string>{q, "--float", "--aov", "--res", res, "--spp", "1", "-o", exr.string()};
   };
@@ -169,7 +163,7 @@ TEST(OutputContract, ASigkillWhileWritingLeavesEachFileWholeAndTheNextRunRemoves
   std::vector<std::pair<fs::path, std::string>> previous;
   for (const auto& e : fs::directory_iterator(dir.path()))
     if (e.path().filename().string().rfind("k.", 0) == 0) previous.emplace_back(e.path(), testing::slurp(e.path()));
-  ASSERT_EQ(previous.size(), 6u) << "the EXR, the PNG and four AOVs";
+  ASSERT_EQ(previous.size(), 2u) << "the EXR and the PNG";
 
   std::vector<std::string> again = args("512x512");
   again.insert(again.begin(), test::kRenderProgram);
