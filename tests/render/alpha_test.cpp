@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <string>
 
@@ -78,17 +77,6 @@ TEST(Alpha, AgainstATransparentBackgroundAlphaIsTheCoverage) {
   EXPECT_EQ(edges, 2 * 16 + 2 * 16);  // four edges of 16 pixels each, the corners among them
 }
 
-std::string oiiotool_info(const fs::path& path) {
-  const std::string cmd = "oiiotool --info -v '" + path.string() + "' 2>&1";
-  FILE* p = ::popen(cmd.c_str(), "r");
-  if (!p) return "";
-  std::string out;
-  char buf[4096];
-  while (std::fgets(buf, sizeof buf, p)) out += buf;
-  ::pclose(p);
-  return out;
-}
-
 // svbrdf-render --transparent: the EXR is RGBA (OpenImageIO's tools see its alpha channel) with
 // alpha 0 where the quad is not, and the PNG has straight alpha.
 TEST(Alpha, TheProgramWritesRgbaAndATransparentPng) {
@@ -97,7 +85,7 @@ TEST(Alpha, TheProgramWritesRgbaAndATransparentPng) {
   const fs::path exr = dir.path() / "t.exr";
   const test::RenderRun r = test::render({q, "-q", "--transparent", "--res", "24x16", "--spp", "4", "-o", exr.string()}, dir.path());
   ASSERT_TRUE(r.end.exited && r.end.code == 0) << r.err;
-  const std::string info = oiiotool_info(exr);
+  const std::string info = test::oiiotool_info(exr, dir.path());
   if (info.find("not found") != std::string::npos) GTEST_SKIP() << "oiiotool is not installed";
   EXPECT_NE(info.find("channel list: R, G, B, A"), std::string::npos) << info;
   const Image im = read_image(exr), png = read_image(fs::path(exr).replace_extension(".png"));

@@ -2,7 +2,6 @@
 // OpenImageIO's tools read; no other file is written.
 #include <gtest/gtest.h>
 
-#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -17,17 +16,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string oiiotool_info(const fs::path& path) {
-  const std::string cmd = "oiiotool --info -v '" + path.string() + "' 2>&1";
-  FILE* p = ::popen(cmd.c_str(), "r");
-  if (!p) return "";
-  std::string out;
-  char buf[4096];
-  while (std::fgets(buf, sizeof buf, p)) out += buf;
-  ::pclose(p);
-  return out;
-}
-
 TEST(ExrLayers, TheAovsAreLayersOfTheOneExr) {
   test::TempDir dir;
   const std::string q = dir.write("q.gltf", test::GltfQuad().json()).string();
@@ -39,7 +27,7 @@ TEST(ExrLayers, TheAovsAreLayersOfTheOneExr) {
   for (const auto& e : fs::directory_iterator(out)) files.push_back(e.path().filename().string());
   EXPECT_EQ(files.size(), 2u) << "the EXR and the PNG, nothing else";
 
-  const std::string info = oiiotool_info(exr);
+  const std::string info = test::oiiotool_info(exr, dir.path());
   if (info.find("not found") != std::string::npos) GTEST_SKIP() << "oiiotool is not installed";
   EXPECT_NE(info.find("12 channel"), std::string::npos) << info;
   for (const char* name : {"R", "G", "B", "A", "albedo.R", "albedo.G", "albedo.B", "N.X", "N.Y", "N.Z", "Z", "mip_level.X"})

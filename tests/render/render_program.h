@@ -63,4 +63,11 @@ inline std::vector<std::string> temp_files(const std::filesystem::path& dir) {
   return found;
 }
 
+// What `oiiotool --info -v` says of `path`, stdout and stderr together, run in `dir` ("not found" in
+// it: OpenImageIO's tools are not installed).
+inline std::string oiiotool_info(const std::filesystem::path& path, const std::filesystem::path& dir) {
+  const testing::CommandResult r = testing::run_command("oiiotool --info -v '" + path.string() + "'", dir);
+  return r.out + r.err;
+}
+
 }  // namespace svbrdf::test
