@@ -32,9 +32,10 @@ BrdfLevel level_zero(Extent e) {
 constexpr int kUnionCap = 9 * kMaxLobes;
 
 // The union of texel (i, j)'s children's lobes, weights scaled by the children's area shares; the
-// children are `fine`'s texels, or at level 1 the level-0 texels m.
+// children are `fine`'s texels, or at level 1 the level-0 texels m (their base lobes, or with `coat`
+// their coat lobes).
 int gather_children(Extent level0, int level, int i, int j, const BrdfLevel& fine, const MaterialTexels& m,
-                    std::array<Lobe, kUnionCap>& out) {
+                    std::array<Lobe, kUnionCap>& out, bool coat = false) {
   const Span cx = child_span(level0.width, level, i), cy = child_span(level0.height, level, j);
   const double total = static_cast<double>(level0_span(level0.width, level, i).size()) *
                        level0_span(level0.height, level, j).size();
@@ -44,9 +45,15 @@ int gather_children(Extent level0, int level, int i, int j, const BrdfLevel& fin
       const double share = static_cast<double>(level0_span(level0.width, level - 1, x).size()) *
                            level0_span(level0.height, level - 1, y).size() / total;
       const std::size_t t = static_cast<std::size_t>(y) * fine.extent.width + x;
+      if (level == 1 && coat) {
+        out[static_cast<std::size_t>(n++)] = coat_lobe(m.coat_layer(t), static_cast<float>(share));
+        continue;
+      }
       if (level == 1) {
-        out[static_cast<std::size_t>(n++)] = lobe_from_texel(m.base_color[t], m.metallic[t], m.roughness[t], m.normal[t],
-                                                             static_cast<float>(share), m.specular_layer(t));
+        Lobe& l = out[static_cast<std::size_t>(n++)];
+        l = lobe_from_texel(m.base_color[t], m.metallic[t], m.roughness[t], m.normal[t], static_cast<float>(share),
+                            m.specular_layer(t));
+        if (m.has_coat()) l.coat = std::clamp(m.coat_layer(t).weight, 0.0f, 1.0f);
         continue;
       }
       for (Lobe l : fine.texel_lobes(t)) {
@@ -71,9 +78,11 @@ double table_erel(const BrdfTable& approx, const BrdfTable& ref) {
 }
 
 BrdfLevel level_from_below(Extent level0, int level, const BrdfLevel& fine, const MaterialTexels& m,
-                           const BrdfBuildOptions& options, BrdfLevelStats* stats) {
+                           const BrdfBuildOptions& options, BrdfLevelStats* stats, bool coat = false) {
   const Extent e = level_extent(level0, level);
-  const int max_lobes = std::clamp(options.reduction.max_lobes, 1, kMaxLobes);
+  ReductionOptions reduction = options.reduction;
+  if (coat) reduction.max_lobes = options.coat_lobes;
+  const int max_lobes = std::clamp(reduction.max_lobes, 1, kMaxLobes);
   BrdfLevel out;
   const std::size_t texels = static_cast<std::size_t>(e.width) * e.height;
   out.reset(e, texels);
@@ -87,14 +96,15 @@ BrdfLevel level_from_below(Extent level0, int level, const BrdfLevel& fine, cons
     packed.reserve(static_cast<std::size_t>(e.width) * kBandRows * 2);
     for (int j = b * kBandRows; j < std::min(e.height, (b + 1) * kBandRows); ++j)
       for (int i = 0; i < e.width; ++i) {
-        const int n = gather_children(level0, level, i, j, fine, m, buf);
-        const int reduced = reduce_lobes(buf, n, options.reduction);
+        const int n = gather_children(level0, level, i, j, fine, m, buf, coat);
+        const int reduced = reduce_lobes(buf, n, reduction);
         const std::size_t t = static_cast<std::size_t>(j) * e.width + i;
         int kept = 0;
         for (int k = 0; k < std::min(reduced, max_lobes); ++k) {
           Lobe& l = buf[static_cast<std::size_t>(k)];
           if (!options.tint) l.f0_tint = glm::vec3(0.0f);
-          round_to_stored(l);
+          if (coat) round_coat_lobe_to_stored(l);
+          else round_to_stored(l);
           // A lobe below a half float's smallest weight (6e-8 of the texel) is dropped: the file
           // could not tell it from an empty slot.
           if (l.weight > 0) buf[static_cast<std::size_t>(kept++)] = l;
@@ -120,7 +130,7 @@ BrdfLevel level_from_below(Extent level0, int level, const BrdfLevel& fine, cons
   double sum = 0;
   for (std::uint8_t c : out.counts) slots = std::max<int>(slots, c), sum += c;
   out.slots = slots;
-  if (stats) {
+  if (stats && !coat) {
     stats->mean_lobes = sum / static_cast<double>(texels);
     stats->max_lobes = slots;
     // The reduction error measured against the exact union, on a fixed random sample of texels.
@@ -230,6 +240,12 @@ BrdfPyramid BrdfPyramid::build(const MaterialTexels& m, const BrdfBuildOptions& 
     p.levels_.push_back(level_from_below(p.level0_, level, p.levels_.back(), m, options,
                                          stats ? &(*stats)[static_cast<std::size_t>(level)] : nullptr));
   if (options.radial_correction && n > kFirstCorrectedLevel) p.grid_ = build_corrections(m, p.levels_, options.recentre);
+  if (m.has_coat()) {
+    // The coat lobes, reduced as the base's are (level 0's are the texels').
+    p.coat_.push_back(level_zero(p.level0_));
+    for (int level = 1; level < n; ++level)
+      p.coat_.push_back(level_from_below(p.level0_, level, p.coat_.back(), m, options, nullptr, true));
+  }
   return p;
 }
 
@@ -237,7 +253,12 @@ int BrdfPyramid::bytes_per_texel(int level) const {
   const BrdfLevel& l = this->level(level);
   return l.slots * (kBytesPerLobe + (l.specular_layer() ? kBytesPerSpecularLayer : 0) +
                     (l.tint_layer() ? kBytesPerTintLayer : 0)) +
-         (l.correction.empty() ? 0 : kBytesPerCorrection);
+         (l.correction.empty() ? 0 : kBytesPerCorrection) + coat_bytes_per_texel(level);
+}
+
+int BrdfPyramid::coat_bytes_per_texel(int level) const {
+  if (coat_.empty() || level == 0) return 0;
+  return coat_[static_cast<std::size_t>(level)].slots * kBytesPerCoatLobe + this->level(level).slots * kBytesPerCoatShare;
 }
 
 BrdfPyramid BrdfPyramid::from_levels(const MaterialTexels& m, int max_lobes, std::vector<BrdfLevel> coarse,

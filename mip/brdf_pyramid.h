@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "mip/cache_lines.h"
+#include "mip/coat_layer.h"
 #include "mip/lobe.h"
 #include "mip/lobe_reduction.h"
 #include "mip/pyramid_shape.h"
@@ -81,6 +82,16 @@ struct BrdfLevel {
   }
 };
 
+// The coat layer (coat_layer.h), for a material with KHR_materials_clearcoat: per level its coat
+// lobes, stored as the base's are (a BrdfLevel; a texel without coat has none), and each base lobe's
+// coat share (Lobe::coat). At most kCoatLobes coat lobes a texel (BrdfBuildOptions::coat_lobes); the
+// MIP file stores per coat slot the weight, the normal's code and length deficit, α, the shape code and
+// the skirt (stored_lobe.h's lobe without its colours, whose F0 = 0.04 and F90 = 1 the extension fixes),
+// and per base slot the coat share as a half.
+inline constexpr int kCoatLobes = kDefaultLobes;
+inline constexpr int kBytesPerCoatLobe = 4 + 5 * 2;
+inline constexpr int kBytesPerCoatShare = 2;
+
 // What the build measured, per level: the mean and max lobe count, and the reduction error (e_rel of
 // the reduced mixture against the exact union of its children's lobes, on the metric's 4225 pairs)
 // over a sample of texels.
@@ -101,6 +112,8 @@ struct BrdfBuildOptions {
   // (glTF's COLOR_0; lobe.h tinted) at kBytesPerTintLayer a stored lobe. Without it f0_tint is 0 and
   // the pyramid is not tintable().
   bool tint = false;
+  // The coat lobes a texel keeps at most (a material with a clear coat), up to kMaxLobes.
+  int coat_lobes = kCoatLobes;
 };
 
 class BrdfPyramid {
@@ -141,8 +154,10 @@ class BrdfPyramid {
     __builtin_prefetch(l.counts.data() + t);
     prefetch_reads(l, t);
   }
-  // Bytes per texel of a level as the MIP file stores it (fixed slots; memory holds fewer).
+  // Bytes per texel of a level as the MIP file stores it (fixed slots; memory holds fewer), the coat's
+  // included; and the coat's alone.
   int bytes_per_texel(int level) const;
+  int coat_bytes_per_texel(int level) const;
   // The radial correction of texel (i, j) of `level` ≥ 0, or null (below kFirstCorrectedLevel, level 0
   // included, or none built).
   const RadialCorrection* correction(int level, int i, int j) const {
@@ -151,6 +166,17 @@ class BrdfPyramid {
     return &l.correction[static_cast<std::size_t>(j) * l.extent.width + i];
   }
   const RadialGrid& radial_grid() const { return grid_; }
+
+  // Whether the material has a clear coat, and the coat of texel (i, j) of `level` ≥ 1 (a view into the
+  // pyramid, valid while it lives; no lobes for a material without a coat).
+  bool has_coat() const { return !coat_.empty(); }
+  CoatTexel coat(int level, int i, int j) const {
+    assert(level >= 1);
+    if (coat_.empty()) return {};
+    const BrdfLevel& c = coat_[static_cast<std::size_t>(level)];
+    return {c.texel_lobes(static_cast<std::size_t>(j) * c.extent.width + i)};
+  }
+  const BrdfLevel& coat_level(int level) const { return coat_[static_cast<std::size_t>(level)]; }
 
  private:
   // Texel t's single slot, its index into the packed lobes and its radial correction.
@@ -165,6 +191,7 @@ class BrdfPyramid {
   bool tintable_ = false;
   RadialGrid grid_{};
   std::vector<BrdfLevel> levels_;
+  std::vector<BrdfLevel> coat_;  // the coat lobes per level (level 0's empty), or none without a coat
 };
 
 }  // namespace svbrdf

@@ -13,8 +13,13 @@ glm::dvec3 ExactReference::eval(int level, int i, int j, const glm::dvec3& wi, c
       tbb::blocked_range<int>(c.rows.begin, c.rows.end), glm::dvec3(0),
       [&](const tbb::blocked_range<int>& r, glm::dvec3 acc) {
         for (int y = r.begin(); y < r.end(); ++y)
-          for (int x = c.columns.begin; x < c.columns.end; ++x)
-            acc += lobe_eval<double>(level0_lobe(texels_, texels_.index(x, y)), p);
+          for (int x = c.columns.begin; x < c.columns.end; ++x) {
+            const std::size_t k = texels_.index(x, y);
+            Lobe scratch;
+            const Lobe base = level0_lobe(texels_, k);
+            const glm::dvec3 f = lobe_eval<double>(base, p);
+            acc += coated_eval(f, double(base.coat) * f, {&base, 1}, level0_coat(texels_, k, scratch), p);
+          }
         return acc;
       },
       [](const glm::dvec3& a, const glm::dvec3& b) { return a + b; });
@@ -26,8 +31,12 @@ BrdfTable ExactReference::table(int level, int i, int j) const {
   const double scale = 1.0 / static_cast<double>(c.count());
   auto rows = [&](int y0, int y1, BrdfTable& acc) {
     for (int y = y0; y < y1; ++y)
-      for (int x = c.columns.begin; x < c.columns.end; ++x)
-        accumulate_lobe_double(level0_lobe(texels_, texels_.index(x, y)), scale, acc);
+      for (int x = c.columns.begin; x < c.columns.end; ++x) {
+        const std::size_t k = texels_.index(x, y);
+        const Lobe base = level0_lobe(texels_, k);
+        Lobe scratch;
+        accumulate_coated_double({&base, 1}, level0_coat(texels_, k, scratch), scale, acc);
+      }
   };
   // A texel of a few rows is one task (the callers run many texels in parallel); a coarse texel
   // splits its rows among the threads, each with its own table.

@@ -1,10 +1,12 @@
 #pragma once
 // The exact reference F_L,ij of ../shared/spec/brdf-mip.md ("The ground truth at a coarse level"): the
 // mean of f_eff over the level-0 texels that texel (i, j) of level L covers, by brute force, in double
-// precision, parallel over the covered rows (oneTBB). Usable at any level; slow at coarse levels by
+// precision, parallel over the covered rows (oneTBB). A coated material's texels are the layered
+// f_eff of coat_layer.h. Usable at any level; slow at coarse levels by
 // nature (every covered texel is evaluated).
 #include <glm/glm.hpp>
 
+#include "mip/coat_layer.h"
 #include "mip/direction_grid.h"
 #include "mip/lobe.h"
 #include "mip/pyramid_shape.h"
@@ -14,7 +16,16 @@ namespace svbrdf {
 
 // The level-0 lobe of texel k of a material (exactly f_eff of that texel).
 inline Lobe level0_lobe(const MaterialTexels& m, std::size_t k) {
-  return lobe_from_texel(m.base_color[k], m.metallic[k], m.roughness[k], m.normal[k], 1.0f, m.specular_layer(k));
+  Lobe l = lobe_from_texel(m.base_color[k], m.metallic[k], m.roughness[k], m.normal[k], 1.0f, m.specular_layer(k));
+  if (m.has_coat()) l.coat = std::clamp(m.coat_layer(k).weight, 0.0f, 1.0f);
+  return l;
+}
+
+// The coat of level-0 texel k (coat_layer.h), its one coat lobe made into `scratch`; none for a
+// material without a coat.
+inline CoatTexel level0_coat(const MaterialTexels& m, std::size_t k, Lobe& scratch) {
+  if (!m.has_coat()) return {};
+  return level0_coat(m.coat_layer(k), scratch);
 }
 
 // The level-0 texels a texel of any level covers (power-of-two or not; pyramid_shape.h).

@@ -83,6 +83,18 @@ MaterialImages material_images(const MaterialDesc& d, const std::function<SlotIm
   in.specular_color_name = at + ".extensions.KHR_materials_specular.specularColorTexture";
   in.specular_color_factor = d.specular_color;
   in.ior = d.ior;
+  if (d.clearcoat > 0.0f) {
+    const std::string coat = at + ".extensions.KHR_materials_clearcoat.";
+    in.clearcoat = image(d.clearcoat_texture, false);
+    in.clearcoat_name = coat + "clearcoatTexture";
+    in.clearcoat_factor = d.clearcoat;
+    in.clearcoat_roughness = image(d.clearcoat_roughness_texture, false);
+    in.clearcoat_roughness_name = coat + "clearcoatRoughnessTexture";
+    in.clearcoat_roughness_factor = d.clearcoat_roughness;
+    in.clearcoat_normal = image(d.clearcoat_normal_texture, false);
+    in.clearcoat_normal_name = coat + "clearcoatNormalTexture";
+    in.clearcoat_normal_scale = d.clearcoat_normal_texture.scale;
+  }
   return in;
 }
 

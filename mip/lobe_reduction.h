@@ -4,7 +4,7 @@
 //
 // Merging two lobes keeps everything that averages linearly exact — the diffuse amplitude weight·ρ, the
 // weighted means of F0 and of the normals, unnormalized (so the lobes' diffuse response E[ρ·n]·wi is
-// kept) — and matches two moments of the specular shape (lobe.h): the tail coefficient A (far from the
+// kept), and of each lobe's coat share (coat_layer.h) — and matches two moments of the specular shape (lobe.h): the tail coefficient A (far from the
 // peak D ≈ A/(π·tan⁴θ·cos⁴θ); A is linear in the lobes, so it adds exactly) and the peak P (π·D at
 // the normal; each lobe's peak widened by its tilt to the merged normal, α² + γ·tan²θ, as LEAN mapping
 // composes slope variances, Olano & Baker 2010, before they add — blended with the union's exact D at

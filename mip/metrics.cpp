@@ -178,67 +178,95 @@ std::vector<LevelComparison> compare_levels(const MipData& mip, const CompareOpt
   return out;
 }
 
+namespace {
+
+// ∫ f(wo)·wo.z dwo of one lobe's term f, importance-sampled by the lobe's shape (directional_albedo).
+template <class F>
+glm::dvec3 lobe_albedo(const Lobe& l, const glm::dvec3& wi, int strata, const F& f_of) {
+  const glm::dvec3 n = glm::normalize(glm::dvec3(l.normal));
+  const Frame fr = Frame::from_normal(glm::vec3(n));
+  const glm::dvec3 s(fr.s), t(fr.t);
+  const LobeShape<double> shape = lobe_shape<double>(l);
+  const double a2 = shape.alpha2;
+  // Densities over wo: cosine about the geometric normal, and wo = reflect(wi) about h ~ D(h)·(n·h),
+  // D the lobe's own (lobe.h).
+  auto pdf_cos = [&](const glm::dvec3& wo) { return wo.z > 0 ? wo.z / kPiD : 0.0; };
+  auto pdf_spec = [&](const glm::dvec3& wo) {
+    const glm::dvec3 h = glm::normalize(wi + wo);
+    const double ch = glm::dot(n, h), oh = glm::dot(wo, h);
+    if (ch <= 0 || oh <= 0) return 0.0;
+    return lobe_d(shape, ch, glm::cross(n, h)) * ch / (4 * oh);
+  };
+  const int m = strata * strata;
+  glm::dvec3 sum(0);
+  for (int technique = 0; technique < 2; ++technique)
+    for (int k = 0; k < m; ++k) {
+      // A fixed jittered grid (Rng with a fixed seed), so the quadrature is deterministic.
+      Rng rng(mix64(static_cast<std::uint64_t>(k) * 2 + technique), 11);
+      const double u1 = ((k % strata) + rng.next_double()) / strata, u2 = ((k / strata) + rng.next_double()) / strata;
+      glm::dvec3 wo;
+      if (technique == 0) {
+        const double r = std::sqrt(u1), phi = 2 * kPiD * u2;
+        wo = glm::dvec3(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1 - u1)));
+      } else {
+        // t = tan²θh with density D(h)·cosθh: GGX t = α²·u/(1 − u) (Walter et al. 2007, eq. 35/36),
+        // Beckmann t = −α²·ln(1 − u) (eq. 28), chosen in the lobe's shares; a roughness mixture's
+        // band by inverting its CDF ln(h(l + t)/(l(h + t)))/ln(h/l) = u, its atoms as GGX.
+        double tan2;
+        if (shape.alpha2_hi > 0) {
+          const double lo = a2, hi = shape.alpha2_hi;
+          if (rng.next_double() >= shape.ggx) {
+            tan2 = lo * u1 / std::max(1e-300, 1 - u1);
+          } else if (shape.two_point) {
+            tan2 = hi * u1 / std::max(1e-300, 1 - u1);
+          } else {
+            const double r = std::pow(hi / lo, u1);
+            tan2 = hi * lo * (r - 1) / std::max(1e-300, hi - r * lo);
+          }
+        } else if (rng.next_double() >= shape.ggx) {
+          tan2 = -a2 * std::log1p(-std::min(u1, 1 - 1e-16));
+        } else {
+          tan2 = a2 * u1 / std::max(1e-300, 1 - u1);
+        }
+        const double ch = 1 / std::sqrt(1 + tan2), sh = std::sqrt(std::max(0.0, 1 - ch * ch)), phi = 2 * kPiD * u2;
+        const glm::dvec3 h = sh * std::cos(phi) * s + sh * std::sin(phi) * t + ch * n;
+        wo = 2 * glm::dot(wi, h) * h - wi;
+      }
+      if (!(wo.z > 0)) continue;
+      const double q = m * pdf_cos(wo) + m * pdf_spec(wo);
+      if (!(q > 0)) continue;
+      sum += f_of(pair_terms<double>(wi, wo)) * wo.z / q;
+    }
+  return sum;
+}
+
+}  // namespace
+
 glm::dvec3 directional_albedo(std::span<const Lobe> lobes, const glm::dvec3& wi, int strata) {
   glm::dvec3 total(0);
-  for (const Lobe& l : lobes) {
-    if (!(l.weight > 0)) continue;
-    const glm::dvec3 n = glm::normalize(glm::dvec3(l.normal));
-    const Frame fr = Frame::from_normal(glm::vec3(n));
-    const glm::dvec3 s(fr.s), t(fr.t);
-    const LobeShape<double> shape = lobe_shape<double>(l);
-    const double a2 = shape.alpha2;
-    // Densities over wo: cosine about the geometric normal, and wo = reflect(wi) about h ~ D(h)·(n·h),
-    // D the lobe's own (lobe.h).
-    auto pdf_cos = [&](const glm::dvec3& wo) { return wo.z > 0 ? wo.z / kPiD : 0.0; };
-    auto pdf_spec = [&](const glm::dvec3& wo) {
-      const glm::dvec3 h = glm::normalize(wi + wo);
-      const double ch = glm::dot(n, h), oh = glm::dot(wo, h);
-      if (ch <= 0 || oh <= 0) return 0.0;
-      return lobe_d(shape, ch, glm::cross(n, h)) * ch / (4 * oh);
-    };
-    const int m = strata * strata;
-    glm::dvec3 sum(0);
-    for (int technique = 0; technique < 2; ++technique)
-      for (int k = 0; k < m; ++k) {
-        // A fixed jittered grid (Rng with a fixed seed), so the quadrature is deterministic.
-        Rng rng(mix64(static_cast<std::uint64_t>(k) * 2 + technique), 11);
-        const double u1 = ((k % strata) + rng.next_double()) / strata, u2 = ((k / strata) + rng.next_double()) / strata;
-        glm::dvec3 wo;
-        if (technique == 0) {
-          const double r = std::sqrt(u1), phi = 2 * kPiD * u2;
-          wo = glm::dvec3(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1 - u1)));
-        } else {
-          // t = tan²θh with density D(h)·cosθh: GGX t = α²·u/(1 − u) (Walter et al. 2007, eq. 35/36),
-          // Beckmann t = −α²·ln(1 − u) (eq. 28), chosen in the lobe's shares; a roughness mixture's
-          // band by inverting its CDF ln(h(l + t)/(l(h + t)))/ln(h/l) = u, its atoms as GGX.
-          double tan2;
-          if (shape.alpha2_hi > 0) {
-            const double lo = a2, hi = shape.alpha2_hi;
-            if (rng.next_double() >= shape.ggx) {
-              tan2 = lo * u1 / std::max(1e-300, 1 - u1);
-            } else if (shape.two_point) {
-              tan2 = hi * u1 / std::max(1e-300, 1 - u1);
-            } else {
-              const double r = std::pow(hi / lo, u1);
-              tan2 = hi * lo * (r - 1) / std::max(1e-300, hi - r * lo);
-            }
-          } else if (rng.next_double() >= shape.ggx) {
-            tan2 = -a2 * std::log1p(-std::min(u1, 1 - 1e-16));
-          } else {
-            tan2 = a2 * u1 / std::max(1e-300, 1 - u1);
-          }
-          const double ch = 1 / std::sqrt(1 + tan2), sh = std::sqrt(std::max(0.0, 1 - ch * ch)), phi = 2 * kPiD * u2;
-          const glm::dvec3 h = sh * std::cos(phi) * s + sh * std::sin(phi) * t + ch * n;
-          wo = 2 * glm::dot(wi, h) * h - wi;
-        }
-        if (!(wo.z > 0)) continue;
-        const double q = m * pdf_cos(wo) + m * pdf_spec(wo);
-        if (!(q > 0)) continue;
-        const glm::dvec3 f = lobe_eval<double>(l, pair_terms<double>(wi, wo));
-        sum += f * wo.z / q;
-      }
-    total += sum;
-  }
+  for (const Lobe& l : lobes)
+    if (l.weight > 0) total += lobe_albedo(l, wi, strata, [&](const PairTerms<double>& p) { return lobe_eval<double>(l, p); });
+  return total;
+}
+
+glm::dvec3 directional_albedo(std::span<const Lobe> base, const CoatTexel& coat, const glm::dvec3& wi, int strata) {
+  if (!coat.present()) return directional_albedo(base, wi, strata);
+  glm::dvec3 total(0);
+  for (const Lobe& l : base)
+    if (l.weight > 0)
+      total += lobe_albedo(l, wi, strata, [&](const PairTerms<double>& p) {
+        return (1.0 - l.coat * coat_fresnel(coat, p.wo)) * lobe_eval<double>(l, p);
+      });
+  std::array<LobeShape<double>, kMaxLobes> shapes;
+  const std::size_t n = std::min<std::size_t>(base.size(), kMaxLobes);
+  for (std::size_t k = 0; k < n; ++k) shapes[k] = lobe_shape<double>(base[k], false);
+  for (const Lobe& l : coat.lobes)
+    if (l.weight > 0) {
+      const LobeShape<double> s = lobe_shape<double>(l);
+      total += lobe_albedo(l, wi, strata, [&](const PairTerms<double>& p) {
+        return coat_cosine(base.first(n), shapes.data(), p) * coat_lobe_eval(l, s, p);
+      });
+    }
   return total;
 }
 

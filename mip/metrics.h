@@ -59,5 +59,8 @@ std::vector<int> measured_texels(Extent extent, int subset, std::uint64_t seed, 
 // ∫ f(wi, wo)·wo.z dwo of a set of lobes (the reflected flux per unit incident flux), by
 // multiple-importance quadrature per lobe (cosine and the lobe's GGX half vectors, stratified).
 glm::dvec3 directional_albedo(std::span<const Lobe> lobes, const glm::dvec3& wi, int strata = 32);
+// The same of a coated texel (coat_layer.h): its base lobes under the coat's attenuation, and its coat
+// lobes, each sampled by its own shape.
+glm::dvec3 directional_albedo(std::span<const Lobe> base, const CoatTexel& coat, const glm::dvec3& wi, int strata = 32);
 
 }  // namespace svbrdf

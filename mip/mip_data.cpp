@@ -43,21 +43,42 @@ void accumulate_brdf_texel(const MipData& mip, int level, int i, int j, double w
       per_pair[static_cast<std::size_t>(p)] = correction_at(*c, mip.brdf.radial_grid(), g.pair_f(p).h);
     scales = per_pair.data();
   }
-  Lobe scratch;
-  for (const Lobe& l : brdf_texel(mip, level, i, j, scratch))
-    accumulate_lobe_float(tint == glm::vec3(1.0f) ? l : tinted(l, tint), weight, acc, scales);
+  Lobe scratch, coat_scratch;
+  const CoatTexel coat = brdf_coat(mip, level, i, j, coat_scratch);
+  const std::span<const Lobe> lobes = brdf_texel(mip, level, i, j, scratch);
+  if (!coat.present()) {
+    for (const Lobe& l : lobes) accumulate_lobe_float(tint == glm::vec3(1.0f) ? l : tinted(l, tint), weight, acc, scales);
+    return;
+  }
+  // A coated texel's base goes through tables of its own (plain and weighted by each lobe's coat),
+  // attenuated per wo with the coat added (coat_layer.h).
+  static thread_local BrdfTable base, base_coated;
+  base.assign(DirectionGrid::kPairs, glm::dvec3(0));
+  base_coated.assign(DirectionGrid::kPairs, glm::dvec3(0));
+  for (const Lobe& l : lobes) {
+    const Lobe t = tint == glm::vec3(1.0f) ? l : tinted(l, tint);
+    accumulate_lobe_float(t, 1.0, base, scales);
+    if (l.coat > 0) accumulate_lobe_float(t, l.coat, base_coated, scales);
+  }
+  accumulate_coat<float>(lobes, coat, base, base_coated, weight, acc);
 }
 
 glm::dvec3 texel_eval(const MipData& mip, TextureFilter filter, int level, int i, int j, const glm::dvec3& wi,
                       const glm::dvec3& wo) {
   const PairTerms<float> p = pair_terms<float>(glm::vec3(wi), glm::vec3(wo));
   if (filter == TextureFilter::brdf) {
-    glm::dvec3 sum(0);
     Lobe scratch;
     const RadialCorrection* c = mip.brdf.correction(level, i, j);
     const float k = c ? correction_at(*c, mip.brdf.radial_grid(), p.h) : 1.0f;
-    for (const Lobe& l : brdf_texel(mip, level, i, j, scratch)) sum += glm::dvec3(lobe_eval<float>(l, lobe_shape<float>(l), p, k));
-    return sum;
+    glm::vec3 base(0.0f), base_coated(0.0f);
+    const std::span<const Lobe> lobes = brdf_texel(mip, level, i, j, scratch);
+    for (const Lobe& l : lobes) {
+      const glm::vec3 f = lobe_eval<float>(l, lobe_shape<float>(l), p, k);
+      base += f;
+      base_coated += l.coat * f;
+    }
+    Lobe coat_scratch;
+    return glm::dvec3(coated_eval(base, base_coated, lobes, brdf_coat(mip, level, i, j, coat_scratch), p));
   }
   return glm::dvec3(lobe_eval<float>(param_lobe(mip.param.texel(level, i, j), filter, mip.param.specular(level, i, j)), p));
 }

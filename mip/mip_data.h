@@ -34,6 +34,13 @@ inline std::span<const Lobe> brdf_texel(const MipData& mip, int level, int i, in
   return {&scratch, 1};
 }
 
+// The same texel's coat (coat_layer.h): the pyramid's for levels ≥ 1, at level 0 the texel's own
+// coat lobe made into `scratch`; none for a material without a coat.
+inline CoatTexel brdf_coat(const MipData& mip, int level, int i, int j, Lobe& scratch) {
+  if (level >= 1) return mip.brdf.coat(level, i, j);
+  return level0_coat(mip.level0, mip.level0.index(i, j), scratch);
+}
+
 // Builds both pyramids over `level0` (moved in); `brdf_seconds`, when given, receives the BRDF
 // pyramid's share of the time (the figure bench/results/mip.md sets against maketx).
 MipData build_mip(MaterialTexels level0, const BrdfBuildOptions& options = {},
@@ -56,7 +63,8 @@ BrdfTable texel_table(const MipData& mip, TextureFilter filter, int level, int i
 
 // acc += weight · the BRDF pyramid's texel (level, i, j) over the direction grid's pairs, in float as
 // the renderer evaluates it, with its radial correction (radial_correction.h), its lobes under a tint
-// of the base color (lobe.h tinted; a pyramid built tintable, unless the tint is 1).
+// of the base color (lobe.h tinted; a pyramid built tintable, unless the tint is 1) and its coat
+// (coat_layer.h).
 void accumulate_brdf_texel(const MipData& mip, int level, int i, int j, double weight, std::span<glm::dvec3> acc,
                            const glm::vec3& tint = glm::vec3(1.0f));
 

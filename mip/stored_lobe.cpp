@@ -7,6 +7,7 @@
 
 #include <glm/gtc/packing.hpp>
 
+#include "mip/coat_layer.h"
 #include "mip/stored_normal.h"
 
 namespace svbrdf {
@@ -81,10 +82,21 @@ void round_to_stored(Lobe& lobe) {
     lobe.diffuse90[c] = to_half(lobe.diffuse90[c]);
   }
   lobe.f90 = to_half(lobe.f90);
+  lobe.coat = to_half(lobe.coat);
   lobe.normal = round_normal(lobe.normal);
   const float skirt_code = lobe_skirt_code(lobe);
   set_lobe_shape_code(lobe, lobe_shape_code(lobe));
   set_lobe_skirt_code(lobe, skirt_code);
 }
+
+void round_coat_lobe_to_stored(Lobe& lobe) {
+  round_to_stored(lobe);
+  lobe.diffuse = glm::vec3(0.0f);
+  lobe.diffuse90 = glm::vec3(0.0f);
+  lobe.f0 = glm::vec3(kCoatF0);
+  lobe.f0_tint = glm::vec3(0.0f);
+  lobe.f90 = 1.0f;
+}
+
 
 }  // namespace svbrdf

@@ -24,9 +24,13 @@ void set_lobe_shape_code(Lobe& lobe, float code);
 float lobe_skirt_code(const Lobe& lobe);
 void set_lobe_skirt_code(Lobe& lobe, float code);
 
-// Rounds a lobe to what the MIP file stores: weight, colors (f0_tint among them), α (the square root of
+// Rounds a lobe to what the MIP file stores: weight, colors (f0_tint among them), its coat share, α (the square root of
 // alpha2), shape code and skirt as half floats, the normal as stored_normal.h codes it.
 void round_to_stored(Lobe& lobe);
+
+// The same for a coat lobe (coat_layer.h), whose colours the file does not store: F0 = 0.04 and F90 = 1
+// as the extension fixes them, no diffuse term.
+void round_coat_lobe_to_stored(Lobe& lobe);
 
 // Bytes a stored lobe takes: the normal's direction as a 32-bit code (stored_normal.h); weight, ρ (3),
 // F0 (3), the normal's length deficit, α, the shape code and the skirt as half floats.

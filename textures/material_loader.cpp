@@ -34,6 +34,9 @@ MaterialTexels decode_material_texels(const MaterialImages& in, const ColorConfi
   if (!std::isfinite(in.normal_scale)) throw input_error("normal scale", "must be finite");
   check_factor(in.specular_factor, true, "specular factor");
   for (int c = 0; c < 3; ++c) check_factor(in.specular_color_factor[c], false, "specular color factor");
+  check_factor(in.clearcoat_factor, true, "clearcoat factor");
+  check_factor(in.clearcoat_roughness_factor, true, "clearcoat roughness factor");
+  if (!std::isfinite(in.clearcoat_normal_scale)) throw input_error("clearcoat normal scale", "must be finite");
   if (!std::isfinite(in.ior) || in.ior < 0.0f) throw input_error("ior", "must be finite and ≥ 0, got " + std::to_string(in.ior));
 
   // The common size: the first present image sets it, every other must match it.
@@ -55,8 +58,16 @@ MaterialTexels decode_material_texels(const MaterialImages& in, const ColorConfi
   take(in.normal, in.normal_name);
   take(in.specular, in.specular_name);
   take(in.specular_color, in.specular_color_name);
-  if (in.normal && in.normal->channels < 3)
-    throw input_error(in.normal_name, "a normal map needs RGB channels, this image has " + std::to_string(in.normal->channels));
+  // The coat's images only where it has a weight: a zero factor makes them irrelevant.
+  const bool coat = in.clearcoat_factor > 0.0f;
+  if (coat) {
+    take(in.clearcoat, in.clearcoat_name);
+    take(in.clearcoat_roughness, in.clearcoat_roughness_name);
+    take(in.clearcoat_normal, in.clearcoat_normal_name);
+  }
+  for (const auto& [img, name] : {std::pair{in.normal, &in.normal_name}, std::pair{coat ? in.clearcoat_normal : nullptr, &in.clearcoat_normal_name}})
+    if (img && img->channels < 3)
+      throw input_error(*name, "a normal map needs RGB channels, this image has " + std::to_string(img->channels));
 
   MaterialTexels out = first ? MaterialTexels(first->width, first->height) : MaterialTexels(1, 1);
   const glm::vec3 factor(in.base_color_factor);
@@ -110,6 +121,27 @@ MaterialTexels decode_material_texels(const MaterialImages& in, const ColorConfi
     for_rows(out.height, out.width, [&](int j) {
       for (int i = 0; i < out.width; ++i)
         out.specular_color[out.index(i, j)] = glm::vec3(texel(linear, i, j)) * in.specular_color_factor;
+    });
+  }
+
+  // The clear coat: per texel only where a texture makes it vary.
+  if (!coat) return out;
+  out.clearcoat_factor = in.clearcoat_factor;
+  out.clearcoat_roughness_factor = in.clearcoat_roughness_factor;
+  const auto channel = [&](const Image* img, int c, float factor, std::vector<float>& dst) {
+    if (!img) return;
+    dst.resize(out.size());
+    for_rows(out.height, out.width, [&](int j) {
+      for (int i = 0; i < out.width; ++i) dst[out.index(i, j)] = std::clamp(texel(*img, i, j)[c], 0.0f, 1.0f) * factor;
+    });
+  };
+  channel(in.clearcoat, 0, in.clearcoat_factor, out.clearcoat);
+  channel(in.clearcoat_roughness, 1, in.clearcoat_roughness_factor, out.clearcoat_roughness);
+  if (in.clearcoat_normal) {
+    out.clearcoat_normal.resize(out.size());
+    for_rows(out.height, out.width, [&](int j) {
+      for (int i = 0; i < out.width; ++i)
+        out.clearcoat_normal[out.index(i, j)] = decode_normal(glm::vec3(texel(*in.clearcoat_normal, i, j)), in.clearcoat_normal_scale);
     });
   }
   return out;

@@ -5,7 +5,8 @@
 //   metallic   = metallicRoughnessTexture.b · metallicFactor       (glTF: metal in B)
 //   roughness  = metallicRoughnessTexture.g · roughnessFactor      (glTF: roughness in G)
 //   normal     = normalize((2·normalTexture.rgb − 1)·(s, s, 1)), s = normalTexture.scale
-// and the specular layer of KHR_materials_specular and _ior (MaterialImages below).
+// the specular layer of KHR_materials_specular and _ior and the clear coat of KHR_materials_clearcoat
+// (MaterialImages below).
 // A missing texture contributes its factor alone (normal: (0, 0, 1)). All present textures must
 // have the same size, which is the result's size (1×1 when there is none). Texels are read at
 // their own (i, j): no filtering, no texture transform (the level-0 texel grid is the image's).
@@ -46,6 +47,19 @@ struct MaterialImages {
   bool specular_color_is_linear = false;  // as base_color_is_linear
   glm::vec3 specular_color_factor{1.0f};
   float ior = 1.5f;
+  // KHR_materials_clearcoat (MaterialTexels::coat_layer), each clamped to [0, 1] as the renderer shades it:
+  //   clearcoat           = clearcoatTexture.r · clearcoatFactor
+  //   clearcoat roughness = clearcoatRoughnessTexture.g · clearcoatRoughnessFactor
+  //   clearcoat normal    = normalize((2·clearcoatNormalTexture.rgb − 1)·(s, s, 1)), or (0, 0, 1)
+  const Image* clearcoat = nullptr;
+  std::string clearcoat_name = "clearcoat texture";
+  float clearcoat_factor = 0.0f;
+  const Image* clearcoat_roughness = nullptr;
+  std::string clearcoat_roughness_name = "clearcoat roughness texture";
+  float clearcoat_roughness_factor = 0.0f;
+  const Image* clearcoat_normal = nullptr;
+  std::string clearcoat_normal_name = "clearcoat normal texture";
+  float clearcoat_normal_scale = 1.0f;
 };
 
 // Throws svbrdf::Error naming the image for different sizes or a normal map with fewer than three

@@ -22,6 +22,17 @@ struct SpecularLayer {
   bool plain() const { return specular == 1.0f && color == glm::vec3(1.0f) && ior == 1.5f; }
 };
 
+// The clear coat at a texel (KHR_materials_clearcoat): its weight (clearcoatFactor ·
+// clearcoatTexture.r), perceptual roughness (clearcoatRoughnessFactor · clearcoatRoughnessTexture.g)
+// and unit normal in the geometric tangent frame (clearcoatNormalTexture decoded with its scale or,
+// without one, (0, 0, 1): the surface's normal before the base's normal map, as the extension says).
+// Weight 0 is no coat.
+struct CoatLayer {
+  float weight = 0.0f;
+  float roughness = 0.0f;
+  glm::vec3 normal{0.0f, 0.0f, 1.0f};
+};
+
 struct MaterialTexels {
   int width = 0;
   int height = 0;
@@ -36,6 +47,13 @@ struct MaterialTexels {
   float specular_factor = 1.0f;
   glm::vec3 specular_color_factor{1.0f};
   float ior = 1.5f;
+  // The clear coat, per texel where a texture makes it vary (as the specular layer): `clearcoat`,
+  // `clearcoat_roughness` and `clearcoat_normal` are empty where the factor (or (0, 0, 1)) holds.
+  std::vector<float> clearcoat;
+  std::vector<float> clearcoat_roughness;
+  std::vector<glm::vec3> clearcoat_normal;  // unit, tangent space, z up
+  float clearcoat_factor = 0.0f;
+  float clearcoat_roughness_factor = 0.0f;
 
   MaterialTexels() = default;
   MaterialTexels(int w, int h)
@@ -54,6 +72,13 @@ struct MaterialTexels {
     return {specular.empty() ? specular_factor : specular[k],
             specular_color.empty() ? specular_color_factor : specular_color[k], ior};
   }
+  // Texel k's clear coat, and whether the material has one at all.
+  CoatLayer coat_layer(std::size_t k) const {
+    return {clearcoat.empty() ? clearcoat_factor : clearcoat[k],
+            clearcoat_roughness.empty() ? clearcoat_roughness_factor : clearcoat_roughness[k],
+            clearcoat_normal.empty() ? glm::vec3(0.0f, 0.0f, 1.0f) : clearcoat_normal[k]};
+  }
+  bool has_coat() const { return clearcoat_factor > 0.0f; }
   bool plain_specular() const {
     return specular.empty() && specular_color.empty() &&
            SpecularLayer{specular_factor, specular_color_factor, ior}.plain();

@@ -14,6 +14,7 @@
 #include "appearance/gltf_surface_bsdf.h"
 #include "appearance/rng.h"
 #include "mip/exact_reference.h"
+#include "random_directions.h"
 #include "mip/metrics.h"
 #include "mip/mip_data.h"
 #include "mip/mip_file.h"
@@ -25,13 +26,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-glm::dvec3 random_above(Rng& rng, double min_z = 0.05) {
-  for (;;) {
-    const glm::dvec3 v(2 * rng.next_double() - 1, 2 * rng.next_double() - 1, rng.next_double());
-    const double l = glm::length(v);
-    if (l > 0.1 && l <= 1.0 && v.z / l > min_z) return v / l;
-  }
-}
+using testing_directions::random_above;
 
 // A texel's parameters with its specular layer.
 struct Texel {
