@@ -4,13 +4,14 @@ BUILD      ?= build
 ASAN_BUILD ?= build-asan
 FUZZ_BUILD ?= build-fuzz
 JOBS       ?= $(shell nproc)
+PREFIX     ?= /usr/local
 CTEST_ARGS ?=
 LAUNCHER   := $(if $(shell command -v ccache),-DCMAKE_CXX_COMPILER_LAUNCHER=ccache,)
 # ccache keys on paths relative to the checkout, so a second clone (CI's) reuses what this one built.
 export CCACHE_BASEDIR ?= $(CURDIR)
 export CCACHE_NOHASHDIR ?= 1
 
-.PHONY: all deps configure build test test-long render bench asan asan-contract fuzz fuzz-smoke format lod-report clean
+.PHONY: all deps configure build install test test-long render bench asan asan-contract fuzz fuzz-smoke format lod-report clean
 
 all: build
 
@@ -25,6 +26,11 @@ configure: deps $(BUILD)/build.ninja
 
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
+
+# The libraries, their public headers, the programs and the CMake package under PREFIX
+# (docs/library.md), e.g. `make install PREFIX=~/.local`.
+install: build
+	cmake --install $(BUILD) --prefix $(PREFIX)
 
 # Runs every test but the heavy ones labelled `long` (`make test-long` runs those). CI passes
 # SKIP_CONTRACT=1: it runs the contract suites (CONTRACT_TESTS below) once, under the sanitizers,

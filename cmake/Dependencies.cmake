@@ -20,29 +20,9 @@ find_package(meshoptimizer CONFIG REQUIRED)
 # archive and every archive symbol kept local (gltf/CMakeLists.txt).
 find_package(Threads REQUIRED)
 
-# Pitfall 1: OpenImageIO's exported target names /usr/include/opencv4 even where OpenCV is absent;
-# drop include directories that do not exist so the generate step cannot fail on them.
-get_target_property(_oiio_inc OpenImageIO::OpenImageIO INTERFACE_INCLUDE_DIRECTORIES)
-if(_oiio_inc)
-  set(_oiio_kept "")
-  foreach(_d IN LISTS _oiio_inc)
-    if(EXISTS "${_d}" OR _d MATCHES "^\\$<")
-      list(APPEND _oiio_kept "${_d}")
-    endif()
-  endforeach()
-  set_target_properties(OpenImageIO::OpenImageIO PROPERTIES INTERFACE_INCLUDE_DIRECTORIES "${_oiio_kept}")
-endif()
-
-# Pitfall 2: OpenColorIO's CMake config is off the search path and computes a wrong prefix when forced;
-# build the imported target from the header and the library.
-if(NOT TARGET OpenColorIO::OpenColorIO)
-  find_path(OCIO_INCLUDE_DIR OpenColorIO/OpenColorIO.h REQUIRED)
-  find_library(OCIO_LIBRARY OpenColorIO REQUIRED)
-  add_library(OpenColorIO::OpenColorIO UNKNOWN IMPORTED)
-  set_target_properties(OpenColorIO::OpenColorIO PROPERTIES
-    IMPORTED_LOCATION "${OCIO_LIBRARY}"
-    INTERFACE_INCLUDE_DIRECTORIES "${OCIO_INCLUDE_DIR}")
-endif()
+# Two of Debian's packages need their imported targets mended before use; the installed package's
+# config (svbrdfConfig.cmake) applies the same mending for a user's project.
+include("${CMAKE_CURRENT_LIST_DIR}/DebianTargetFixes.cmake")
 
 # Third-party headers are SYSTEM so their warnings never mix with ours.
 foreach(_t glm::glm TBB::tbb OpenImageIO::OpenImageIO OpenImageIO::OpenImageIO_Util embree

@@ -17,13 +17,22 @@ if(SVBRDF_FUZZ)
 endif()
 
 # svbrdf_module(NAME SOURCES... DEPS ...): a module library svbrdf_NAME with alias svbrdf::NAME,
-# include root at the repository root so code writes #include "appearance/bsdf.h".
+# include root at the repository root so code writes #include "appearance/bsdf.h". Static, or shared
+# under BUILD_SHARED_LIBS. A user's code writes <svbrdf/appearance/bsdf.h> against the build tree
+# (<build>/include/svbrdf/FLOOR links to each floor) as against an installed one (docs/library.md).
 function(svbrdf_module name)
   cmake_parse_arguments(M "" "" "SOURCES;DEPS" ${ARGN})
-  add_library(svbrdf_${name} STATIC ${M_SOURCES})
+  add_library(svbrdf_${name} ${M_SOURCES})
   add_library(svbrdf::${name} ALIAS svbrdf_${name})
-  target_include_directories(svbrdf_${name} PUBLIC "${PROJECT_SOURCE_DIR}")
-  target_link_libraries(svbrdf_${name} PUBLIC ${M_DEPS} PRIVATE svbrdf_warnings)
+  target_include_directories(svbrdf_${name} PUBLIC
+    "$<BUILD_INTERFACE:${PROJECT_SOURCE_DIR};${PROJECT_BINARY_DIR}/include>" "$<INSTALL_INTERFACE:include>")
+  # The warning flags are this build's, not a user's: they stay out of the exported package.
+  target_link_libraries(svbrdf_${name} PUBLIC ${M_DEPS} PRIVATE $<BUILD_INTERFACE:svbrdf_warnings>)
+  set_target_properties(svbrdf_${name} PROPERTIES EXPORT_NAME ${name})
+  if(NOT EXISTS "${PROJECT_BINARY_DIR}/include/svbrdf/${name}" AND EXISTS "${PROJECT_SOURCE_DIR}/${name}")
+    file(MAKE_DIRECTORY "${PROJECT_BINARY_DIR}/include/svbrdf")
+    file(CREATE_LINK "${PROJECT_SOURCE_DIR}/${name}" "${PROJECT_BINARY_DIR}/include/svbrdf/${name}" SYMBOLIC)
+  endif()
 endfunction()
 
 # svbrdf_program(NAME SOURCES... DEPS ...): a thin main (CLI11) over a module library.
