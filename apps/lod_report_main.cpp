@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/baked_scenes.h"
 #include "apps/run_program.h"
 #include "base/cli_checks.h"
 #include "base/interrupt.h"
@@ -23,12 +24,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The LOD manifest the build bakes: <build>/scenes/lod/manifest.json, the program being at <build>/.
+// The LOD manifest the build bakes: <build>/scenes/lod/manifest.json, the program being at <build>/
+// (or its installed copy, apps/baked_scenes.h); the build tree's path where neither exists, for the
+// line that says it is missing.
 fs::path default_manifest(const char* argv0) {
-  std::error_code ec;
-  fs::path exe = fs::canonical("/proc/self/exe", ec);
-  if (ec) exe = fs::absolute(argv0);
-  return exe.parent_path() / "scenes" / "lod" / "manifest.json";
+  const fs::path relative = fs::path("lod") / "manifest.json";
+  return svbrdf::find_baked_scene(argv0, relative).value_or(svbrdf::baked_scene_folders(argv0).front() / relative);
 }
 
 }  // namespace

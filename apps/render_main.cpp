@@ -14,6 +14,7 @@
 #include <tuple>
 #include <utility>
 
+#include "apps/baked_scenes.h"
 #include "apps/mip_cache_options.h"
 #include "apps/run_program.h"
 #include "base/checked_number.h"
@@ -72,16 +73,12 @@ std::pair<int, int> parse_resolution(const std::string& text) {
   return {static_cast<int>(side[0]), static_cast<int>(side[1])};
 }
 
-// The showcase scene as the build places it; the first that exists wins.
+// The showcase scene as the build places it, or as it is installed; the first that exists wins.
 fs::path find_showcase(const char* argv0) {
-  std::error_code ec;
-  fs::path exe = fs::canonical("/proc/self/exe", ec);
-  if (ec) exe = fs::absolute(argv0);
-  const fs::path dir = exe.parent_path();
-  for (const fs::path& p : {dir / "scenes" / "showcase" / "showcase.gltf", dir / "scenes" / "showcase.gltf"})
-    if (fs::exists(p, ec)) return p;
+  for (const char* relative : {"showcase/showcase.gltf", "showcase.gltf"})
+    if (const auto found = svbrdf::find_baked_scene(argv0, relative)) return *found;
   // The program's name is the line's prefix already (main); the message names the file it looked for.
-  throw svbrdf::input_error((dir / "scenes" / "showcase" / "showcase.gltf").string(),
+  throw svbrdf::input_error((svbrdf::baked_scene_folders(argv0).front() / "showcase" / "showcase.gltf").string(),
                             "no scene given, and the showcase scene has not been built here; pass a glTF file, "
                             "or build it (make render)");
 }

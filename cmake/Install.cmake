@@ -41,6 +41,10 @@ if(BUILD_SHARED_LIBS)
 endif()
 
 install(TARGETS svbrdf-render svbrdf-bake svbrdf-brdf svbrdf-lod-report RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# The scenes the build bakes, where the installed svbrdf-render and svbrdf-lod-report look for them
+# (apps/baked_scenes.h).
+install(DIRECTORY "${PROJECT_BINARY_DIR}/scenes/showcase" "${PROJECT_BINARY_DIR}/scenes/lod"
+  DESTINATION ${CMAKE_INSTALL_DATADIR}/svbrdf/scenes)
 list(TRANSFORM SVBRDF_EXPORTED_MODULES PREPEND svbrdf_ OUTPUT_VARIABLE _svbrdf_export_targets)
 install(TARGETS ${_svbrdf_export_targets} svbrdf_draco EXPORT svbrdfTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}

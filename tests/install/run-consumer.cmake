@@ -1,5 +1,6 @@
-# The install test: installs the build into a fresh prefix, then configures, builds and runs the
-# consumer project (tests/install/consumer) against that prefix alone.
+# The install test: installs the build into a fresh prefix, renders the installed showcase with the
+# installed svbrdf-render (its RPATH, its scene lookup), then configures, builds and runs the consumer
+# project (tests/install/consumer) against that prefix alone.
 #   cmake -DBUILD=<build tree> -DWORK=<scratch folder> -DCONSUMER=<consumer source>
 #         -DCXX=<compiler> -DFLAGS=<compile flags> -DLAUNCHER=<ccache or empty> -P run-consumer.cmake
 function(step what)
@@ -13,6 +14,11 @@ endfunction()
 
 file(REMOVE_RECURSE "${WORK}")
 step("cmake --install" "${CMAKE_COMMAND}" --install "${BUILD}" --prefix "${WORK}/prefix")
+step("render the installed showcase" "${WORK}/prefix/bin/svbrdf-render" --res 16x9 --spp 1 --filter level0 --quiet
+  --out "${WORK}/showcase.exr")
+if(NOT EXISTS "${WORK}/showcase.exr")
+  message(FATAL_ERROR "the installed svbrdf-render wrote no ${WORK}/showcase.exr")
+endif()
 step("configure the consumer" "${CMAKE_COMMAND}" -S "${CONSUMER}" -B "${WORK}/build" -G Ninja
   -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_COMPILER=${CXX} "-DCMAKE_CXX_FLAGS=${FLAGS}"
   -DCMAKE_CXX_COMPILER_LAUNCHER=${LAUNCHER} "-DCMAKE_PREFIX_PATH=${WORK}/prefix"
