@@ -82,13 +82,6 @@ bool MipTexture::prepared(TextureFilter filter) const {
   return filter != TextureFilter::brdf || pyramids_->has_brdf;
 }
 
-Footprint MipTexture::folded(const Footprint& f) const {
-  Footprint w = f;
-  w.uv.x = fold_into_texture(f.uv.x, extent_.width, wrap_s_);
-  w.uv.y = fold_into_texture(f.uv.y, extent_.height, wrap_t_);
-  return w;
-}
-
 glm::ivec2 MipTexture::nearest_texel(glm::vec2 uv) const {
   return {nearest_texel_index(uv.x, extent_.width, wrap_s_),
           nearest_texel_index(uv.y, extent_.height, wrap_t_)};
@@ -103,7 +96,7 @@ Rgb MipTexture::base_color(TextureFilter filter, const Footprint& f) const {
     const glm::ivec2 t = nearest_texel(f.uv);
     return pyramids_->level0(t.x, t.y).base_color;
   }
-  return filter_params(pyramids_->param, folded(f), kMaxProbes).base_color;
+  return filter_params(pyramids_->param, f, wrap()).base_color;
 }
 
 float MipTexture::level(const Footprint& f) const { return mip_level(extent_, f); }
@@ -115,7 +108,7 @@ MipTexture::Choice MipTexture::choose(TextureFilter filter, const Footprint& f, 
   Choice c{filter, f, tint};
   const Pyramids& p = *pyramids_;
   if (filter == TextureFilter::brdf && (tint == Rgb(1.0f) || p.tint)) {
-    const FilterTap t = select_tap(p.brdf.level0(), p.brdf.levels(), folded(f), u);  // O(1), mip_lookup.h
+    const FilterTap t = select_tap(p.brdf.level0(), p.brdf.levels(), f, u, wrap());  // O(1), mip_lookup.h
     c.level = t.level, c.i = t.i, c.j = t.j;
     if (c.level >= 1)
       p.brdf.prefetch(c.level, c.i, c.j);
@@ -136,7 +129,7 @@ std::span<const Lobe> MipTexture::lobes(const Choice& c, Scratch& scratch) const
   const Pyramids& p = *pyramids_;
   if (c.level < 0) {
     SpecularLayer layer;
-    ParamTexel t = filter_params(p.param, folded(c.footprint), kMaxProbes, &layer);
+    ParamTexel t = filter_params(p.param, c.footprint, wrap(), kMaxProbes, &layer);
     t.base_color *= c.tint;
     scratch.lobe[0] = param_lobe(t, c.filter, layer);
     return {scratch.lobe, 1};

@@ -22,9 +22,9 @@
 // part of F0 the base color tints, 6 bytes a stored lobe). A texture built without it answers a
 // tinted brdf lookup as level0 does.
 //
-// Wrap modes: the filters wrap with repeat; clamp-to-edge and mirrored repeat are folded into the
-// texture first (textures/sampler.h fold_into_texture), which is exact for level 0's bilinear taps and
-// approximate near such an edge at coarser levels. level0 follows the sampler exactly.
+// Wrap modes: every filter reads every level with the texture's wrap modes per axis (mip_lookup.h),
+// as the sampler reads level 0 (textures/sampler.h): a footprint that crosses a clamped edge repeats
+// that edge's texels of its level and never averages in the opposite edge; a mirrored axis mirrors.
 //
 // Storage: level 0 is held once, a texel's parameters in one half cache line (the parameter pyramid's
 // level 0), for level0's lookups and brdf's level-0 taps, which the BRDF pyramid does not hold; the
@@ -126,7 +126,7 @@ class MipTexture {
 
  private:
   struct Pyramids;  // mip.cpp: the parameter pyramid (level 0 always) and the BRDF pyramid
-  Footprint folded(const Footprint& f) const;
+  WrapModes wrap() const { return {wrap_s_, wrap_t_}; }
 
   Extent extent_{};
   WrapMode wrap_s_ = WrapMode::repeat, wrap_t_ = WrapMode::repeat;

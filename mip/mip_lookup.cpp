@@ -69,36 +69,35 @@ glm::vec2 probe_uv(const FilterShape& s, int p) {
   return s.uv + ((static_cast<float>(p) + 0.5f) * kInverse[s.probes] - 0.5f) * s.major_uv;
 }
 
-// Bilinear weights of one level at uv, wrapping with repeat (mip.h folds the other modes first):
-// columns x0, x1 with fx, rows y0, y1 with fy.
+// Bilinear weights of one level at uv under the texture's wrap modes, applied to this level's texel
+// indices as a GPU samples a MIP level (OpenGL 4.6 §8.14.2): a clamped axis repeats its edge texel of
+// the level and never reaches the opposite edge; a mirrored one reads the level mirrored, which for
+// power-of-two sizes is the mirror of level 0 averaged (a level-L texel covers 2^L level-0 texels
+// and the mirror axis falls on a texel boundary of every level). Columns x0, x1 with fx, rows y0, y1
+// with fy.
 struct Bilinear {
   int x0, x1, y0, y1;
   float fx, fy;
 };
-[[gnu::always_inline]] inline Bilinear bilinear(Extent e, glm::vec2 uv) {
-  const float x = uv.x * static_cast<float>(e.width) - 0.5f, y = uv.y * static_cast<float>(e.height) - 0.5f;
-  // Far from the texture (|x| ≥ 2^24) floats are integers already.
-  const float fx0 = std::abs(x) < 16777216.0f ? static_cast<float>(floor_int(x)) : x;
-  const float fy0 = std::abs(y) < 16777216.0f ? static_cast<float>(floor_int(y)) : y;
-  Bilinear b;
-  b.fx = x - fx0;
-  b.fy = y - fy0;
-  // Integer texel coordinates; far from the texture (|x| ≥ 2^24) reduce modulo the size in float first.
-  auto texel = [](float v, int n) {
-    if (!std::isfinite(v)) return 0;  // a uv of ±∞ or NaN has no texel; read the first
-    const float near = std::abs(v) < 16777216.0f ? v : std::fmod(v, static_cast<float>(n));
-    return wrap_texel(static_cast<int>(near), n, WrapMode::repeat);
-  };
-  b.x0 = texel(fx0, e.width);
-  b.y0 = texel(fy0, e.height);
-  b.x1 = wrap_texel(b.x0 + 1, e.width, WrapMode::repeat);
-  b.y1 = wrap_texel(b.y0 + 1, e.height, WrapMode::repeat);
-  return b;
+struct Axis {
+  int i0, i1;
+  float f;
+};
+[[gnu::always_inline]] inline Axis bilinear_axis(float t, int n, WrapMode mode) {
+  // texel_coordinate brings far or non-finite coordinates near the texture (sampler.h), so the floor
+  // below fits an int.
+  const float x = texel_coordinate(t, n, mode) - 0.5f;
+  const int x0 = floor_int(x);
+  return {wrap_texel(x0, n, mode), wrap_texel(x0 + 1, n, mode), x - static_cast<float>(x0)};
+}
+[[gnu::always_inline]] inline Bilinear bilinear(Extent e, glm::vec2 uv, WrapModes wrap) {
+  const Axis u = bilinear_axis(uv.x, e.width, wrap.s), v = bilinear_axis(uv.y, e.height, wrap.t);
+  return {u.i0, u.i1, v.i0, v.i1, u.f, v.f};
 }
 
-void add_bilinear(FilterTaps& out, Extent e, int level, glm::vec2 uv, float weight) {
+void add_bilinear(FilterTaps& out, Extent e, int level, glm::vec2 uv, WrapModes wrap, float weight) {
   if (!(weight > 0)) return;
-  const Bilinear b = bilinear(e, uv);
+  const Bilinear b = bilinear(e, uv, wrap);
   const float w[4] = {(1 - b.fx) * (1 - b.fy), b.fx * (1 - b.fy), (1 - b.fx) * b.fy, b.fx * b.fy};
   const int xs[4] = {b.x0, b.x1, b.x0, b.x1}, ys[4] = {b.y0, b.y0, b.y1, b.y1};
   for (int k = 0; k < 4; ++k)
@@ -119,7 +118,7 @@ int split(float& u, float p) {
 
 }  // namespace
 
-FilterTaps filter_taps(Extent level0, int levels, const Footprint& f, int max_probes) {
+FilterTaps filter_taps(Extent level0, int levels, const Footprint& f, WrapModes wrap, int max_probes) {
   FilterTaps out;
   const FilterShape s = filter_shape(level0, levels, f, max_probes);
   out.level = s.lambda;
@@ -127,8 +126,8 @@ FilterTaps filter_taps(Extent level0, int levels, const Footprint& f, int max_pr
   const float w = kInverse[s.probes];
   for (int p = 0; p < s.probes; ++p) {
     const glm::vec2 at = probe_uv(s, p);
-    add_bilinear(out, level_extent(level0, s.level), s.level, at, w * (1.0f - s.t));
-    if (s.t > 0) add_bilinear(out, level_extent(level0, s.level + 1), s.level + 1, at, w * s.t);
+    add_bilinear(out, level_extent(level0, s.level), s.level, at, wrap, w * (1.0f - s.t));
+    if (s.t > 0) add_bilinear(out, level_extent(level0, s.level + 1), s.level + 1, at, wrap, w * s.t);
   }
   return out;
 }
@@ -137,7 +136,7 @@ float filter_level(Extent level0, int levels, const Footprint& f, int max_probes
   return filter_shape(level0, levels, f, max_probes).lambda;
 }
 
-FilterTap select_tap(Extent level0, int levels, const Footprint& f, float u, int max_probes) {
+FilterTap select_tap(Extent level0, int levels, const Footprint& f, float u, WrapModes wrap, int max_probes) {
   const FilterShape s = filter_shape(level0, levels, f, max_probes);
   u = std::clamp(std::isfinite(u) ? u : 0.0f, 0.0f, 0.99999994f);
   // One choice per stage, each with the probability of its weight: probe (uniform), level (1 − t, t),
@@ -145,7 +144,7 @@ FilterTap select_tap(Extent level0, int levels, const Footprint& f, float u, int
   const int p = std::min(s.probes - 1, static_cast<int>(u * static_cast<float>(s.probes)));
   u = std::min(u * static_cast<float>(s.probes) - static_cast<float>(p), 0.99999994f);
   const int level = s.level + split(u, 1.0f - s.t);
-  const Bilinear b = bilinear(level_extent(level0, level), probe_uv(s, p));
+  const Bilinear b = bilinear(level_extent(level0, level), probe_uv(s, p), wrap);
   const int x = b.x0 + split(u, 1.0f - b.fx) * (b.x1 - b.x0);
   const int y = b.y0 + split(u, 1.0f - b.fy) * (b.y1 - b.y0);
   return {level, x, y, 1.0f};
@@ -163,24 +162,24 @@ FilterTap select_tap(const FilterTaps& taps, float u) {
   return {};
 }
 
-LobeMixtureBsdf lookup_brdf(const MipData& mip, const Footprint& footprint, float u, int max_probes) {
+LobeMixtureBsdf lookup_brdf(const MipData& mip, const Footprint& footprint, float u, WrapModes wrap, int max_probes) {
   // One named result on every path, so it is built in place (a copy is 0.9 KB).
   LobeMixtureBsdf b;
   if (mip.brdf.levels() == 0) return b;
-  const FilterTap t = select_tap(mip.brdf.level0(), mip.brdf.levels(), footprint, u, max_probes);
+  const FilterTap t = select_tap(mip.brdf.level0(), mip.brdf.levels(), footprint, u, wrap, max_probes);
   Lobe scratch;
   b.assign(brdf_texel(mip, t.level, t.i, t.j, scratch));
   b.set_correction(mip.brdf.correction(t.level, t.i, t.j), &mip.brdf.radial_grid());
   return b;
 }
 
-ParamTexel filter_params(const ParamPyramid& pyramid, const Footprint& footprint, int max_probes,
+ParamTexel filter_params(const ParamPyramid& pyramid, const Footprint& footprint, WrapModes wrap, int max_probes,
                          SpecularLayer* specular) {
   ParamTexel sum;
   sum.normal = glm::vec3(0.0f);
   if (specular) *specular = {1.0f, glm::vec3(1.0f), pyramid.ior()};
   if (pyramid.levels() == 0) return sum;
-  const FilterTaps taps = filter_taps(pyramid.level0(), pyramid.levels(), footprint, max_probes);
+  const FilterTaps taps = filter_taps(pyramid.level0(), pyramid.levels(), footprint, wrap, max_probes);
   const bool layer = specular && !pyramid.specular_level(0).empty();
   if (layer) specular->specular = 0.0f, specular->color = glm::vec3(0.0f);
   for (int k = 0; k < taps.count; ++k) {
@@ -199,10 +198,10 @@ ParamTexel filter_params(const ParamPyramid& pyramid, const Footprint& footprint
   return sum;
 }
 
-Lobe lookup_param(const ParamPyramid& pyramid, const Footprint& footprint, TextureFilter filter,
+Lobe lookup_param(const ParamPyramid& pyramid, const Footprint& footprint, TextureFilter filter, WrapModes wrap,
                   int max_probes) {
   SpecularLayer layer;
-  const ParamTexel t = filter_params(pyramid, footprint, max_probes, &layer);
+  const ParamTexel t = filter_params(pyramid, footprint, wrap, max_probes, &layer);
   return param_lobe(t, filter, layer);
 }
 

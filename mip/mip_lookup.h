@@ -6,8 +6,9 @@
 // The filter: trilinear MIP mapping, anisotropic with up to `max_probes` probes along the
 // footprint's major axis (the GPU scheme: the level comes from the minor axis, or from major /
 // max_probes when the footprint is more elongated than that). Each probe is bilinear on two
-// adjacent levels; wrap mode repeat (glTF's default; textures/sampler.h wrap_texel, and
-// fold_into_texture for the other modes); texel centres at (i + 0.5)/width as glTF samples. At most
+// adjacent levels, each level read with the texture's wrap modes per axis as a GPU reads it
+// (textures/sampler.h wrap_texel: clamp-to-edge repeats the level's edge texel, mirrored repeat
+// mirrors the level); texel centres at (i + 0.5)/width as glTF samples. At most
 // 8 probes × 2 levels × 4 texels = 64 taps, their weights summing to 1.
 //
 //  (1) lookup_brdf — filtering after shading (Pharr et al. 2024, "Filtering After Shading with
@@ -27,6 +28,7 @@
 #include "mip/mip_data.h"
 #include "mip/param_pyramid.h"
 #include "mip/texture_filter.h"
+#include "textures/sampler.h"
 
 namespace svbrdf {
 
@@ -47,7 +49,8 @@ struct FilterTaps {
 };
 
 // The filter's taps over a pyramid of `levels` levels on a level-0 image of `level0` texels.
-FilterTaps filter_taps(Extent level0, int levels, const Footprint& footprint, int max_probes = kMaxProbes);
+FilterTaps filter_taps(Extent level0, int levels, const Footprint& footprint, WrapModes wrap = {},
+                       int max_probes = kMaxProbes);
 // Their continuous level λ alone (FilterTaps::level), which depends on the footprint's axes only.
 float filter_level(Extent level0, int levels, const Footprint& footprint, int max_probes = kMaxProbes);
 
@@ -55,16 +58,18 @@ float filter_level(Extent level0, int levels, const Footprint& footprint, int ma
 FilterTap select_tap(const FilterTaps& taps, float u);
 // One tap with probability equal to its weight in filter_taps, chosen in O(1) from u ∈ [0, 1) stage by
 // stage (probe, level, column, row) without listing the taps: what lookup_brdf uses.
-FilterTap select_tap(Extent level0, int levels, const Footprint& footprint, float u, int max_probes = kMaxProbes);
+FilterTap select_tap(Extent level0, int levels, const Footprint& footprint, float u, WrapModes wrap = {},
+                     int max_probes = kMaxProbes);
 
 // (1) One texel's mixture, chosen with probability equal to its filter weight.
-LobeMixtureBsdf lookup_brdf(const MipData& mip, const Footprint& footprint, float u, int max_probes = kMaxProbes);
+LobeMixtureBsdf lookup_brdf(const MipData& mip, const Footprint& footprint, float u, WrapModes wrap = {},
+                            int max_probes = kMaxProbes);
 
 // (2) The trilinear-filtered parameters as one lobe (wrap it in LobeMixtureBsdf to shade).
 // With `specular`, also the same filter's mean of the specular layer (the material's when it is plain).
-ParamTexel filter_params(const ParamPyramid& pyramid, const Footprint& footprint, int max_probes = kMaxProbes,
-                         SpecularLayer* specular = nullptr);
+ParamTexel filter_params(const ParamPyramid& pyramid, const Footprint& footprint, WrapModes wrap = {},
+                         int max_probes = kMaxProbes, SpecularLayer* specular = nullptr);
 Lobe lookup_param(const ParamPyramid& pyramid, const Footprint& footprint,
-                  TextureFilter filter = TextureFilter::param, int max_probes = kMaxProbes);
+                  TextureFilter filter = TextureFilter::param, WrapModes wrap = {}, int max_probes = kMaxProbes);
 
 }  // namespace svbrdf

@@ -18,10 +18,17 @@ enum class WrapMode { repeat, clamp_to_edge, mirrored_repeat };
 // here (MIP selection is the mip module's business).
 enum class FilterMode { nearest, bilinear };
 
+// The wrap modes of one texture, along u (s) and v (t), for lookups that need no filter mode.
+struct WrapModes {
+  WrapMode s = WrapMode::repeat;
+  WrapMode t = WrapMode::repeat;
+};
+
 struct Sampler {
   FilterMode filter = FilterMode::bilinear;
   WrapMode wrap_s = WrapMode::repeat;  // along u (columns)
   WrapMode wrap_t = WrapMode::repeat;  // along v (rows)
+  WrapModes wrap() const { return {wrap_s, wrap_t}; }
 };
 
 // glTF enum codes → modes; throw svbrdf::Error naming `where` for codes glTF does not define.
@@ -31,7 +38,7 @@ FilterMode filter_mode_from_gltf(int code, const std::string& where);  // mag or
 int gltf_code(WrapMode mode);
 
 // The wrap modes are honoured here and nowhere else: the sampler below, the renderer's level0 texel
-// fetches (nearest_texel_index) and the MIP lookups (wrap_texel with repeat, after fold_into_texture)
+// fetches (nearest_texel_index) and the MIP lookups at every level (texel_coordinate, wrap_texel)
 // all read texel indices through these functions.
 
 // The texel index an integer texel coordinate i (any integer) reads along an axis of n texels.
@@ -73,22 +80,6 @@ inline int nearest_texel_index(float t, int n, WrapMode mode, int mask = -1) {
   const float x = t * static_cast<float>(n);
   if (mask >= 0 && std::fabs(x) < 16777216.0f) return static_cast<int>(std::floor(x)) & mask;
   return wrap_texel(static_cast<int>(std::floor(texel_coordinate(t, n, mode))), n, mode);
-}
-
-// A texture coordinate made ready for a filter that only wraps with repeat, as the MIP lookups do:
-// clamp-to-edge clamps it, mirrored repeat folds it into [0, 1] and clamps, to the centres of the
-// first and last texels, so that the level-0 bilinear taps are exactly the sampler's. This is an
-// approximation at coarser levels: there a tap within half the filter's width of such an edge may
-// still come from the opposite edge, where the sampler would clamp or mirror. Repeat, and a
-// non-finite t (which the lookups handle), pass unchanged.
-inline float fold_into_texture(float t, int n, WrapMode mode) {
-  if (mode == WrapMode::repeat || !std::isfinite(t)) return t;
-  if (mode == WrapMode::mirrored_repeat) {
-    const float r = t - 2.0f * std::floor(0.5f * t);
-    t = r <= 1.0f ? r : 2.0f - r;
-  }
-  const float h = 0.5f / static_cast<float>(n);
-  return std::clamp(t, h, 1.0f - h);
 }
 
 // Per-texel access for the MIP builds and the families: (i, j) must be inside the image. Gray

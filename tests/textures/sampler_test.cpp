@@ -89,23 +89,6 @@ TEST(Sampler, BilinearIsExactOnLinearDataAndWrapsPerMode) {
   EXPECT_NEAR(sample(img, Sampler{FilterMode::bilinear, WrapMode::mirrored_repeat, WrapMode::repeat}, {1.0f, v_center}).r, 3.0f, 1e-6);
 }
 
-// A filter that only wraps with repeat (the MIP lookups) reads clamp-to-edge and mirrored repeat
-// through fold_into_texture: at level 0 its bilinear lookup at the folded coordinate is the sampler's
-// under the mode, wherever uv lies (a 5×3 ramp: odd and even sides).
-TEST(Sampler, FoldedCoordinatesGiveTheModesBilinearLookup) {
-  const Image img = ramp(5, 3);
-  const Sampler repeat{FilterMode::bilinear, WrapMode::repeat, WrapMode::repeat};
-  for (WrapMode m : {WrapMode::repeat, WrapMode::clamp_to_edge, WrapMode::mirrored_repeat}) {
-    const Sampler mode{FilterMode::bilinear, m, m};
-    for (float u = -3.0f; u <= 3.0f; u += 0.037f)
-      for (float v : {-1.3f, -0.02f, 0.1f, 0.5f, 0.97f, 1.01f, 2.6f}) {
-        const glm::vec2 folded(fold_into_texture(u, img.width, m), fold_into_texture(v, img.height, m));
-        EXPECT_NEAR(sample(img, repeat, folded).r, sample(img, mode, {u, v}).r, 2e-5f)
-            << int(m) << " at " << u << "," << v;
-      }
-  }
-}
-
 // The nearest texel index is the texel containing t·n, wrapped; the power-of-two mask path agrees
 // with the division; far-out and non-finite coordinates read a texel of the image.
 TEST(Sampler, NearestTexelIndexWrapsTheContainingTexel) {
