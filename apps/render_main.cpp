@@ -108,7 +108,7 @@ int main(int argc, char** argv) {
   int spp = 64, threads = 0, max_depth = 16;
   std::uint64_t seed = 0, max_texels = svbrdf::resource_limits().max_texels;
   double time_limit = 0.0;
-  float exposure = 0.0f, footprint_scale = 0.0f, clamp = 0.0f;
+  float exposure = 0.0f, footprint_scale = 0.0f, clamp = 0.0f, aperture = 0.0f, focus_distance = 0.0f;
   bool use_float = false, quiet = false, aovs = false, transparent = false;
   app.add_option("scene", scene_file, "glTF file (.gltf or .glb); none renders the project's showcase scene");
   app.add_option("-o,--out", out, "output OpenEXR file (linear radiance); default out/<scene>.exr");
@@ -157,6 +157,14 @@ int main(int argc, char** argv) {
                  "cap on the radiance one indirect light sample brings back, per channel (0: off, the default; "
                  "removes fireflies at the cost of bias)")
       ->check(svbrdf::cli::non_negative);
+  app.add_option("--aperture", aperture,
+                 "depth of field: the thin lens's radius in scene units (metres in glTF), in [0, 1e15] (default 0, "
+                 "glTF's pinhole: glTF cameras carry no aperture)")
+      ->check(svbrdf::cli::number_in(0.0, svbrdf::Camera::kMaxLensLength));
+  app.add_option("--focus-distance", focus_distance,
+                 "depth of field: the distance along the view axis that is sharp, in (0, 1e15] (default: that of the "
+                 "first surface the ray through the frame's centre meets, else of the scene's centre)")
+      ->check(svbrdf::cli::number_in(0.0, svbrdf::Camera::kMaxLensLength, true));
   app.add_option("--exposure", exposure, "exposure in stops for the PNG, in [-64, 64] (the EXR is never scaled)")
       ->check(svbrdf::cli::number_in(-kMaxExposure, kMaxExposure));
   app.add_option("--ocio-config", ocio, "OpenColorIO config for texture decoding and the PNG (default: $OCIO, else the built-in one)");
@@ -182,6 +190,8 @@ int main(int argc, char** argv) {
     setup.env = env;
     setup.sun = sun;
     setup.filter = texture_filter;
+    setup.aperture = aperture;
+    setup.focus_distance = focus_distance;
     if (!res.empty()) std::tie(setup.width, setup.height) = parse_resolution(res);
     const fs::path scene_path = scene_file.empty() ? find_showcase(argv[0]) : fs::path(scene_file);
     // The showcase is lit by a sun and its sky; glTF has no ratified way to carry an environment, so
@@ -229,6 +239,10 @@ int main(int argc, char** argv) {
     // warning: --quiet silences it with the progress).
     if (!quiet && !prepared.environment_note().empty())
       std::fprintf(stderr, "svbrdf-render: environment: %s\n", svbrdf::message_line(prepared.environment_note()).c_str());
+    if (!quiet && prepared.camera().has_lens())
+      std::fprintf(stderr, "svbrdf-render: depth of field: a lens of radius %g focused at %g along the view axis%s\n",
+                   double(prepared.camera().lens_radius()), double(prepared.camera().focus_distance()),
+                   focus_distance > 0.0f ? "" : " (autofocus on the frame's centre)");
     for (const std::string& w : prepared.warnings())
       std::fprintf(stderr, "svbrdf-render: warning: %s\n", svbrdf::message_line(w).c_str());
     for (const std::string& w : prepared.mip_warnings(texture_filter))

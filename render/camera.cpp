@@ -40,6 +40,17 @@ Camera::Camera(const CameraDesc& d, int width, int height) : type_(d.type), widt
     throw input_error(d.name, "the camera's placement and extent give rays that are not finite numbers");
 }
 
+void Camera::set_lens(float lens_radius, float focus_distance) {
+  // Up to kMaxLensLength, so that a ray's direction before normalization (lengths of both) squares to
+  // a finite float: Embree asserts on a NaN.
+  if (!(lens_radius >= 0.0f && lens_radius <= kMaxLensLength))
+    throw input_error("--aperture", "the lens radius must be a number in [0, 1e15]");
+  if (!(focus_distance > 0.0f && focus_distance <= kMaxLensLength))
+    throw input_error("--focus-distance", "the focus distance must be a number in (0, 1e15]");
+  lens_radius_ = lens_radius;
+  focus_ = focus_distance;
+}
+
 CameraDesc Camera::framing(const glm::vec3& lo, const glm::vec3& hi) {
   CameraDesc d;
   d.name = "framing";

@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "appearance/microfacet_normal_mapping.h"
+#include "appearance/sampling.h"
 #include "appearance/shading.h"
 #include "appearance/dispersion.h"
 #include "render/medium_stack.h"
@@ -345,8 +346,12 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
 PathSample trace_path(const RenderWorld& w, const IntegratorSettings& s, float film_x, float film_y, Rng& rng) {
   PathSample out;
   CameraRay cr;
-  if (s.footprints || s.filter != TextureFilter::level0) cr = w.camera->generate(film_x, film_y);
-  else cr.ray = w.camera->ray(film_x, film_y);
+  // The lens point (Shirley and Chiu's concentric map of the unit square onto the disk), drawn only for
+  // a thin lens, so that a pinhole render reads the random numbers it always read.
+  const glm::vec2 lens =
+      w.camera->has_lens() ? sample_concentric_disk({rng.next_float(), rng.next_float()}) : glm::vec2(0.0f);
+  if (s.footprints || s.filter != TextureFilter::level0) cr = w.camera->generate(film_x, film_y, lens);
+  else cr.ray = w.camera->ray(film_x, film_y, lens);
   const Ray& ray = cr.ray;
   const std::uint64_t hit_seed = rng.next_u64();
   if (w.ray_log) w.ray_log->record(ray.origin, ray.dir, ray.tnear, ray.tfar, hit_seed, false);

@@ -103,6 +103,11 @@ PreparedScene::PreparedScene(Scene scene, const SceneSetup& setup, const ColorCo
     }
   }
   camera_ = std::make_unique<Camera>(desc, width, height);
+  if (setup.aperture != 0.0f || setup.focus_distance != 0.0f) {
+    if (!(setup.focus_distance >= 0.0f))  // a negative or NaN distance, not the autofocus's 0
+      camera_->set_lens(setup.aperture, setup.focus_distance);
+    camera_->set_lens(setup.aperture, setup.focus_distance > 0.0f ? setup.focus_distance : autofocus());
+  }
 
   world_.scene = &scene_;
   world_.textures = textures_.get();
@@ -144,6 +149,18 @@ PreparedScene::PreparedScene(Scene scene, const SceneSetup& setup, const ColorCo
     world_.environment = Environment::from_image(std::move(sky), setup.env);
     environment_note_ = "the equirectangular environment " + setup.env;
   }
+}
+
+float PreparedScene::autofocus() const {
+  // What the ray through the frame's centre meets first, its distance along the view axis; a centre
+  // that sees no surface focuses on the middle of the scene's bounds.
+  const Camera& c = *camera_;
+  const Ray r = c.ray(0.5f * float(c.width()), 0.5f * float(c.height()));
+  const RayHit hit = bvh_->empty() ? RayHit{} : bvh_->intersect(r.origin, r.dir, r.tnear, r.tfar, 0);
+  float d = hit.found() ? hit.t * glm::dot(r.dir, c.forward())
+                        : glm::dot(0.5f * (bvh_->bounds_min() + bvh_->bounds_max()) - c.position(), c.forward());
+  // The bounds behind the camera, or no geometry: a distance of 1.
+  return d > 0.0f && std::isfinite(d) ? d : 1.0f;
 }
 
 }  // namespace svbrdf

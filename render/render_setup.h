@@ -34,6 +34,12 @@ struct SceneSetup {
   SetupProgress* progress = nullptr;
   // Where brdf MIP builds are read from and stored (render/mip_cache.h); null: built every time.
   MipCache* mip_cache = nullptr;
+  // Depth of field (render/camera.h; glTF cameras carry no lens): the thin lens's radius in scene
+  // units (0: the pinhole), and the distance along the view axis it focuses at (0: the distance along
+  // the axis to the first surface the ray through the frame's centre meets, else to the centre of the
+  // scene's bounds).
+  float aperture = 0.0f;
+  float focus_distance = 0.0f;
 };
 
 class PreparedScene {
@@ -42,6 +48,8 @@ class PreparedScene {
   const RenderWorld& world() const { return world_; }
   const Scene& scene() const { return scene_; }
   const Camera& camera() const { return *camera_; }
+  // The distance SceneSetup::focus_distance 0 focuses at.
+  float autofocus() const;
   const EmbreeScene& bvh() const { return *bvh_; }
   // The environment the render uses, in words, when it is not the file's own (glTF carries none, so
   // whenever it is not black), e.g. "a uniform white environment of radiance 1 (...)"; and for a
