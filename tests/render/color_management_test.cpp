@@ -84,5 +84,61 @@ TEST(ColorManagement, UnknownDisplayOrViewIsOneLineAndExit2) {
   }
 }
 
+// The environment's color space comes from the config's file rules (OCIO 2): a map whose name a rule
+// matches is converted from that rule's space; one only the Default rule matches is read as
+// scene-linear. The rule's space scales the primaries by a diagonal matrix, so what the camera sees
+// of the sky is the file's value times the diagonal (the config's own transform, applied by hand).
+TEST(ColorManagement, EnvironmentSpaceComesFromTheFileRules) {
+  const test::TempDir dir;
+  dir.write("rules.ocio", R"(ocio_profile_version: 2
+roles:
+  scene_linear: Linear Rec.709
+  color_picking: sRGB
+  data: Raw
+  default: Linear Rec.709
+file_rules:
+  - !<Rule> {name: Scaled skies, colorspace: Scaled primaries, pattern: "*_scaled", extension: "*"}
+  - !<Rule> {name: Default, colorspace: default}
+displays:
+  sRGB:
+    - !<View> {name: Standard, colorspace: sRGB}
+colorspaces:
+  - !<ColorSpace>
+    name: Linear Rec.709
+    isdata: false
+  - !<ColorSpace>
+    name: Scaled primaries
+    isdata: false
+    to_scene_reference: !<MatrixTransform> {matrix: [2, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0.5, 0, 0, 0, 0, 1]}
+  - !<ColorSpace>
+    name: sRGB
+    isdata: false
+    to_scene_reference: !<ExponentWithLinearTransform> {gamma: 2.4, offset: 0.055}
+  - !<ColorSpace>
+    name: Raw
+    isdata: true
+)");
+  // A uniform sky, the same file under two names.
+  Image sky(8, 4, 3);
+  for (std::size_t k = 0; k < sky.pixels.size(); k += 3) sky.pixels[k] = 0.25f, sky.pixels[k + 1] = 0.5f, sky.pixels[k + 2] = 1.0f;
+  for (const char* name : {"sky_scaled.exr", "sky.exr"}) write_image(dir.path() / name, sky, PixelFormat::float32);
+  const std::vector<std::string> ocio = {"--ocio-config", (dir.path() / "rules.ocio").string()};
+  for (const char* stem : {"sky_scaled", "sky"}) {
+    std::vector<std::string> args = plus(quad_args(dir, stem), ocio);
+    // The sky in place of quad_args' uniform one; 16×16 so that the frame's corner sees only the sky.
+    const auto env = std::find(args.begin(), args.end(), "--env");
+    *(env + 1) = (dir.path() / (std::string(stem) + ".exr")).string();
+    *(std::find(args.begin(), args.end(), "4x4")) = "16x16";
+    const test::RenderRun r = test::render(args, dir.path());
+    ASSERT_TRUE(r.end.exited && r.end.code == 0) << stem << ": " << r.err;
+  }
+  const Image scaled = read_image(dir.path() / "sky_scaled.exr"), plain = read_image(dir.path() / "sky.exr");
+  const float want_scaled[3] = {0.5f, 0.5f, 0.5f}, want_plain[3] = {0.25f, 0.5f, 1.0f};
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_NEAR(scaled.at(0, 0, c), want_scaled[c], 1e-5f) << "channel " << c;
+    EXPECT_NEAR(plain.at(0, 0, c), want_plain[c], 1e-5f) << "channel " << c;
+  }
+}
+
 }  // namespace
 }  // namespace svbrdf
