@@ -4,6 +4,7 @@
 // rasterized here (figure_raster.cpp), one user unit to one pixel, chosen by the file's extension.
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -43,6 +44,11 @@ class Figure {
   double width() const { return width_; }
   double height() const { return height_; }
   const std::vector<Shape>& shapes() const { return shapes_; }
+
+  // The box a text shape covers in the PNG, in pixels: its top-left and bottom-right corners, as
+  // OpenImageIO lays it out in the PNG's font at its anchor. Throws as raster() does where no font can
+  // be found.
+  static std::pair<glm::dvec2, glm::dvec2> text_box(const Shape& text);
 
   std::string svg() const;
   // RGB on white, ceil(width) × ceil(height) pixels, antialiased; text drawn by OpenImageIO with the

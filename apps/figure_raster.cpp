@@ -192,6 +192,19 @@ Points circle_points(glm::dvec2 c, double r) {
 
 }  // namespace
 
+std::pair<glm::dvec2, glm::dvec2> Figure::text_box(const Shape& s) {
+  // text_size is relative to the left end of the baseline; render_text's alignment moves it left by
+  // its whole (end) or half (middle) width, as raster() draws it.
+  const OIIO::ROI r = OIIO::ImageBufAlgo::text_size(s.text, int(std::lround(s.size)), kFont);
+  if (!r.defined())
+    throw Error("cannot measure the plot's text: OpenImageIO found no DejaVu Sans font (Debian's package "
+                "fonts-dejavu-core has it)",
+                Error::Kind::environment);
+  const double w = r.xend - r.xbegin, shift = s.anchor == "middle" ? 0.5 * w : s.anchor == "end" ? w : 0.0;
+  const glm::dvec2 at(std::lround(s.points[0].x), std::lround(s.points[0].y));
+  return {at + glm::dvec2(r.xbegin - shift, r.ybegin), at + glm::dvec2(r.xend - shift, r.yend)};
+}
+
 Image Figure::raster() const {
   Canvas canvas(int(std::ceil(width_)), int(std::ceil(height_)));
   for (const Shape& s : shapes_) {

@@ -47,7 +47,11 @@ FresnelCurves fresnel_curves_conductor(const Rgb& eta, const Rgb& k, int steps) 
 }
 
 Figure fresnel_plot(const FresnelCurves& c) {
-  const double left = 70, top = 60, w = 540, h = 360;
+  // The heading stacks its parts a line each (the title, the material, each channel's largest
+  // difference in its curve's colour), so that no line outgrows the frame: a conductor's three
+  // summaries on one line are twice as wide as the plot.
+  const double line = 18, heading = 24 + line * (1 + c.channels);
+  const double left = 70, top = heading + 16, w = 540, h = 360;
   Figure fig(left + w + 30, top + h + 60);
   auto at = [&](double deg, double r) { return glm::dvec2(left + w * deg / 90.0, top + h * (1.0 - r)); };
   for (int i = 0; i <= 9; ++i) {
@@ -60,12 +64,12 @@ Figure fresnel_plot(const FresnelCurves& c) {
   }
   fig.line(at(0, 0), at(90, 0), "black", 1.5);
   fig.line(at(0, 0), at(0, 1), "black", 1.5);
-  const char* colors1[] = {"black"};
   const char* colors3[] = {"#d62728", "#2ca02c", "#1f4fd8"};
-  std::string summary;
+  fig.text({left, 24}, "Fresnel reflectance: exact (solid) vs Schlick (dashed)", 15);
+  fig.text({left, 24 + line}, c.label, 12, "#444444");
   for (int ch = 0; ch < c.channels; ++ch) {
     const auto i = static_cast<std::size_t>(ch);
-    const std::string color = c.channels == 1 ? colors1[0] : colors3[i];
+    const std::string color = c.channels == 1 ? "black" : colors3[i];
     std::vector<glm::dvec2> e, s;
     for (std::size_t j = 0; j < c.theta_deg.size(); ++j) {
       e.push_back(at(c.theta_deg[j], c.exact[i][j]));
@@ -75,11 +79,10 @@ Figure fresnel_plot(const FresnelCurves& c) {
     fig.polyline(s, color, 2, "7,5");
     const double md = c.max_difference[i], ma = c.max_at_deg[i];
     fig.line(at(ma, 0), at(ma, 1), color, 0.8, "2,3");
-    summary += (summary.empty() ? "" : "; ") + std::string(c.channels == 3 ? std::string("RGB").substr(i, 1) + ": " : "") +
-               "max |exact - Schlick| " + g(md) + " at " + g(ma) + " deg";
+    const std::string channel = c.channels == 3 ? std::string("RGB").substr(i, 1) + ": " : "";
+    fig.text({left, 24 + line * (2 + ch)}, channel + "max |exact - Schlick| " + g(md) + " at " + g(ma) + " deg", 12,
+             c.channels == 1 ? "#444444" : color);
   }
-  fig.text({left, 24}, "Fresnel reflectance, " + c.label + ": exact (solid) vs Schlick (dashed)", 15);
-  fig.text({left, 44}, summary, 12, "#444444");
   fig.text({left + w / 2, top + h + 44}, "angle of incidence (degrees)", 13, "black", "middle");
   return fig;
 }

@@ -114,5 +114,27 @@ TEST(Fresnel, SchlickAgainstExactMaxima) {
   }
 }
 
+// Every text of the Fresnel plot lies inside its frame as the PNG draws it (DejaVu Sans through
+// OpenImageIO): a conductor's heading, with its material and a summary per channel at four significant
+// digits (the widest numbers plot_number writes), once ran past the right edge.
+TEST(FresnelPlot, EveryTextFitsTheFrame) {
+  for (const FresnelCurves& c : {fresnel_curves_dielectric(1.333f, 91),
+                                 fresnel_curves_conductor({0.1568f, 0.4243f, 1.382f}, {3.602f, 2.472f, 1.916f}, 91)}) {
+    const Figure fig = fresnel_plot(c);
+    int texts = 0;
+    for (const Figure::Shape& s : fig.shapes()) {
+      if (s.kind != Figure::Shape::Kind::text) continue;
+      ++texts;
+      const auto [lo, hi] = Figure::text_box(s);
+      EXPECT_GT(hi.x - lo.x, 0.0) << s.text;
+      EXPECT_GE(lo.x, 0.0) << s.text;
+      EXPECT_GE(lo.y, 0.0) << s.text;
+      EXPECT_LE(hi.x, fig.width()) << s.text;
+      EXPECT_LE(hi.y, fig.height()) << s.text;
+    }
+    EXPECT_GT(texts, 20) << c.label;
+  }
+}
+
 }  // namespace
 }  // namespace svbrdf
