@@ -45,7 +45,8 @@ std::string grid_of(const MaterialDesc& m, const std::vector<const TexelInput*>&
     if (r.uv_set() != g.uv_set()) return pair + " read different TEXCOORD sets";
     if (!same_transform(r.transform, g.transform)) return pair + " have different KHR_texture_transforms";
     if (rs.wrap_s != gs.wrap_s || rs.wrap_t != gs.wrap_t) return pair + " have different wrap modes";
-    if (&r == &m.normal_texture && textures.image(r, false).channels < 3) return "its normal map has fewer than three channels";
+    if ((&r == &m.normal_texture || &r == &m.clearcoat_normal_texture) && textures.image(r, false).channels < 3)
+      return in->name + " has fewer than three channels";
     const glm::ivec2 size = textures.size(r);
     e.width = std::max(e.width, size.x), e.height = std::max(e.height, size.y);
   }
@@ -230,8 +231,9 @@ void SceneMips::build(std::size_t i, TextureFilter filter) {
   const MaterialDesc& m = mip.grid_material_;
   // The images as TextureSet holds them (base color already scene-linear: decoded once), smaller
   // ones replicated onto the grid.
+  // Room for every slot's replica up front: image_for hands out pointers into it.
   std::vector<Image> replicas;
-  replicas.reserve(5);
+  replicas.reserve(texel_inputs(m).size());
   auto image_for = [&](const TextureRef& r, bool color) -> SlotImage {
     const Image& im = textures_.image(r, color);
     const bool linear = color && textures_.linearized(r);

@@ -17,7 +17,7 @@ bool same_ref(const TextureRef& a, const TextureRef& b) {
 std::vector<TexelInput> texel_inputs(const MaterialDesc& m) {
   // The arguments decode_material_texels takes (SceneMips::prepare fills MaterialImages from these).
   // A new texel input goes here.
-  return {
+  std::vector<TexelInput> in{
       {"baseColorTexture", &m.base_color_texture, true, {}},
       {"metallicRoughnessTexture", &m.metallic_roughness_texture, false, {}},
       {"normalTexture", &m.normal_texture, false, {}},
@@ -33,10 +33,26 @@ std::vector<TexelInput> texel_inputs(const MaterialDesc& m) {
       {"specularColorFactor", nullptr, false, {m.specular_color.r, m.specular_color.g, m.specular_color.b}},
       {"ior", nullptr, false, {m.ior}},
   };
+  // KHR_materials_clearcoat (MaterialTexels::coat_layer): read only where the coat has a weight, as
+  // decode_material_texels reads it, so a material without one neither waits on nor is kept off the
+  // grid by coat textures it does not use.
+  if (m.clearcoat > 0.0f) {
+    const std::vector<TexelInput> coat{
+        {"clearcoatFactor", nullptr, false, {m.clearcoat}},
+        {"clearcoatTexture", &m.clearcoat_texture, false, {}},
+        {"clearcoatRoughnessFactor", nullptr, false, {m.clearcoat_roughness}},
+        {"clearcoatRoughnessTexture", &m.clearcoat_roughness_texture, false, {}},
+        {"clearcoatNormalTexture", &m.clearcoat_normal_texture, false, {}},
+        {"clearcoatNormalTexture.scale", nullptr, false, {m.clearcoat_normal_texture.scale}},
+    };
+    in.insert(in.end(), coat.begin(), coat.end());
+  }
+  return in;
 }
 
 bool same_texels(const MaterialDesc& a, const MaterialDesc& b) {
   const std::vector<TexelInput> x = texel_inputs(a), y = texel_inputs(b);
+  if (x.size() != y.size()) return false;  // one has a coat, the other none
   for (std::size_t i = 0; i < x.size(); ++i) {
     if (x[i].texture && !same_ref(*x[i].texture, *y[i].texture)) return false;
     if (x[i].values != y[i].values) return false;
