@@ -262,29 +262,35 @@ int BrdfPyramid::coat_bytes_per_texel(int level) const {
 }
 
 BrdfPyramid BrdfPyramid::from_levels(const MaterialTexels& m, int max_lobes, std::vector<BrdfLevel> coarse,
-                                     const RadialGrid& grid, bool tintable) {
+                                     const RadialGrid& grid, bool tintable, std::vector<BrdfLevel> coat) {
   BrdfPyramid p;
   p.grid_ = grid;
   p.tintable_ = tintable;
   p.level0_ = {m.width, m.height};
   p.max_lobes_ = max_lobes;
   const int n = level_count(p.level0_);
-  if (static_cast<int>(coarse.size()) + 1 != n)
-    throw Error("BRDF pyramid: " + std::to_string(coarse.size() + 1) + " levels for a " + std::to_string(m.width) +
-                "x" + std::to_string(m.height) + " level 0 (expected " + std::to_string(n) + ")");
-  p.levels_.push_back(level_zero(p.level0_));
-  for (std::size_t l = 0; l < coarse.size(); ++l) {
-    const Extent e = level_extent(p.level0_, static_cast<int>(l + 1));
+  if (static_cast<int>(coarse.size()) + 1 != n || !(coat.empty() || coat.size() == coarse.size()))
+    throw Error("BRDF pyramid: " + std::to_string(coarse.size() + 1) + " levels (" + std::to_string(coat.size()) +
+                " of the coat) for a " + std::to_string(m.width) + "x" + std::to_string(m.height) +
+                " level 0 (expected " + std::to_string(n) + ")");
+  // Whether a stored level has the shape of level l's: its extent, counts within its slots, lobes packed.
+  const auto well_formed = [&](const BrdfLevel& c, std::size_t l) {
+    const Extent e = level_extent(p.level0_, static_cast<int>(l));
     const std::size_t texels = static_cast<std::size_t>(e.width) * e.height;
-    BrdfLevel& c = coarse[l];
     bool packed = c.extent == e && c.slots >= 1 && c.slots <= kMaxLobes && c.counts.size() == texels &&
                   c.first.size() == texels && c.single.size() == texels;
     for (std::size_t t = 0, next = 0; packed && t < texels; next += c.counts[t] >= 2 ? c.counts[t] : 0, ++t)
       packed = c.counts[t] <= c.slots && c.first[t] <= c.lobes.size() &&
                (c.counts[t] < 2 || (c.first[t] == next && next + c.counts[t] <= c.lobes.size()));
-    if (!packed || !(c.correction.empty() || c.correction.size() == texels) || (!c.correction.empty() && !(grid.inner > 0)))
+    return packed && (c.correction.empty() || (c.correction.size() == texels && grid.inner > 0));
+  };
+  p.levels_.push_back(level_zero(p.level0_));
+  if (!coat.empty()) p.coat_.push_back(level_zero(p.level0_));
+  for (std::size_t l = 0; l < coarse.size(); ++l) {
+    if (!well_formed(coarse[l], l + 1) || !(coat.empty() || (well_formed(coat[l], l + 1) && coat[l].correction.empty())))
       throw Error("BRDF pyramid: level " + std::to_string(l + 1) + " has the wrong shape");
-    p.levels_.push_back(std::move(c));
+    p.levels_.push_back(std::move(coarse[l]));
+    if (!coat.empty()) p.coat_.push_back(std::move(coat[l]));
   }
   return p;
 }

@@ -122,10 +122,10 @@ class BrdfPyramid {
   static BrdfPyramid build(const MaterialTexels& level0, const BrdfBuildOptions& options = {},
                            std::vector<BrdfLevelStats>* stats = nullptr);
   // From stored levels ≥ 1 (the MIP file), their radial corrections' grid (for levels whose
-  // `correction` is not empty) and the level-0 texels' extent; throws svbrdf::Error when the shapes do
-  // not form a pyramid.
+  // `correction` is not empty), the level-0 texels' extent and, for a coated material, the coat lobes
+  // of levels ≥ 1; throws svbrdf::Error when the shapes do not form a pyramid.
   static BrdfPyramid from_levels(const MaterialTexels& level0, int max_lobes, std::vector<BrdfLevel> coarse,
-                                 const RadialGrid& grid = {}, bool tintable = false);
+                                 const RadialGrid& grid = {}, bool tintable = false, std::vector<BrdfLevel> coat = {});
 
   int levels() const { return static_cast<int>(levels_.size()); }
   Extent level0() const { return level0_; }

@@ -63,10 +63,10 @@ std::string mip_build_identity(bool tint) {
   char text[320];
   std::snprintf(text, sizeof text,
                 "mip file %d; lobes %d; tolerance %a; spread %a; peak weight %a; lean share %a; radial %d; recentre %d; "
-                "tint %d",
+                "tint %d; coat lobes %d",
                 kMipFileVersion, o.reduction.max_lobes, double(o.reduction.tolerance), double(o.reduction.spread_scale),
                 o.reduction.peak_weight, o.reduction.lean_peak_share_spread, int(o.radial_correction), int(o.recentre),
-                int(o.tint));
+                int(o.tint), o.coat_lobes);
   return text;
 }
 

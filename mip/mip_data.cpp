@@ -95,7 +95,8 @@ BrdfTable texel_table(const MipData& mip, TextureFilter filter, int level, int i
 
 int bytes_per_texel(const MipData& mip, TextureFilter filter, int level) {
   if (filter == TextureFilter::brdf && level > 0) return mip.brdf.bytes_per_texel(level);
-  return ParamPyramid::kBytesPerTexel + (mip.param.specular_level(0).empty() ? 0 : ParamPyramid::kBytesPerSpecularTexel);
+  return ParamPyramid::kBytesPerTexel + (mip.param.specular_level(0).empty() ? 0 : ParamPyramid::kBytesPerSpecularTexel) +
+         (mip.param.has_coat() ? ParamPyramid::kBytesPerCoatTexel : 0);
 }
 
 }  // namespace svbrdf

@@ -40,69 +40,6 @@ constexpr const char* kCacheKey = "svbrdf:cache_key";
 std::string radial_channel(int node) { return "radial.R" + std::to_string(node); }
 std::string where(const fs::path& p) { return p.string(); }
 
-// A pixel's channels as the file stores them (OpenEXR's per-channel formats): byte offsets into a
-// native pixel, and typed access.
-struct NativeLayout {
-  std::vector<OIIO::TypeDesc> formats;
-  std::vector<std::size_t> offsets;
-  std::size_t stride = 0;
-  void add(OIIO::TypeDesc f) {
-    formats.push_back(f);
-    offsets.push_back(stride);
-    stride += f.size();
-  }
-};
-
-void put_float(std::byte* px, const NativeLayout& layout, std::size_t c, float v) {
-  std::byte* at = px + layout.offsets[c];
-  if (layout.formats[c] == OIIO::TypeDesc::HALF) {
-    const std::uint16_t bits = Imath::half(v).bits();  // exact: every half channel holds half values
-    std::memcpy(at, &bits, 2);
-  } else {
-    std::memcpy(at, &v, 4);
-  }
-}
-void put_uint(std::byte* px, const NativeLayout& layout, std::size_t c, std::uint32_t v) {
-  std::memcpy(px + layout.offsets[c], &v, 4);
-}
-
-// A channel's value as a float, whatever its stored format; false for a format no MIP file has.
-bool get_float(const std::byte* at, OIIO::TypeDesc f, float& v) {
-  if (f == OIIO::TypeDesc::FLOAT) {
-    std::memcpy(&v, at, 4);
-  } else if (f == OIIO::TypeDesc::HALF) {
-    Imath::half h;
-    std::uint16_t bits;
-    std::memcpy(&bits, at, 2);
-    h.setBits(bits);
-    v = h;
-  } else if (f == OIIO::TypeDesc::UINT) {
-    std::uint32_t u;
-    std::memcpy(&u, at, 4);
-    v = static_cast<float>(u);
-  } else {
-    return false;
-  }
-  return true;
-}
-
-// The layout of a pixel whose channels (`formats`, by channel index) lie in the order of their names:
-// OpenEXR stores them so and reads them back so, whatever order they were written in, which makes it
-// the one order in which a writer and a reader see the same bytes.
-NativeLayout name_ordered(const std::vector<std::string>& names, const std::vector<OIIO::TypeDesc>& formats) {
-  std::vector<std::size_t> by_name(names.size());
-  std::iota(by_name.begin(), by_name.end(), std::size_t(0));
-  std::sort(by_name.begin(), by_name.end(), [&](std::size_t a, std::size_t b) { return names[a] < names[b]; });
-  NativeLayout l;
-  l.formats = formats;
-  l.offsets.assign(names.size(), 0);
-  for (const std::size_t c : by_name) {
-    l.offsets[c] = l.stride;
-    l.stride += formats[c].size();
-  }
-  return l;
-}
-
 // A level's pixels are checked in bands of whole rows, about this many bytes each, as they are read:
 // the reader keeps one band, not a second copy of the level.
 constexpr std::size_t kBandBytes = std::size_t(1) << 22;
@@ -137,6 +74,7 @@ std::string level_checksum(const OIIO::ImageSpec& s, int max_lobes, float radial
   std::memcpy(&bits[0], &ior, 4);
   header += " ior " + std::to_string(bits[0]);
   header += " tint " + std::to_string(s.get_int_attribute(kTint, 0));
+  header += " coat_slots " + std::to_string(s.get_int_attribute(kCoatSlots, 0));
   // Channels in name order, as the pixels: OpenImageIO lists a file's channels in an order of its own.
   std::vector<std::string> channels;
   for (int c = 0; c < s.nchannels; ++c)
@@ -175,51 +113,71 @@ std::uint64_t least_exr_bytes(const OIIO::ImageSpec& spec) {
 
 namespace {
 
+// The channels a level's texel holds, in the order the spec lists them: the parameters (and the
+// specular layer's and coat's means), `slots` lobes of `lobe` channels each, the radial correction,
+// `coat_slots` coat lobes.
+struct LevelChannels {
+  bool specular = false, coat = false, radial = false;
+  int slots = 0, coat_slots = 0;
+  std::vector<LobeChannel> lobe;
+  std::size_t first_lobe() const { return 8 + (specular ? 4 : 0) + (coat ? 5 : 0); }
+  std::size_t first_radial() const { return first_lobe() + std::size_t(slots) * lobe.size(); }
+  std::size_t first_coat_lobe() const { return first_radial() + (radial ? RadialGrid::kNodes : 0); }
+};
+
+// Puts `slots` lobes, the texel's and empty ones after them, into channels from `first` on.
+void put_lobes(std::byte* px, const NativeLayout& layout, std::size_t first, int slots, std::span<const Lobe> lobes,
+               const std::vector<LobeChannel>& channels) {
+  // Empty slots: weight 0 (and a plain GGX of α² 1 about the geometric normal, so every channel holds a
+  // meaningful value).
+  static const Lobe kEmpty = [] {
+    Lobe l;
+    l.weight = 0.0f, l.diffuse = glm::vec3(0), l.f0 = glm::vec3(0), l.alpha2 = 1.0f;
+    return l;
+  }();
+  for (int k = 0; k < slots; ++k) {
+    const LobeValues v = pack_lobe(k < static_cast<int>(lobes.size()) ? lobes[static_cast<std::size_t>(k)] : kEmpty);
+    for (std::size_t c = 0; c < channels.size(); ++c) {
+      const std::size_t ch = first + static_cast<std::size_t>(k) * channels.size() + c;
+      if (channels[c].role == Role::normal_direction) put_uint(px, layout, ch, v.direction);
+      else put_float(px, layout, ch, v[channels[c].role]);
+    }
+  }
+}
+
 // Level `level`'s pixels in `layout` (the spec's channels, by index, at the layout's offsets).
 std::vector<std::byte> pack_level(const ParamPyramid& param, const BrdfPyramid& brdf, int level, const NativeLayout& layout,
-                                  const std::vector<LobeChannel>& lobe_ch) {
-  const std::size_t lobe_nch = lobe_ch.size();
-  const bool param_specular = !param.specular_level(0).empty();
-  const std::size_t first_lobe = param_specular ? 12 : 8;  // the first lobe channel
+                                  const LevelChannels& ch) {
   const Extent e = param.extent(level);
   const std::size_t texels = static_cast<std::size_t>(e.width) * e.height;
   std::vector<std::byte> buf(texels * layout.stride);
   const auto params = param.level(level);
   const auto specular = param.specular_level(level);
+  const auto coat = param.coat_level(level);
+  const std::vector<LobeChannel> coat_channels = coat_lobe_channels();
   for (std::size_t t = 0; t < texels; ++t) {
     std::byte* px = buf.data() + t * layout.stride;
     const ParamTexel& p = params[t];
     const float values[8] = {p.base_color.r, p.base_color.g, p.base_color.b, p.metallic,
                              p.roughness,    p.normal.x,     p.normal.y,     p.normal.z};
     for (std::size_t c = 0; c < 8; ++c) put_float(px, layout, c, values[c]);
-    if (param_specular) {
+    std::size_t next = 8;
+    if (ch.specular) {
       const ParamSpecular& sp = specular[t];
-      const float spec[4] = {sp.specular, sp.color.r, sp.color.g, sp.color.b};
-      for (std::size_t c = 0; c < 4; ++c) put_float(px, layout, 8 + c, spec[c]);
+      for (const float v : {sp.specular, sp.color.r, sp.color.g, sp.color.b}) put_float(px, layout, next++, v);
+    }
+    if (ch.coat) {
+      const ParamCoat& c = coat[t];
+      for (const float v : {c.clearcoat, c.roughness, c.normal.x, c.normal.y, c.normal.z}) put_float(px, layout, next++, v);
     }
     if (level == 0) continue;
-    // Empty slots: weight 0 (and a plain GGX of α² 1 about the geometric normal, so every channel
-    // holds a meaningful value).
-    static const Lobe kEmpty = [] {
-      Lobe l;
-      l.weight = 0.0f, l.diffuse = glm::vec3(0), l.f0 = glm::vec3(0), l.alpha2 = 1.0f;
-      return l;
-    }();
     const BrdfLevel& bl = brdf.level(level);
-    const std::span<const Lobe> lobes = bl.texel_lobes(t);
-    for (int k = 0; k < bl.slots; ++k) {
-      const LobeValues v = pack_lobe(k < static_cast<int>(lobes.size()) ? lobes[static_cast<std::size_t>(k)] : kEmpty);
-      for (std::size_t c = 0; c < lobe_nch; ++c) {
-        const std::size_t ch = first_lobe + static_cast<std::size_t>(k) * lobe_nch + c;
-        const LobeChannel& lc = lobe_ch[c];
-        if (lc.role == Role::normal_direction) put_uint(px, layout, ch, v.direction);
-        else put_float(px, layout, ch, v[lc.role]);
-      }
-    }
-    if (!bl.correction.empty())
+    put_lobes(px, layout, ch.first_lobe(), ch.slots, bl.texel_lobes(t), ch.lobe);
+    if (ch.radial)
       for (int r = 0; r < RadialGrid::kNodes; ++r)
-        put_float(px, layout, first_lobe + static_cast<std::size_t>(bl.slots) * lobe_nch + static_cast<std::size_t>(r),
-                  bl.correction[t].ratio[static_cast<std::size_t>(r)]);
+        put_float(px, layout, ch.first_radial() + static_cast<std::size_t>(r), bl.correction[t].ratio[static_cast<std::size_t>(r)]);
+    if (ch.coat_slots > 0)
+      put_lobes(px, layout, ch.first_coat_lobe(), ch.coat_slots, brdf.coat_level(level).texel_lobes(t), coat_channels);
   }
   return buf;
 }
@@ -282,17 +240,26 @@ void write_mip_file(const fs::path& path, const ParamPyramid& param, const BrdfP
   for (int level = 1; level < levels; ++level) corrected |= !brdf.level(level).correction.empty();
   const float radial_inner = corrected ? brdf.radial_grid().inner : 0.0f;
   const float radial_outer = corrected ? brdf.radial_grid().outer_deg : 0.0f;
-  const bool param_specular = !param.specular_level(0).empty();
-  std::vector<std::vector<LobeChannel>> channels(static_cast<std::size_t>(levels));
-  for (int level = 1; level < levels; ++level)
-    channels[static_cast<std::size_t>(level)] =
-        lobe_channels(brdf.level(level).specular_layer(), brdf.tintable() && brdf.level(level).tint_layer());
+  // A coated material's file carries the coat in both pyramids (mip_file.h).
+  if (levels > 1 && param.has_coat() != brdf.has_coat())
+    throw Error(where(path) + ": the parameter and BRDF pyramids disagree about the clear coat", Error::Kind::internal);
+  std::vector<LevelChannels> channels(static_cast<std::size_t>(levels));
+  for (int level = 0; level < levels; ++level) {
+    LevelChannels& c = channels[static_cast<std::size_t>(level)];
+    c.specular = !param.specular_level(0).empty();
+    c.coat = param.has_coat();
+    if (level == 0) continue;
+    const BrdfLevel& bl = brdf.level(level);
+    c.slots = bl.slots;
+    c.radial = !bl.correction.empty();
+    c.lobe = lobe_channels(bl.specular_layer(), brdf.tintable() && bl.tint_layer(), c.coat);
+    c.coat_slots = c.coat ? brdf.coat_level(level).slots : 0;
+  }
   std::vector<OIIO::ImageSpec> specs(static_cast<std::size_t>(levels));
   std::vector<NativeLayout> layouts(static_cast<std::size_t>(levels));
   for (int level = 0; level < levels; ++level) {
     const Extent e = param.extent(level);
-    const int slots = level == 0 ? 0 : brdf.level(level).slots;
-    const bool radial = level > 0 && !brdf.level(level).correction.empty();
+    const LevelChannels& ch = channels[static_cast<std::size_t>(level)];
     OIIO::ImageSpec& s = specs[static_cast<std::size_t>(level)];
     NativeLayout& layout = layouts[static_cast<std::size_t>(level)];
     s = OIIO::ImageSpec(e.width, e.height, 0, OIIO::TypeDesc::FLOAT);
@@ -306,20 +273,24 @@ void write_mip_file(const fs::path& path, const ParamPyramid& param, const BrdfP
       layout.add(f);
     };
     for (const char* c : kParamChannels) add(c, OIIO::TypeDesc::FLOAT);
-    if (param_specular)
+    if (ch.specular)
       for (const char* c : kParamSpecularChannels) add(c, OIIO::TypeDesc::FLOAT);
-    for (int k = 0; k < slots; ++k)
-      for (const LobeChannel& c : channels[static_cast<std::size_t>(level)])
-        add("lobe" + std::to_string(k) + "." + c.suffix, c.format);
-    if (radial)
+    if (ch.coat)
+      for (const char* c : kParamCoatChannels) add(c, OIIO::TypeDesc::FLOAT);
+    for (int k = 0; k < ch.slots; ++k)
+      for (const LobeChannel& c : ch.lobe) add("lobe" + std::to_string(k) + "." + c.suffix, c.format);
+    if (ch.radial)
       for (int r = 0; r < RadialGrid::kNodes; ++r) add(radial_channel(r), OIIO::TypeDesc::HALF);
+    for (int k = 0; k < ch.coat_slots; ++k)
+      for (const LobeChannel& c : kCoatLobeChannels) add("coat" + std::to_string(k) + "." + c.suffix, c.format);
     s.nchannels = static_cast<int>(s.channelnames.size());
     s.attribute("name", "level" + std::to_string(level));
     s.attribute("compression", "zip");
     s.attribute("svbrdf:mip_version", kMipFileVersion);
     s.attribute("svbrdf:level", level);
     s.attribute("svbrdf:max_lobes", brdf.max_lobes());
-    s.attribute("svbrdf:slots", slots);
+    s.attribute("svbrdf:slots", ch.slots);
+    if (ch.coat && level > 0) s.attribute(kCoatSlots, ch.coat_slots);
     if (param.ior() != 1.5f) s.attribute(kIor, param.ior());
     if (brdf.tintable()) s.attribute(kTint, 1);
     if (corrected) {
@@ -330,7 +301,7 @@ void write_mip_file(const fs::path& path, const ParamPyramid& param, const BrdfP
     // Every header is written when the file opens, so the checksums come first: the level packed once
     // in name order for them, and again as written below.
     const NativeLayout ordered_layout = name_ordered(s.channelnames, s.channelformats);
-    const std::vector<std::byte> ordered = pack_level(param, brdf, level, ordered_layout, channels[static_cast<std::size_t>(level)]);
+    const std::vector<std::byte> ordered = pack_level(param, brdf, level, ordered_layout, ch);
     const std::size_t band_bytes = std::size_t(band_rows(e.width, ordered_layout.stride)) * e.width * ordered_layout.stride;
     std::vector<std::uint64_t> bands;
     for (std::size_t at = 0; at < ordered.size(); at += band_bytes)
@@ -433,7 +404,8 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
   std::optional<Error> corrupt;  // the first level that fails its checksum
   std::vector<std::vector<ParamTexel>> param_levels;
   std::vector<std::vector<ParamSpecular>> specular_levels;
-  std::vector<BrdfLevel> coarse;
+  std::vector<std::vector<ParamCoat>> coat_levels;
+  std::vector<BrdfLevel> coarse, coarse_coat;
   for (int level = 0; level < levels; ++level) {
     const std::string at_level = "level " + std::to_string(level);
     if (!in->seek_subimage(level, 0))
@@ -477,41 +449,61 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
                                          kParamSpecularChannels[0] + (param_specular ? " but level 0 has none" : " but level 0 has"));
     if (param_specular)
       for (const char* c : kParamSpecularChannels) need(c);
+    // The coat's: its means in every level or in none, its lobes and shares in every level ≥ 1 of a
+    // coated material's file.
+    const bool coat = index.count(kParamCoatChannels[0]) > 0;
+    if (level > 0 && coat != !coat_levels.empty())
+      throw input_error(where(path), at_level + (coat ? " has" : " has no") + " channel " + kParamCoatChannels[0] +
+                                         (coat ? " but level 0 has none" : " but level 0 has"));
+    if (coat)
+      for (const char* c : kParamCoatChannels) need(c);
+    const int coat_slots = level > 0 && coat ? s.get_int_attribute(kCoatSlots, -1) : 0;
+    if (coat_slots < 0 || coat_slots > kMaxLobes)
+      throw input_error(where(path), at_level + " has " + std::to_string(coat_slots) + " coat lobe slots (" + kCoatSlots + ")");
     const std::size_t first_lobe = order.size();
     // The tint layer's: only in a tintable file (a lobe of any other has no f0_tint).
     const bool tint_channels = slots > 0 && index.count("lobe0.F0tint.R") > 0;
     if (tint_channels && s.get_int_attribute(kTint, 0) != 1)
       throw input_error(where(path), at_level + " has channel lobe0.F0tint.R but the file is not " + kTint + " 1");
-    const std::vector<LobeChannel> lobe_ch = lobe_channels(slots > 0 && index.count("lobe0.F90") > 0, tint_channels);
-    for (int k = 0; k < slots; ++k)
-      for (const LobeChannel& c : lobe_ch) {
-        const std::string name = "lobe" + std::to_string(k) + "." + c.suffix;
-        need(name);
-        if (c.role == Role::normal_direction && formats.back() != OIIO::TypeDesc::UINT)
-          throw input_error(where(path), at_level + " channel " + name + " is " + std::string(formats.back().c_str()) +
-                                             ", not the 32-bit unsigned integer of an octahedral code");
-      }
+    const std::vector<LobeChannel> lobe_ch = lobe_channels(slots > 0 && index.count("lobe0.F90") > 0, tint_channels, coat);
+    const std::vector<LobeChannel> coat_ch = coat_lobe_channels();
+    const auto need_lobes = [&](const char* prefix, int n, const std::vector<LobeChannel>& channels) {
+      for (int k = 0; k < n; ++k)
+        for (const LobeChannel& c : channels) {
+          const std::string name = prefix + std::to_string(k) + "." + c.suffix;
+          need(name);
+          if (c.role == Role::normal_direction && formats.back() != OIIO::TypeDesc::UINT)
+            throw input_error(where(path), at_level + " channel " + name + " is " + std::string(formats.back().c_str()) +
+                                               ", not the 32-bit unsigned integer of an octahedral code");
+        }
+    };
+    need_lobes("lobe", slots, lobe_ch);
     const bool radial = level > 0 && index.count(radial_channel(0)) > 0;
     if (radial) {
       if (!(radial_inner > 0.0f))
         throw input_error(where(path), at_level + " has radial corrections but the file has no " + kRadialInner);
       for (int r = 0; r < RadialGrid::kNodes; ++r) need(radial_channel(r));
     }
+    const std::size_t first_coat_lobe = order.size();
+    need_lobes("coat", coat_slots, coat_ch);
     const std::size_t texels = static_cast<std::size_t>(e.width) * e.height;
     LevelCheck check(path, s, layout, !cache_key.empty());
     const int rows = band_rows(e.width, layout.stride);
     std::vector<std::byte> buf(std::size_t(std::min(rows, e.height)) * e.width * layout.stride);
     std::vector<ParamTexel> params(texels);
-    BrdfLevel bl;
+    BrdfLevel bl, cl;  // the base lobes, the coat lobes
     if (level > 0) {
       bl.reset(e, texels);
       bl.slots = slots;
       // Room for every slot: address space only until written, and no copy as the lobes grow.
       bl.lobes.reserve(texels * std::size_t(slots));
       if (radial) bl.correction.resize(texels);
+      cl.reset(e, texels);
+      cl.slots = coat_slots;
+      cl.lobes.reserve(texels * std::size_t(coat_slots));
     }
-    const std::size_t lobe_nch = lobe_ch.size();
     std::vector<ParamSpecular> specular(param_specular ? texels : 0);
+    std::vector<ParamCoat> coat_means(coat ? texels : 0);
     for (std::size_t t = 0; t < texels; ++t) {
       const std::size_t row = t / std::size_t(e.width);
       if (t % (std::size_t(rows) * e.width) == 0) {  // the next band
@@ -531,61 +523,60 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
       p.metallic = value(3);
       p.roughness = value(4);
       p.normal = {value(5), value(6), value(7)};
-      if (param_specular) specular[t] = {value(8), {value(9), value(10), value(11)}};
+      std::size_t next = 8;
+      if (param_specular) specular[t] = {value(8), {value(9), value(10), value(11)}}, next = 12;
+      if (coat) coat_means[t] = {value(next), value(next + 1), {value(next + 2), value(next + 3), value(next + 4)}};
       if (level == 0) continue;
-      bl.first[t] = static_cast<std::uint32_t>(bl.lobes.size());
-      // Lobes are packed from slot 0: the first empty slot (weight 0) ends the texel's.
-      for (int k = 0; k < slots; ++k) {
-        LobeValues v;
-        v[Role::f90] = 1.0f;  // the plain layer's, where the level has no specular channels
-        for (std::size_t c = 0; c < lobe_nch; ++c) {
-          const std::size_t ch = first_lobe + static_cast<std::size_t>(k) * lobe_nch + c;
-          const Role role = lobe_ch[c].role;
-          if (role == Role::normal_direction) std::memcpy(&v.direction, px + order[ch], 4);
-          else v[role] = value(ch);
+      // Texel t's lobes into `into`, from `n` slots of `channels` from `first` on.
+      const auto read_lobes = [&](BrdfLevel& into, std::size_t first, int n, const std::vector<LobeChannel>& channels,
+                                  bool coat_lobes) {
+        into.first[t] = static_cast<std::uint32_t>(into.lobes.size());
+        // Lobes are packed from slot 0: the first empty slot (weight 0) ends the texel's.
+        for (int k = 0; k < n; ++k) {
+          LobeValues v;
+          v[Role::f90] = 1.0f;  // the plain layer's, where the level has no specular channels
+          for (std::size_t c = 0; c < channels.size(); ++c) {
+            const std::size_t ch = first + static_cast<std::size_t>(k) * channels.size() + c;
+            const Role role = channels[c].role;
+            if (role == Role::normal_direction) std::memcpy(&v.direction, px + order[ch], 4);
+            else v[role] = value(ch);
+          }
+          Lobe l = unpack_lobe(v);
+          if (!(l.weight > 0)) break;
+          if (coat_lobes) set_coat_colours(l);
+          into.lobes.push_back(l);
+          into.counts[t] = static_cast<std::uint8_t>(k + 1);
         }
-        const Lobe l = unpack_lobe(v);
-        if (!(l.weight > 0)) break;
-        bl.lobes.push_back(l);
-        bl.counts[t] = static_cast<std::uint8_t>(k + 1);
-      }
-      // A texel's lone lobe goes to its own slot (brdf_pyramid.h).
-      if (bl.counts[t] == 1) bl.single[t] = bl.lobes.back(), bl.lobes.pop_back();
+        // A texel's lone lobe goes to its own slot (brdf_pyramid.h).
+        if (into.counts[t] == 1) into.single[t] = into.lobes.back(), into.lobes.pop_back();
+      };
+      read_lobes(bl, first_lobe, slots, lobe_ch, false);
+      read_lobes(cl, first_coat_lobe, coat_slots, coat_ch, true);
       if (radial)
         for (int r = 0; r < RadialGrid::kNodes; ++r)
-          bl.correction[t].ratio[static_cast<std::size_t>(r)] = value(first_lobe + static_cast<std::size_t>(slots) * lobe_nch + r);
+          bl.correction[t].ratio[static_cast<std::size_t>(r)] = value(first_lobe + static_cast<std::size_t>(slots) * lobe_ch.size() + r);
     }
     // Said after the whole file is read: a more telling refusal of a later level (a missing grid)
     // comes first.
     if (!corrupt) corrupt = check.mismatch(max_lobes, radial_inner, radial_outer);
-    if (level == 0) {
-      MaterialTexels& m = mip.level0;
-      m = MaterialTexels(e.width, e.height);
-      for (std::size_t t = 0; t < texels; ++t) {
-        m.base_color[t] = params[t].base_color;
-        m.metallic[t] = params[t].metallic;
-        m.roughness[t] = params[t].roughness;
-        m.normal[t] = params[t].normal;
-      }
-      m.ior = ior;
-      if (param_specular) {
-        m.specular.resize(texels);
-        m.specular_color.resize(texels);
-        for (std::size_t t = 0; t < texels; ++t) m.specular[t] = specular[t].specular, m.specular_color[t] = specular[t].color;
-      }
-    } else {
+    if (level > 0) {
       coarse.push_back(std::move(bl));
+      if (coat) coarse_coat.push_back(std::move(cl));
     }
     param_levels.push_back(std::move(params));
     if (param_specular) specular_levels.push_back(std::move(specular));
+    if (coat) coat_levels.push_back(std::move(coat_means));
   }
   if (in->seek_subimage(levels, 0))
     throw input_error(where(path), "has more subimages than the " + std::to_string(levels) + " levels of its level 0");
   if (corrupt) throw *corrupt;
-  mip.param = ParamPyramid::from_levels(level0, std::move(param_levels), std::move(specular_levels), ior);
+  mip.param = ParamPyramid::from_levels(level0, std::move(param_levels), std::move(specular_levels), ior,
+                                        std::move(coat_levels));
+  // Level 0's texels are the parameter pyramid's (the same floats).
+  mip.level0 = mip.param.level0_texels();
   mip.brdf = BrdfPyramid::from_levels(mip.level0, max_lobes, std::move(coarse),
                                       radial_inner > 0.0f ? RadialGrid::with_inner(radial_inner, radial_outer) : RadialGrid{},
-                                      tint == 1);
+                                      tint == 1, std::move(coarse_coat));
   return mip;
 }
 

@@ -14,6 +14,11 @@
 // textures/material_texels.h), 16 bytes:
 //   param.specular              mean specular weight s                                   float
 //   param.specular.R/G/B        mean specular colour (linear)                            float
+// and, in every level of a material with a clear coat (KHR_materials_clearcoat), 20 bytes:
+//   param.coat                  mean clearcoat weight                                    float
+//   param.coat.roughness        mean clearcoat perceptual roughness                      float
+//   param.coat.N.X/Y/Z          mean of the unit coat normals, unnormalized (level 0: the
+//                               texel's coat normal)                                     float
 // and, for L ≥ 1, for each lobe slot k = 0 .. S_L − 1 (lobe.h for the meaning), 26 bytes:
 //   lobeK.weight                fraction of the texel's area, times the lobe's specular-flux
 //                               factor (0: empty slot; slots are packed from 0)          half
@@ -38,14 +43,22 @@
 // and, in a level of a tintable file (svbrdf:tint 1) where some lobe has f0_tint ≠ 0, 6 bytes more:
 //   lobeK.F0tint.R/G/B          the part of F0 a tint of the base color scales, the mean of
 //                               metallic·base color (lobe.h, tinted)                     half
+// and, in a level of a material with a clear coat, 2 bytes more a slot (coat_layer.h):
+//   lobeK.coat                  the mean clearcoat weight of the lobe's texels            half
 // and, for L ≥ kFirstCorrectedLevel (4), 24 bytes (radial_correction.h):
 //   radial.R0 .. radial.R11     the texel's radial correction: the ratio of its true radial
 //                               profile of reflected light to its lobes' (gated beyond 10°)
 //                               at the 12 nodes of the grid svbrdf:radial_inner and
 //                               svbrdf:radial_outer define                                half
+// and, for L ≥ 1 of a material with a clear coat, for each coat lobe slot k = 0 .. C_L − 1 (coat_layer.h;
+// F0 0.04, F90 1 and no diffuse term, which the extension fixes, are not stored), 14 bytes:
+//   coatK.weight                the texel's mean clearcoat the lobe carries (0: empty)   half
+//   coatK.N.dir, coatK.N.deficit, coatK.alpha, coatK.shape, coatK.skirt
+//                               the coat lobe's mean coat normal and shape, as lobeK's   uint, half
 // Level 0's BRDF pyramid is its parameters (one lobe per texel) and is not stored twice.
 // Attributes on every subimage: svbrdf:mip_version (int, kMipFileVersion), svbrdf:level (int),
-// svbrdf:max_lobes (int, the --lobes the file was built with), svbrdf:slots (int, S_L), svbrdf:ior
+// svbrdf:max_lobes (int, the --lobes the file was built with), svbrdf:slots (int, S_L),
+// svbrdf:coat_slots (int, C_L, on levels ≥ 1 of a material with a clear coat), svbrdf:ior
 // (float, the material's KHR_materials_ior; absent: 1.5), svbrdf:tint (int 1: a pyramid built for
 // tinted lookups, brdf_pyramid.h BrdfBuildOptions::tint; absent: 0), and, where any
 // level has radial channels, svbrdf:radial_inner (float, radians: θ of the grid's node 1) and
@@ -67,7 +80,7 @@
 
 namespace svbrdf {
 
-inline constexpr int kMipFileVersion = 11;
+inline constexpr int kMipFileVersion = 12;
 
 // Throws svbrdf::Error naming the file when it cannot be written. A non-empty `cache_key` is stored as
 // svbrdf:cache_key.

@@ -1,7 +1,15 @@
 #pragma once
 // Private to mip/ (mip_file.cpp): the channels of the MIP file as mip_file.h lists them — the
-// parameters', the lobes' by role, the specular layer's — and a lobe packed into them and unpacked.
+// parameters', the lobes' by role, the specular, tint and coat layers' — and a lobe packed into them and
+// unpacked; and a pixel's layout in a level's bytes.
+#include <Imath/half.h>
 #include <OpenImageIO/typedesc.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstring>
+#include <numeric>
+#include <string>
 
 #include <array>
 #include <cstdint>
@@ -20,6 +28,11 @@ inline constexpr const char* kParamChannels[8] = {"param.R",         "param.G", 
 inline constexpr const char* kParamSpecularChannels[4] = {"param.specular", "param.specular.R", "param.specular.G",
                                                           "param.specular.B"};
 inline constexpr const char* kIor = "svbrdf:ior";
+// The clear coat's means, in every level of a material with a coat (mip_file.h).
+inline constexpr const char* kParamCoatChannels[5] = {"param.coat", "param.coat.roughness", "param.coat.N.X",
+                                                      "param.coat.N.Y", "param.coat.N.Z"};
+// The attribute (int, on every subimage ≥ 1 of a coated material's file) of a level's coat lobe slots.
+inline constexpr const char* kCoatSlots = "svbrdf:coat_slots";
 
 // What a lobe channel holds.
 enum class Role {
@@ -28,6 +41,7 @@ enum class Role {
   alpha, shape, skirt,               // stored_lobe.h
   diffuse90_r, diffuse90_g, diffuse90_b, f90,  // the specular layer's (kSpecularLobeChannels)
   f0_tint_r, f0_tint_g, f0_tint_b,             // the tint layer's (kTintLobeChannels)
+  coat,                                         // the coat layer's (kCoatShareChannels)
   count
 };
 struct LobeChannel {
@@ -67,14 +81,32 @@ constexpr LobeChannel kTintLobeChannels[] = {
     {"F0tint.G", Role::f0_tint_g, kHalf},
     {"F0tint.B", Role::f0_tint_b, kHalf},
 };
+// A base lobe's channel of the coat layer, 2 bytes (kBytesPerCoatShare), in levels of a coated material.
+constexpr LobeChannel kCoatShareChannels[] = {
+    {"coat", Role::coat, kHalf},
+};
+// A coat lobe's channels, 14 bytes (kBytesPerCoatLobe), named "coatK.<suffix>": a lobe's without its
+// colours, which the extension fixes (stored_lobe.h set_coat_colours).
+constexpr LobeChannel kCoatLobeChannels[] = {
+    {"weight", Role::weight, kHalf},
+    {"N.dir", Role::normal_direction, OIIO::TypeDesc::UINT},
+    {"N.deficit", Role::normal_deficit, kHalf},
+    {"alpha", Role::alpha, kHalf},
+    {"shape", Role::shape, kHalf},
+    {"skirt", Role::skirt, kHalf},
+};
 // The attribute (int 1, on every subimage) of a tintable pyramid's file (brdf_pyramid.h tintable).
 inline constexpr const char* kTint = "svbrdf:tint";
 // The channels of a level's lobe slots, with the layers' it has.
-inline std::vector<LobeChannel> lobe_channels(bool specular, bool tint) {
+inline std::vector<LobeChannel> lobe_channels(bool specular, bool tint, bool coat) {
   std::vector<LobeChannel> c(std::begin(kLobeChannels), std::end(kLobeChannels));
   if (specular) c.insert(c.end(), std::begin(kSpecularLobeChannels), std::end(kSpecularLobeChannels));
   if (tint) c.insert(c.end(), std::begin(kTintLobeChannels), std::end(kTintLobeChannels));
+  if (coat) c.insert(c.end(), std::begin(kCoatShareChannels), std::end(kCoatShareChannels));
   return c;
+}
+inline std::vector<LobeChannel> coat_lobe_channels() {
+  return std::vector<LobeChannel>(std::begin(kCoatLobeChannels), std::end(kCoatLobeChannels));
 }
 
 
@@ -95,6 +127,7 @@ inline LobeValues pack_lobe(const Lobe& l) {
   out[Role::diffuse90_r] = l.diffuse90.r, out[Role::diffuse90_g] = l.diffuse90.g, out[Role::diffuse90_b] = l.diffuse90.b;
   out[Role::f90] = l.f90;
   out[Role::f0_tint_r] = l.f0_tint.r, out[Role::f0_tint_g] = l.f0_tint.g, out[Role::f0_tint_b] = l.f0_tint.b;
+  out[Role::coat] = l.coat;
   const StoredNormal n = store_normal(l.normal);  // exact: the pyramid's normals are decoded codes
   out.direction = n.direction;
   out[Role::normal_deficit] = n.deficit;
@@ -111,11 +144,76 @@ inline Lobe unpack_lobe(const LobeValues& in) {
   l.diffuse90 = {in[Role::diffuse90_r], in[Role::diffuse90_g], in[Role::diffuse90_b]};
   l.f90 = in[Role::f90];
   l.f0_tint = {in[Role::f0_tint_r], in[Role::f0_tint_g], in[Role::f0_tint_b]};
+  l.coat = in[Role::coat];
   l.normal = load_normal(StoredNormal{in.direction, in[Role::normal_deficit]});
   l.alpha2 = in[Role::alpha] * in[Role::alpha];
   set_lobe_shape_code(l, in[Role::shape]);
   set_lobe_skirt_code(l, in[Role::skirt]);
   return l;
 }
+
+// A pixel's channels as the file stores them (OpenEXR's per-channel formats): byte offsets into a
+// native pixel, and typed access.
+struct NativeLayout {
+  std::vector<OIIO::TypeDesc> formats;
+  std::vector<std::size_t> offsets;
+  std::size_t stride = 0;
+  void add(OIIO::TypeDesc f) {
+    formats.push_back(f);
+    offsets.push_back(stride);
+    stride += f.size();
+  }
+};
+
+inline void put_float(std::byte* px, const NativeLayout& layout, std::size_t c, float v) {
+  std::byte* at = px + layout.offsets[c];
+  if (layout.formats[c] == OIIO::TypeDesc::HALF) {
+    const std::uint16_t bits = Imath::half(v).bits();  // exact: every half channel holds half values
+    std::memcpy(at, &bits, 2);
+  } else {
+    std::memcpy(at, &v, 4);
+  }
+}
+inline void put_uint(std::byte* px, const NativeLayout& layout, std::size_t c, std::uint32_t v) {
+  std::memcpy(px + layout.offsets[c], &v, 4);
+}
+
+// A channel's value as a float, whatever its stored format; false for a format no MIP file has.
+inline bool get_float(const std::byte* at, OIIO::TypeDesc f, float& v) {
+  if (f == OIIO::TypeDesc::FLOAT) {
+    std::memcpy(&v, at, 4);
+  } else if (f == OIIO::TypeDesc::HALF) {
+    Imath::half h;
+    std::uint16_t bits;
+    std::memcpy(&bits, at, 2);
+    h.setBits(bits);
+    v = h;
+  } else if (f == OIIO::TypeDesc::UINT) {
+    std::uint32_t u;
+    std::memcpy(&u, at, 4);
+    v = static_cast<float>(u);
+  } else {
+    return false;
+  }
+  return true;
+}
+
+// The layout of a pixel whose channels (`formats`, by channel index) lie in the order of their names:
+// OpenEXR stores them so and reads them back so, whatever order they were written in, which makes it
+// the one order in which a writer and a reader see the same bytes.
+inline NativeLayout name_ordered(const std::vector<std::string>& names, const std::vector<OIIO::TypeDesc>& formats) {
+  std::vector<std::size_t> by_name(names.size());
+  std::iota(by_name.begin(), by_name.end(), std::size_t(0));
+  std::sort(by_name.begin(), by_name.end(), [&](std::size_t a, std::size_t b) { return names[a] < names[b]; });
+  NativeLayout l;
+  l.formats = formats;
+  l.offsets.assign(names.size(), 0);
+  for (const std::size_t c : by_name) {
+    l.offsets[c] = l.stride;
+    l.stride += formats[c].size();
+  }
+  return l;
+}
+
 
 }  // namespace svbrdf::mip_file_channels

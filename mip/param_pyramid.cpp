@@ -8,22 +8,44 @@
 #include <tbb/parallel_for.h>
 
 #include "base/error.h"
+#include "mip/coat_layer.h"
 
 namespace svbrdf {
 
-Lobe param_lobe(const ParamTexel& t, TextureFilter filter, const SpecularLayer& layer) {
-  const float r = std::min(1.0f, glm::length(t.normal));
-  const glm::vec3 n = r > 0 ? t.normal / glm::length(t.normal) : glm::vec3(0, 0, 1);
-  Lobe l = lobe_from_texel(t.base_color, t.metallic, t.roughness, n, 1.0f, layer);
-  // r == 1 (flat) widens nothing; r → 0 (normals cancel) widens to the roughest lobe.
+namespace {
+
+// The unit direction of a mean of unit normals, and the α² a filter adds for its length r: r == 1
+// (flat) widens nothing; r → 0 (normals cancel) widens to the roughest lobe.
+struct MeanNormal {
+  glm::vec3 n{0, 0, 1};
   float widen = 0.0f;
+};
+MeanNormal mean_normal(const glm::vec3& mean, TextureFilter filter) {
+  MeanNormal out;
+  const float len = glm::length(mean), r = std::min(1.0f, len);
+  if (r > 0) out.n = mean / len;
   if (filter == TextureFilter::toksvig) {
-    widen = r > 0 ? 2.0f * (1.0f - r) / r : 1.0f;
+    out.widen = r > 0 ? 2.0f * (1.0f - r) / r : 1.0f;
   } else if (filter == TextureFilter::vmf) {
     const float kappa = r < 1.0f ? (3.0f * r - r * r * r) / (1.0f - r * r) : INFINITY;
-    widen = kappa > 0 ? 2.0f / kappa : 1.0f;
+    out.widen = kappa > 0 ? 2.0f / kappa : 1.0f;
   }
-  l.alpha2 = std::min(1.0f, l.alpha2 + widen);
+  return out;
+}
+
+}  // namespace
+
+Lobe param_lobe(const ParamTexel& t, TextureFilter filter, const SpecularLayer& layer) {
+  const MeanNormal m = mean_normal(t.normal, filter);
+  Lobe l = lobe_from_texel(t.base_color, t.metallic, t.roughness, m.n, 1.0f, layer);
+  l.alpha2 = std::min(1.0f, l.alpha2 + m.widen);
+  return l;
+}
+
+Lobe param_coat_lobe(const ParamCoat& c, TextureFilter filter) {
+  const MeanNormal m = mean_normal(c.normal, filter);
+  Lobe l = coat_lobe(CoatLayer{c.clearcoat, c.roughness, m.n});
+  l.alpha2 = std::min(1.0f, l.alpha2 + m.widen);
   return l;
 }
 
@@ -82,6 +104,21 @@ std::vector<ParamSpecular> specular_from_below(Extent level0, int level, const s
   });
 }
 
+// The clear coat's means, as params_from_below takes the parameters'.
+std::vector<ParamCoat> coat_from_below(Extent level0, int level, const std::vector<ParamCoat>& fine) {
+  return level_from_below(level0, level, fine, [](const auto& children) {
+    double total = 0, c = 0, rough = 0;
+    glm::dvec3 n(0);
+    children([&](double w, const ParamCoat& t) {
+      total += w;
+      c += w * t.clearcoat;
+      rough += w * t.roughness;
+      n += w * glm::dvec3(t.normal);
+    });
+    return ParamCoat{static_cast<float>(c / total), static_cast<float>(rough / total), glm::vec3(n / total)};
+  });
+}
+
 }  // namespace
 
 ParamPyramid ParamPyramid::build(const MaterialTexels& m) {
@@ -108,6 +145,14 @@ ParamPyramid ParamPyramid::level0_only(const MaterialTexels& m) {
     }
     p.specular_.push_back(std::move(spec));
   }
+  if (m.has_coat()) {
+    std::vector<ParamCoat> coat(m.size());
+    for (std::size_t k = 0; k < m.size(); ++k) {
+      const CoatLayer c = m.coat_layer(k);
+      coat[k] = {c.weight, c.roughness, c.normal};
+    }
+    p.coat_.push_back(std::move(coat));
+  }
   return p;
 }
 
@@ -115,6 +160,7 @@ void ParamPyramid::build_coarse_levels() {
   for (int level = levels(); level > 0 && level < level_count(level0_); ++level) {
     levels_.push_back(params_from_below(level0_, level, levels_.back()));
     if (!specular_.empty()) specular_.push_back(specular_from_below(level0_, level, specular_.back()));
+    if (!coat_.empty()) coat_.push_back(coat_from_below(level0_, level, coat_.back()));
   }
 }
 
@@ -134,11 +180,24 @@ MaterialTexels ParamPyramid::level0_texels() const {
     for (std::size_t k = 0; k < base.size(); ++k)
       m.specular[k] = specular_.front()[k].specular, m.specular_color[k] = specular_.front()[k].color;
   }
+  if (!coat_.empty()) {
+    // Every texel's own coat; the factor only says that the material has one (coat_layer reads the
+    // texels').
+    m.clearcoat_factor = 1.0f;
+    m.clearcoat.resize(base.size());
+    m.clearcoat_roughness.resize(base.size());
+    m.clearcoat_normal.resize(base.size());
+    for (std::size_t k = 0; k < base.size(); ++k) {
+      const ParamCoat& c = coat_.front()[k];
+      m.clearcoat[k] = c.clearcoat, m.clearcoat_roughness[k] = c.roughness, m.clearcoat_normal[k] = c.normal;
+    }
+  }
   return m;
 }
 
 ParamPyramid ParamPyramid::from_levels(Extent level0, std::vector<std::vector<ParamTexel>> levels,
-                                       std::vector<std::vector<ParamSpecular>> specular, float ior) {
+                                       std::vector<std::vector<ParamSpecular>> specular, float ior,
+                                       std::vector<std::vector<ParamCoat>> coat) {
   if (static_cast<int>(levels.size()) != level_count(level0))
     throw Error("parameter pyramid: " + std::to_string(levels.size()) + " levels for a " +
                 std::to_string(level0.width) + "x" + std::to_string(level0.height) + " level 0 (expected " +
@@ -149,11 +208,14 @@ ParamPyramid ParamPyramid::from_levels(Extent level0, std::vector<std::vector<Pa
       throw Error("parameter pyramid: level " + std::to_string(l) + " has the wrong size");
     if (!specular.empty() && (specular.size() != levels.size() || specular[l].size() != levels[l].size()))
       throw Error("parameter pyramid: the specular layer's level " + std::to_string(l) + " has the wrong size");
+    if (!coat.empty() && (coat.size() != levels.size() || coat[l].size() != levels[l].size()))
+      throw Error("parameter pyramid: the coat's level " + std::to_string(l) + " has the wrong size");
   }
   ParamPyramid p;
   p.level0_ = level0;
   p.levels_ = std::move(levels);
   p.specular_ = std::move(specular);
+  p.coat_ = std::move(coat);
   p.ior_ = ior;
   return p;
 }

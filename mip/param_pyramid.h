@@ -38,11 +38,25 @@ struct ParamSpecular {
   glm::vec3 color{1.0f};
 };
 
+// A texel's mean clear coat (KHR_materials_clearcoat; textures/material_texels.h CoatLayer): the mean
+// weight, the mean perceptual roughness and the mean of the unit coat normals kept unnormalized, beside
+// the ParamTexel of a material with a coat (level 0: the texel's own).
+struct ParamCoat {
+  float clearcoat = 0.0f;
+  float roughness = 0.0f;
+  glm::vec3 normal{0, 0, 1};
+};
+
 // The single lobe a parameter texel stands for under a filter that reads this pyramid (param,
 // toksvig, vmf; texture_filter.h): f_eff of one glTF texel with the mean parameters and normal =
 // normalize(mean normal) (weight 1, unit normal), α widened for the engine baselines. Any other
 // filter reads as param (no widening). `layer` is the texel's specular layer (plain by default).
 Lobe param_lobe(const ParamTexel& t, TextureFilter filter, const SpecularLayer& layer = {});
+// The coat lobe (coat_layer.h) a parameter texel's mean coat stands for under the same filter: weight
+// the mean clearcoat, normal = normalize(mean coat normal), α from the mean roughness, widened as
+// param_lobe widens the base's from the coat normals' shortened mean. The base lobe's coat share
+// (Lobe::coat) is the mean clearcoat.
+Lobe param_coat_lobe(const ParamCoat& c, TextureFilter filter);
 
 class ParamPyramid {
  public:
@@ -58,7 +72,8 @@ class ParamPyramid {
   // From stored levels (the MIP file), and the specular layer's (empty for a plain layer) and ior;
   // throws svbrdf::Error when the shapes do not form a pyramid.
   static ParamPyramid from_levels(Extent level0, std::vector<std::vector<ParamTexel>> levels,
-                                  std::vector<std::vector<ParamSpecular>> specular = {}, float ior = 1.5f);
+                                  std::vector<std::vector<ParamSpecular>> specular = {}, float ior = 1.5f,
+                                  std::vector<std::vector<ParamCoat>> coat = {});
 
   int levels() const { return static_cast<int>(levels_.size()); }
   Extent level0() const { return level0_; }
@@ -84,10 +99,23 @@ class ParamPyramid {
   }
   static constexpr int kBytesPerSpecularTexel = 4 * 4;  // 4 floats, where the layer is not plain
 
+  // The clear coat, a pyramid of its means beside the parameters' for a material with one (empty
+  // otherwise), held apart as the specular layer is.
+  bool has_coat() const { return !coat_.empty(); }
+  std::span<const ParamCoat> coat_level(int level) const {
+    return coat_.empty() ? std::span<const ParamCoat>() : coat_[static_cast<std::size_t>(level)];
+  }
+  const ParamCoat* coat(int level, int i, int j) const {
+    if (coat_.empty()) return nullptr;
+    return &coat_[static_cast<std::size_t>(level)][static_cast<std::size_t>(j) * extent(level).width + i];
+  }
+  static constexpr int kBytesPerCoatTexel = 5 * 4;  // 5 floats, for a material with a coat
+
  private:
   Extent level0_{};
   std::vector<std::vector<ParamTexel>> levels_;
   std::vector<std::vector<ParamSpecular>> specular_;  // empty: a plain layer (factors 1)
+  std::vector<std::vector<ParamCoat>> coat_;          // empty: no coat
   float ior_ = 1.5f;
 };
 

@@ -91,12 +91,16 @@ void round_to_stored(Lobe& lobe) {
 
 void round_coat_lobe_to_stored(Lobe& lobe) {
   round_to_stored(lobe);
+  set_coat_colours(lobe);
+}
+
+void set_coat_colours(Lobe& lobe) {
   lobe.diffuse = glm::vec3(0.0f);
   lobe.diffuse90 = glm::vec3(0.0f);
   lobe.f0 = glm::vec3(kCoatF0);
   lobe.f0_tint = glm::vec3(0.0f);
   lobe.f90 = 1.0f;
+  lobe.coat = 0.0f;
 }
-
 
 }  // namespace svbrdf

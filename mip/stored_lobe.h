@@ -31,6 +31,9 @@ void round_to_stored(Lobe& lobe);
 // The same for a coat lobe (coat_layer.h), whose colours the file does not store: F0 = 0.04 and F90 = 1
 // as the extension fixes them, no diffuse term.
 void round_coat_lobe_to_stored(Lobe& lobe);
+// Gives a coat lobe the colours the extension fixes (F0 0.04, F90 1, no diffuse, no tint, no coat of its
+// own), what the file does not store of it.
+void set_coat_colours(Lobe& lobe);
 
 // Bytes a stored lobe takes: the normal's direction as a 32-bit code (stored_normal.h); weight, ρ (3),
 // F0 (3), the normal's length deficit, α, the shape code and the skirt as half floats.

@@ -171,4 +171,25 @@ inline MaterialTexels granite(int size) {
   return m;
 }
 
+// Orange peel: the fingerprinted metal tray under a coat with its own bumps (a coat normal map), a
+// patchy clearcoat weight (1 or 0.3) and roughness (0.05 or 0.3), all independent of the base's maps.
+inline MaterialTexels orange_peel(int size) {
+  MaterialTexels m = tray(size);
+  MaterialTexels bumps(size, size);
+  const auto h = bump_field(size, 8, 17);
+  set_normals_from_height(bumps, [&](int i, int j) { return h[static_cast<std::size_t>(j) * size + i]; }, 0.3);
+  m.clearcoat_normal = bumps.normal;
+  m.clearcoat_factor = 1.0f;
+  m.clearcoat_roughness_factor = 1.0f;
+  m.clearcoat.resize(m.size());
+  m.clearcoat_roughness.resize(m.size());
+  for (int j = 0; j < size; ++j)
+    for (int i = 0; i < size; ++i) {
+      const std::size_t k = m.index(i, j);
+      m.clearcoat[k] = waves(double(i) / size, double(j) / size, 3) > 0 ? 1.0f : 0.3f;
+      m.clearcoat_roughness[k] = waves(double(i) / size, double(j) / size, 4) > 0 ? 0.05f : 0.3f;
+    }
+  return m;
+}
+
 }  // namespace svbrdf::synthetic
