@@ -93,38 +93,54 @@ glm::vec<3, T> coat_lobe_eval(const Lobe& coat, const LobeShape<T>& s, const Pai
   return (T(coat.weight) * ci.factor * co.factor) * lobe_brdf(coat, s, coat_pair(p, s.n), ci.c, co.c);
 }
 
-// K(wi, wo)/wi.z of a texel's base lobes (the top of this file), given their shapes; 0 where no base
-// lobe has a coat.
+// K(wi, wo)/wi.z (the top of this file), summed one base lobe at a time (each with its shape): 0 where no
+// base lobe has a coat.
 template <class T>
-T coat_cosine(std::span<const Lobe> base, const LobeShape<T>* shapes, const PairTerms<T>& p) {
-  if (!p.valid) return T(0);
+struct CoatCosine {
   T num = 0, den = 0;
-  for (std::size_t k = 0; k < base.size(); ++k) {
-    const LobeShape<T>& s = shapes[k];
-    const T share = T(base[k].weight) * T(base[k].coat);
-    if (!s.valid || !(share > 0)) continue;
+  void add(const Lobe& l, const LobeShape<T>& s, const PairTerms<T>& p) {
+    const T share = T(l.weight) * T(l.coat);
+    if (!s.valid || !(share > 0)) return;
     den += share;
     const LobeSide<T> i = lobe_wi_side(s, glm::dot(s.n, p.wi));
-    if (!(i.factor > 0)) continue;
+    if (!(i.factor > 0)) return;
     const LobeSide<T> o = lobe_wo_side(s, glm::dot(s.n, p.wo));
     num += share * i.factor * o.factor;
   }
-  return den > 0 ? num / den * p.inv_wi_z : T(0);
+  T value(const PairTerms<T>& p) const { return den > 0 ? num / den * p.inv_wi_z : T(0); }
+};
+
+// The same of a texel's base lobes, given their shapes.
+template <class T>
+T coat_cosine(std::span<const Lobe> base, const LobeShape<T>* shapes, const PairTerms<T>& p) {
+  if (!p.valid) return T(0);
+  CoatCosine<T> k;
+  for (std::size_t i = 0; i < base.size(); ++i) k.add(base[i], shapes[i], p);
+  return k.value(p);
 }
 
-// F̄(wo), the coat lobes' mean Fresnel weight toward wo (the top of this file).
+// F̄(wo), the coat lobes' mean Fresnel weight toward wo (the top of this file), summed one coat lobe at
+// a time.
 template <class T>
-T coat_fresnel(const CoatTexel& coat, const glm::vec<3, T>& wo) {
+struct CoatFresnel {
   T num = 0, den = 0;
-  for (const Lobe& l : coat.lobes) {
+  void add(const Lobe& l, const glm::vec<3, T>& wo) {
     const glm::vec<3, T> n(l.normal);
     const T len = glm::length(n);
-    if (!(l.weight > 0) || !(len > 0)) continue;
+    if (!(l.weight > 0) || !(len > 0)) return;
     const T w = schlick_weight(std::min(std::abs(glm::dot(wo, n)) / len, T(1)));
     num += T(l.weight) * (T(kCoatF0) + (T(1) - T(kCoatF0)) * w);
     den += T(l.weight);
   }
-  return den > 0 ? num / den : T(0);
+  T value() const { return den > 0 ? num / den : T(0); }
+};
+
+// The same of a texel's coat.
+template <class T>
+T coat_fresnel(const CoatTexel& coat, const glm::vec<3, T>& wo) {
+  CoatFresnel<T> f;
+  for (const Lobe& l : coat.lobes) f.add(l, wo);
+  return f.value();
 }
 
 // f_eff of a coated texel for a pair, given its base lobes, their sum there (`base`, lobe_eval of each)

@@ -5,6 +5,7 @@
 
 #include "appearance/microfacet_distribution.h"
 #include "appearance/sampling.h"
+#include "mip/coat_layer.h"
 
 namespace svbrdf {
 
@@ -24,22 +25,27 @@ float ggx_reflection_pdf(float alpha2, float co, float ch, float sin2h) {
 
 }  // namespace
 
-void LobeMixtureBsdf::assign(std::span<const Lobe> lobes) {
+bool LobeMixtureBsdf::fill_slot(int at, const Lobe& l) {
+  Slot& k = slots_[static_cast<std::size_t>(at)].s;
+  k.lobe = l;
+  k.shape = lobe_shape<float>(l);
+  if (!k.shape.valid) return false;
+  // Albedo estimates for the choice: the diffuse term 0.96·ρ (and ρ90 at grazing angles), the
+  // specular F0 plus Fresnel's rise toward F90 (a coat lobe's: 0.04 and 1, no diffuse).
+  const float scale = l.weight * k.shape.len;
+  k.diffuse_albedo = scale * (0.96f * mean3(l.diffuse) + 0.05f * mean3(l.diffuse90));
+  k.spec_albedo = scale * (mean3(l.f0) + 0.1f * (l.f90 - mean3(l.f0)));
+  return true;
+}
+
+void LobeMixtureBsdf::assign(std::span<const Lobe> lobes, std::span<const Lobe> coat) {
   correction_ = nullptr;
   count_ = 0;
-  for (const Lobe& l : lobes) {
-    if (count_ == kMaxLobes) break;
-    Slot& k = slots_[static_cast<std::size_t>(count_)].s;
-    k.lobe = l;
-    k.shape = lobe_shape<float>(l);
-    if (!k.shape.valid) continue;
-    // Albedo estimates for the choice: the diffuse term 0.96·ρ (and ρ90 at grazing angles), the
-    // specular F0 plus Fresnel's rise toward F90.
-    const float scale = l.weight * k.shape.len;
-    k.diffuse_albedo = scale * (0.96f * mean3(l.diffuse) + 0.05f * mean3(l.diffuse90));
-    k.spec_albedo = scale * (mean3(l.f0) + 0.1f * (l.f90 - mean3(l.f0)));
-    ++count_;
-  }
+  coat_count_ = 0;
+  for (const Lobe& l : lobes)
+    if (count_ < kMaxLobes && fill_slot(count_, l)) ++count_;
+  for (const Lobe& l : coat)
+    if (coat_count_ < kMaxLobes && l.weight > 0 && fill_slot(count_ + coat_count_, l)) ++coat_count_;
 }
 
 Rgb LobeMixtureBsdf::eval(const glm::vec3& wi, const glm::vec3& wo) const {
@@ -47,14 +53,35 @@ Rgb LobeMixtureBsdf::eval(const glm::vec3& wi, const glm::vec3& wo) const {
   if (!p.valid) return Rgb(0);
   Rgb f(0);
   const float scale = correction_ ? correction_at(*correction_, *grid_, p.h) : 1.0f;
-  for (int k = 0; k < count_; ++k) f += lobe_eval(slot(k).lobe, slot(k).shape, p, scale);
-  return f;
+  if (coat_count_ == 0) {
+    for (int k = 0; k < count_; ++k) f += lobe_eval(slot(k).lobe, slot(k).shape, p, scale);
+    return f;
+  }
+  // The layered f_eff of coat_layer.h, as coated_eval writes it: the base lobes (the radial correction
+  // is theirs) less what the coat reflects of them, plus the coat lobes under the base's cosine factor.
+  Rgb coated(0);
+  CoatCosine<float> cosine;
+  for (int k = 0; k < count_; ++k) {
+    const Rgb fk = lobe_eval(slot(k).lobe, slot(k).shape, p, scale);
+    f += fk;
+    coated += slot(k).lobe.coat * fk;
+    cosine.add(slot(k).lobe, slot(k).shape, p);
+  }
+  CoatFresnel<float> fresnel;
+  Rgb coat(0);
+  const float k_cos = cosine.value(p);
+  for (int k = count_; k < count_ + coat_count_; ++k) {
+    fresnel.add(slot(k).lobe, p.wo);
+    if (k_cos > 0) coat += coat_lobe_eval(slot(k).lobe, slot(k).shape, p);
+  }
+  return f - fresnel.value() * coated + k_cos * coat;
 }
 
 LobeMixtureBsdf::Choice LobeMixtureBsdf::choice(const glm::vec3& wo) const {
   Choice c;
   float total = 0;
-  for (int k = 0; k < count_; ++k) {
+  const int n = count_ + coat_count_;
+  for (int k = 0; k < n; ++k) {
     const std::size_t i = static_cast<std::size_t>(k);
     // The specular sampler needs wo above the lobe's own horizon.
     const bool spec_ok = glm::dot(slot(k).shape.n, wo) > 1e-4f;
@@ -64,7 +91,7 @@ LobeMixtureBsdf::Choice LobeMixtureBsdf::choice(const glm::vec3& wo) const {
     total += d + s;
   }
   const float scale = total > 0 ? (1.0f - kDefensive) / total : 0.0f;
-  for (int k = 0; k < count_; ++k) c.lobe[static_cast<std::size_t>(k)] *= scale;
+  for (int k = 0; k < n; ++k) c.lobe[static_cast<std::size_t>(k)] *= scale;
   return c;
 }
 
@@ -73,7 +100,7 @@ float LobeMixtureBsdf::pdf_with(const Choice& c, const glm::vec3& wi, const glm:
   float pdf = 0;
   float defensive = kDefensive;
   float used = 0;
-  for (int k = 0; k < count_; ++k) used += c.lobe[static_cast<std::size_t>(k)];
+  for (int k = 0; k < count_ + coat_count_; ++k) used += c.lobe[static_cast<std::size_t>(k)];
   if (used == 0) defensive = 1.0f;  // no lobe to sample: all defensive
   pdf += defensive * cosine_hemisphere_pdf(wi.z);
   // The half vector is every lobe's; each lobe's density needs only its cosines (no frame per lobe).
@@ -81,7 +108,7 @@ float LobeMixtureBsdf::pdf_with(const Choice& c, const glm::vec3& wi, const glm:
   const float hlen2 = glm::dot(hsum, hsum);
   const glm::vec3 h = hlen2 > 0 ? hsum * (1.0f / std::sqrt(hlen2)) : hsum;
   const bool h_ok = hlen2 > 0 && glm::dot(wo, h) > 0;
-  for (int k = 0; k < count_; ++k) {
+  for (int k = 0; k < count_ + coat_count_; ++k) {
     const std::size_t i = static_cast<std::size_t>(k);
     if (!(c.lobe[i] > 0)) continue;
     const LobeShape<float>& sh = slot(k).shape;
@@ -112,7 +139,7 @@ BsdfSample LobeMixtureBsdf::sample(const glm::vec3& wo, const SampleU& u) const 
   glm::vec3 wi(0, 0, 1);
   int picked = -1;
   float acc = 0;
-  for (int k = 0; k < count_; ++k) {
+  for (int k = 0; k < count_ + coat_count_; ++k) {
     const float q = c.lobe[static_cast<std::size_t>(k)];
     if (q > 0 && ux < acc + q) {
       picked = k;

@@ -14,6 +14,11 @@
 // lobe's normal, Heitz 2018 via appearance/microfacet_distribution.h, at the lobe's α², or half at
 // each end of a roughness mixture's range) in proportion to theirs. pdf()
 // is the density of that whole mixture; weight = f·wi.z/pdf with the whole f.
+//
+// A coated texel (KHR_materials_clearcoat, coat_layer.h) also carries its coat lobes: eval is the
+// layered f_eff of coat_layer.h (the base lobes attenuated by 1 − coat_k·F̄(wo), the coat lobes under the
+// base's cosine factor K), exactly as texel_eval evaluates the texel; the sampler chooses among the base
+// and the coat lobes alike, a coat lobe by its specular part alone (F0 0.04, F90 1, no diffuse term).
 #include <array>
 #include <span>
 
@@ -30,11 +35,12 @@ class LobeMixtureBsdf final : public Bsdf {
   static constexpr float kDefensive = 0.1f;
 
   LobeMixtureBsdf() = default;
-  // Copies the first kMaxLobes lobes.
-  explicit LobeMixtureBsdf(std::span<const Lobe> lobes) { assign(lobes); }
-  // Becomes the mixture of `lobes` (the first kMaxLobes), in place: a path reuses one object for
-  // every hit rather than constructing (and, in std::optional, zero-filling) 0.9 KB per bounce.
-  void assign(std::span<const Lobe> lobes);
+  // Copies the first kMaxLobes lobes (and coat lobes).
+  explicit LobeMixtureBsdf(std::span<const Lobe> lobes, std::span<const Lobe> coat = {}) { assign(lobes, coat); }
+  // Becomes the mixture of `lobes` (the first kMaxLobes) under the coat lobes `coat` (the first kMaxLobes;
+  // none: no coat), in place: a path reuses one object for every hit rather than constructing (and, in
+  // std::optional, zero-filling) it per bounce.
+  void assign(std::span<const Lobe> lobes, std::span<const Lobe> coat = {});
 
   // The texel's radial correction (radial_correction.h): eval multiplies every lobe's specular term by
   // R(θh). Null: none. assign() clears it; both pointers must outlive the object's use.
@@ -45,6 +51,9 @@ class LobeMixtureBsdf final : public Bsdf {
 
   int size() const { return count_; }
   const Lobe& lobe(int k) const { return slot(k).lobe; }
+  // The coat lobes (coat_layer.h), after the base lobes in the slots.
+  int coat_size() const { return coat_count_; }
+  const Lobe& coat_lobe(int k) const { return slot(count_ + k).lobe; }
   // The weighted sum of the lobes' normals, unnormalized (zero when there is no lobe): the shading
   // normal the mixture stands for, once normalized (the normal AOV).
   glm::vec3 mean_normal() const {
@@ -58,9 +67,11 @@ class LobeMixtureBsdf final : public Bsdf {
   float pdf(const glm::vec3& wi, const glm::vec3& wo) const override;
 
  private:
+  // Base lobes, then coat lobes.
+  static constexpr int kSlots = 2 * kMaxLobes;
   struct Choice {
-    std::array<float, kMaxLobes> lobe{};     // probability of lobe k (sums to 1 − kDefensive)
-    std::array<float, kMaxLobes> diffuse{};  // within lobe k, probability of its diffuse part
+    std::array<float, kSlots> lobe{};     // probability of lobe k (sums to 1 − kDefensive)
+    std::array<float, kSlots> diffuse{};  // within lobe k, probability of its diffuse part
   };
   Choice choice(const glm::vec3& wo) const;
   float pdf_with(const Choice& c, const glm::vec3& wi, const glm::vec3& wo) const;
@@ -71,15 +82,19 @@ class LobeMixtureBsdf final : public Bsdf {
     LobeShape<float> shape;
     float diffuse_albedo, spec_albedo;
   };
-  // Slots past count_ stay uninitialized: a hit fills one to four of the eight, and value-initializing
-  // all of them (~0.7 KB per hit) was a measurable share of the render (bench/results/render.md).
+  // Slots past count_ + coat_count_ stay uninitialized: a hit fills one to four of them, and
+  // value-initializing all of them (~0.7 KB per hit for eight) was a measurable share of the render
+  // (bench/results/render.md).
   union SlotStorage {
     SlotStorage() {}
     Slot s;
   };
   const Slot& slot(int k) const { return slots_[static_cast<std::size_t>(k)].s; }
-  std::array<SlotStorage, kMaxLobes> slots_;
-  int count_ = 0;
+  // Fills slot `at` with `l` and its albedo estimates; false for a lobe without a valid shape.
+  bool fill_slot(int at, const Lobe& l);
+  std::array<SlotStorage, kSlots> slots_;
+  int count_ = 0;       // base lobes
+  int coat_count_ = 0;  // coat lobes, in the slots after them
   const RadialCorrection* correction_ = nullptr;
   const RadialGrid* grid_ = nullptr;
 };

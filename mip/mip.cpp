@@ -1,9 +1,11 @@
 #include "mip/mip.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "base/error.h"
 #include "mip/brdf_pyramid.h"
+#include "mip/coat_layer.h"
 #include "mip/mip_file.h"
 #include "mip/mip_lookup.h"
 #include "mip/param_pyramid.h"
@@ -129,9 +131,14 @@ std::span<const Lobe> MipTexture::lobes(const Choice& c, Scratch& scratch) const
   const Pyramids& p = *pyramids_;
   if (c.level < 0) {
     SpecularLayer layer;
-    ParamTexel t = filter_params(p.param, c.footprint, wrap(), kMaxProbes, &layer);
+    ParamCoat coat;
+    ParamTexel t = filter_params(p.param, c.footprint, wrap(), kMaxProbes, &layer, &coat);
     t.base_color *= c.tint;
     scratch.lobe[0] = param_lobe(t, c.filter, layer);
+    if (p.param.has_coat()) {
+      scratch.lobe[0].coat = std::clamp(coat.clearcoat, 0.0f, 1.0f);
+      scratch.coat = param_coat_lobe(coat, c.filter);
+    }
     return {scratch.lobe, 1};
   }
   if (c.level >= 1) {
@@ -145,12 +152,26 @@ std::span<const Lobe> MipTexture::lobes(const Choice& c, Scratch& scratch) const
   // exact, so this is level0_lobe of the texel, the BRDF pyramid's level-0 lobe bit for bit.
   const ParamTexel& t = p.level0(c.i, c.j);
   scratch.lobe[0] = lobe_from_texel(t.base_color * c.tint, t.metallic, t.roughness, t.normal, 1.0f, p.param.specular(0, c.i, c.j));
+  if (const ParamCoat* coat = p.param.coat(0, c.i, c.j)) {
+    // As exact_reference.h level0_lobe and level0_coat make them.
+    scratch.lobe[0].coat = std::clamp(coat->clearcoat, 0.0f, 1.0f);
+    scratch.coat = coat_lobe(CoatLayer{coat->clearcoat, coat->roughness, coat->normal});
+  }
   return {scratch.lobe, 1};
+}
+
+std::span<const Lobe> MipTexture::coat(const Choice& c, Scratch& scratch) const {
+  const Pyramids& p = *pyramids_;
+  if (!p.param.has_coat()) return {};
+  if (c.level >= 1) return p.brdf.coat(c.level, c.i, c.j).lobes;
+  // lobes() made it (a level-0 texel's, or the parameter filters' mean).
+  return {&scratch.coat, 1};
 }
 
 void MipTexture::lookup(const Choice& c, LobeMixtureBsdf& out) const {
   Scratch scratch;
-  out.assign(lobes(c, scratch));
+  const std::span<const Lobe> base = lobes(c, scratch);
+  out.assign(base, coat(c, scratch));
   const BrdfPyramid& brdf = pyramids_->brdf;
   out.set_correction(c.level >= 1 ? brdf.correction(c.level, c.i, c.j) : nullptr, &brdf.radial_grid());
 }

@@ -86,7 +86,7 @@ class MipTexture {
     int i = 0, j = 0;
   };
   Choice choose(TextureFilter filter, const Footprint& footprint, const Rgb& tint, float u) const;
-  // Makes `out` the chosen texel's mixture (and radial correction).
+  // Makes `out` the chosen texel's mixture (its coat lobes among it, and its radial correction).
   void lookup(const Choice& choice, LobeMixtureBsdf& out) const;
   void lookup(TextureFilter filter, const Footprint& footprint, const Rgb& tint, float u,
               LobeMixtureBsdf& out) const {
@@ -100,12 +100,19 @@ class MipTexture {
     union {
       Lobe lobe[kMaxLobes];
     };
+    union {
+      Lobe coat;  // a level-0 texel's or a parameter filter's coat lobe
+    };
   };
   std::span<const Lobe> lobes(const Choice& choice, Scratch& scratch) const;
   std::span<const Lobe> lobes(TextureFilter filter, const Footprint& footprint, const Rgb& tint, float u,
                               Scratch& scratch) const {
     return lobes(choose(filter, footprint, tint, u), scratch);
   }
+  // The chosen texel's coat lobes (coat_layer.h; none for a material without a clear coat): a view into
+  // the BRDF pyramid, or into `scratch` (level 0's texel coat, or a parameter filter's mean coat,
+  // param_coat_lobe). Its base lobes from lobes() carry their coat shares.
+  std::span<const Lobe> coat(const Choice& choice, Scratch& scratch) const;
 
   // The base colour of the parameter pyramid at a footprint: level0's nearest texel, under every other
   // filter the parameter filters' trilinear taps (base colour is linear in the BRDF, so its average is

@@ -167,21 +167,24 @@ LobeMixtureBsdf lookup_brdf(const MipData& mip, const Footprint& footprint, floa
   LobeMixtureBsdf b;
   if (mip.brdf.levels() == 0) return b;
   const FilterTap t = select_tap(mip.brdf.level0(), mip.brdf.levels(), footprint, u, wrap, max_probes);
-  Lobe scratch;
-  b.assign(brdf_texel(mip, t.level, t.i, t.j, scratch));
+  Lobe scratch, coat_scratch;
+  b.assign(brdf_texel(mip, t.level, t.i, t.j, scratch), brdf_coat(mip, t.level, t.i, t.j, coat_scratch).lobes);
   b.set_correction(mip.brdf.correction(t.level, t.i, t.j), &mip.brdf.radial_grid());
   return b;
 }
 
 ParamTexel filter_params(const ParamPyramid& pyramid, const Footprint& footprint, WrapModes wrap, int max_probes,
-                         SpecularLayer* specular) {
+                         SpecularLayer* specular, ParamCoat* coat) {
   ParamTexel sum;
   sum.normal = glm::vec3(0.0f);
   if (specular) *specular = {1.0f, glm::vec3(1.0f), pyramid.ior()};
+  if (coat) *coat = {};
   if (pyramid.levels() == 0) return sum;
   const FilterTaps taps = filter_taps(pyramid.level0(), pyramid.levels(), footprint, wrap, max_probes);
   const bool layer = specular && !pyramid.specular_level(0).empty();
   if (layer) specular->specular = 0.0f, specular->color = glm::vec3(0.0f);
+  const bool coated = coat && pyramid.has_coat();
+  if (coated) coat->normal = glm::vec3(0.0f);
   for (int k = 0; k < taps.count; ++k) {
     const FilterTap& t = taps.taps[static_cast<std::size_t>(k)];
     const ParamTexel& p = pyramid.texel(t.level, t.i, t.j);
@@ -193,6 +196,12 @@ ParamTexel filter_params(const ParamPyramid& pyramid, const Footprint& footprint
       const SpecularLayer s = pyramid.specular(t.level, t.i, t.j);
       specular->specular += t.weight * s.specular;
       specular->color += t.weight * s.color;
+    }
+    if (coated) {
+      const ParamCoat& c = *pyramid.coat(t.level, t.i, t.j);
+      coat->clearcoat += t.weight * c.clearcoat;
+      coat->roughness += t.weight * c.roughness;
+      coat->normal += t.weight * c.normal;
     }
   }
   return sum;

@@ -66,9 +66,10 @@ LobeMixtureBsdf lookup_brdf(const MipData& mip, const Footprint& footprint, floa
                             int max_probes = kMaxProbes);
 
 // (2) The trilinear-filtered parameters as one lobe (wrap it in LobeMixtureBsdf to shade).
-// With `specular`, also the same filter's mean of the specular layer (the material's when it is plain).
+// With `specular`, also the same filter's mean of the specular layer (the material's when it is plain);
+// with `coat`, of the clear coat (ParamCoat{} for a material without one).
 ParamTexel filter_params(const ParamPyramid& pyramid, const Footprint& footprint, WrapModes wrap = {},
-                         int max_probes = kMaxProbes, SpecularLayer* specular = nullptr);
+                         int max_probes = kMaxProbes, SpecularLayer* specular = nullptr, ParamCoat* coat = nullptr);
 Lobe lookup_param(const ParamPyramid& pyramid, const Footprint& footprint,
                   TextureFilter filter = TextureFilter::param, WrapModes wrap = {}, int max_probes = kMaxProbes);
 

@@ -1,6 +1,6 @@
 // MIP benchmarks (bench/results/mip.md): BRDF and parameter pyramid builds of the procedural
 // presets, and the renderer's per-hit cost — a lookup plus an eval of a `brdf` texel against a
-// level-0 `gltf` eval (the texel's frame, the model, the f_eff factor).
+// level-0 `gltf` eval (the texel's frame, the model, the f_eff factor), without and with a clear coat.
 #include <benchmark/benchmark.h>
 
 #include <map>
@@ -9,6 +9,7 @@
 
 #include "appearance/frame.h"
 #include "appearance/gltf.h"
+#include "appearance/gltf_surface_bsdf.h"
 #include "appearance/rng.h"
 #include "mip/mip_data.h"
 #include "mip/mip_lookup.h"
@@ -91,10 +92,9 @@ const MipData& tray_mip(int lobes) {
   return *p;
 }
 
-// Lookup (footprint → taps → one texel, copied into a LobeMixtureBsdf) + eval. Footprints 1–64 texels.
-void BM_LookupEvalBrdf(benchmark::State& state) {
-  const MipData& mip = tray_mip(static_cast<int>(state.range(0)));
-  const std::vector<Hit> hs = hits(4096, 1024, static_cast<float>(state.range(1)));
+// Lookup (footprint → taps → one texel, copied into a LobeMixtureBsdf) + eval. Footprints 1–`max_texels` texels.
+void lookup_eval(benchmark::State& state, const MipData& mip, float max_texels) {
+  const std::vector<Hit> hs = hits(4096, 1024, max_texels);
   std::size_t k = 0;
   for (auto _ : state) {
     const Hit& h = hs[k++ & 4095];
@@ -102,7 +102,26 @@ void BM_LookupEvalBrdf(benchmark::State& state) {
     benchmark::DoNotOptimize(b.eval(h.wi, h.wo));
   }
 }
+void BM_LookupEvalBrdf(benchmark::State& state) {
+  lookup_eval(state, tray_mip(static_cast<int>(state.range(0))), static_cast<float>(state.range(1)));
+}
 BENCHMARK(BM_LookupEvalBrdf)->ArgsProduct({{1, 2, 4, 8}, {64}})->Args({4, 1})->Args({4, 4});
+
+// The same on the tray under a clear coat (weight 1, roughness 0.1, no coat normal map: car paint's
+// coat): the texel's base lobes with their coat shares and its coat lobes, the layered eval.
+const MipData& coated_tray_mip() {
+  static const MipData mip = [] {
+    MaterialTexels m = material(0, 1024);
+    m.clearcoat_factor = 1.0f;
+    m.clearcoat_roughness_factor = 0.1f;
+    return build_mip(std::move(m));
+  }();
+  return mip;
+}
+void BM_LookupEvalBrdfCoated(benchmark::State& state) {
+  lookup_eval(state, coated_tray_mip(), static_cast<float>(state.range(0)));
+}
+BENCHMARK(BM_LookupEvalBrdfCoated)->Arg(64);
 
 // The same texel's mixture evaluated again (what the integrator does for light samples).
 void BM_EvalBrdfTexel(benchmark::State& state) {
@@ -123,9 +142,10 @@ void BM_EvalBrdfTexel(benchmark::State& state) {
 }
 BENCHMARK(BM_EvalBrdfTexel)->Arg(0)->Arg(3)->Arg(6);
 
-// Level 0 as the renderer would shade it with the glTF model: the texel's frame, gltf_eval in it,
-// the f_eff factor max(0, n·wi)/wi.z.
-void BM_Level0GltfEval(benchmark::State& state) {
+// Level 0 as the renderer would shade it: the hit's texel of the 1024² tray, the texel's frame, the
+// model `eval(t, local wi, local wo)` in it, the f_eff factor max(0, n·wi)/wi.z.
+template <class Eval>
+void level0_eval(benchmark::State& state, const Eval& eval) {
   const MaterialTexels& m = material(0, 1024);
   const std::vector<Hit> hs = hits(4096, 1024, 1);
   std::size_t k = 0;
@@ -137,11 +157,30 @@ void BM_Level0GltfEval(benchmark::State& state) {
     const Frame fr = Frame::from_normal(n);
     const float cn = glm::dot(n, h.wi);
     Rgb f(0);
-    if (cn > 0) f = gltf_eval({m.base_color[t], m.metallic[t], m.roughness[t]}, fr.to_local(h.wi), fr.to_local(h.wo)) * (cn / h.wi.z);
+    if (cn > 0) f = eval(m, t, fr, fr.to_local(h.wi), fr.to_local(h.wo)) * (cn / h.wi.z);
     benchmark::DoNotOptimize(f);
   }
 }
+
+// With the glTF model.
+void BM_Level0GltfEval(benchmark::State& state) {
+  level0_eval(state, [](const MaterialTexels& m, std::size_t t, const Frame&, const glm::vec3& wi, const glm::vec3& wo) {
+    return gltf_eval({m.base_color[t], m.metallic[t], m.roughness[t]}, wi, wo);
+  });
+}
 BENCHMARK(BM_Level0GltfEval);
+
+// With the surface BSDF under the coated tray's coat (fresnel_coat; the coat normal the surface's,
+// carried into the texel's frame): the coated level 0 as the renderer shades it.
+void BM_Level0CoatedEval(benchmark::State& state) {
+  level0_eval(state, [](const MaterialTexels& m, std::size_t t, const Frame& fr, const glm::vec3& wi, const glm::vec3& wo) {
+    ShadingParams p;
+    p.base_color = m.base_color[t], p.metallic = m.metallic[t], p.roughness = m.roughness[t];
+    p.clearcoat = 1.0f, p.clearcoat_roughness = 0.1f, p.clearcoat_normal = fr.to_local(glm::vec3(0, 0, 1));
+    return SurfaceBsdf(p).eval(wi, wo);
+  });
+}
+BENCHMARK(BM_Level0CoatedEval);
 
 // The bare model on fixed parameters in its own frame: no texel fetch, no frame, no f_eff factor.
 void BM_GltfEvalOnly(benchmark::State& state) {

@@ -65,37 +65,73 @@ TEST(FilterTaps, LevelsProbesAndWeights) {
 
 // Filtering after shading is unbiased: the mean of 10^5 selected texels' BRDFs equals the
 // filter-weighted mean of the texels' BRDFs within 3 standard errors, per channel and direction pair.
+// The same of a coated material (its coat lobes chosen with their texel).
 TEST(LookupBrdf, StochasticSelectionIsUnbiased) {
-  const MipData mip = build_mip(synthetic::tray(32));
-  const Footprint f{{0.43f, 0.61f}, {3.1f / 32, 1.0f / 32}, {-0.4f / 32, 0.9f / 32}};  // anisotropic, between levels
-  const FilterTaps taps = filter_taps(mip.brdf.level0(), mip.brdf.levels(), f);
-  ASSERT_GT(taps.count, 8);
-  const std::array<std::pair<glm::vec3, glm::vec3>, 3> pairs{{
-      {glm::normalize(glm::vec3(0.3f, 0.1f, 1)), glm::normalize(glm::vec3(-0.3f, -0.1f, 1))},  // near the highlight
-      {glm::normalize(glm::vec3(0.5f, 0.0f, 1)), glm::normalize(glm::vec3(-0.2f, 0.3f, 1))},
-      {glm::normalize(glm::vec3(0.9f, 0.2f, 0.3f)), glm::normalize(glm::vec3(0.1f, -0.8f, 0.5f))},
-  }};
-  for (const auto& [wi, wo] : pairs) {
-    glm::dvec3 expected(0);
-    for (int k = 0; k < taps.count; ++k) {
-      const FilterTap& t = taps.taps[static_cast<std::size_t>(k)];
-      Lobe scratch;
-      expected += double(t.weight) * glm::dvec3(LobeMixtureBsdf(brdf_texel(mip, t.level, t.i, t.j, scratch)).eval(wi, wo));
-    }
-    Rng rng(17, 3);
-    constexpr int n = 100000;
-    glm::dvec3 sum(0), sum2(0);
-    for (int s = 0; s < n; ++s) {
-      const glm::dvec3 v(lookup_brdf(mip, f, rng.next_float()).eval(wi, wo));
-      sum += v;
-      sum2 += v * v;
-    }
-    const glm::dvec3 mean = sum / double(n);
-    for (int c = 0; c < 3; ++c) {
-      const double se = std::sqrt(std::max(0.0, sum2[c] / n - mean[c] * mean[c]) / n);
-      EXPECT_NEAR(mean[c], expected[c], 3 * se + 1e-9 * expected[c]) << "channel " << c;
+  for (const MaterialTexels& m : {synthetic::tray(32), synthetic::orange_peel(32)}) {
+    SCOPED_TRACE(m.has_coat() ? "coated" : "tray");
+    const MipData mip = build_mip(m);
+    const Footprint f{{0.43f, 0.61f}, {3.1f / 32, 1.0f / 32}, {-0.4f / 32, 0.9f / 32}};  // anisotropic, between levels
+    const FilterTaps taps = filter_taps(mip.brdf.level0(), mip.brdf.levels(), f);
+    ASSERT_GT(taps.count, 8);
+    const std::array<std::pair<glm::vec3, glm::vec3>, 3> pairs{{
+        {glm::normalize(glm::vec3(0.3f, 0.1f, 1)), glm::normalize(glm::vec3(-0.3f, -0.1f, 1))},  // near the highlight
+        {glm::normalize(glm::vec3(0.5f, 0.0f, 1)), glm::normalize(glm::vec3(-0.2f, 0.3f, 1))},
+        {glm::normalize(glm::vec3(0.9f, 0.2f, 0.3f)), glm::normalize(glm::vec3(0.1f, -0.8f, 0.5f))},
+    }};
+    for (const auto& [wi, wo] : pairs) {
+      glm::dvec3 expected(0);
+      for (int k = 0; k < taps.count; ++k) {
+        const FilterTap& t = taps.taps[static_cast<std::size_t>(k)];
+        Lobe scratch, coat;
+        const LobeMixtureBsdf texel(brdf_texel(mip, t.level, t.i, t.j, scratch), brdf_coat(mip, t.level, t.i, t.j, coat).lobes);
+        expected += double(t.weight) * glm::dvec3(texel.eval(wi, wo));
+      }
+      Rng rng(17, 3);
+      constexpr int n = 100000;
+      glm::dvec3 sum(0), sum2(0);
+      for (int s = 0; s < n; ++s) {
+        const glm::dvec3 v(lookup_brdf(mip, f, rng.next_float()).eval(wi, wo));
+        sum += v;
+        sum2 += v * v;
+      }
+      const glm::dvec3 mean = sum / double(n);
+      for (int c = 0; c < 3; ++c) {
+        const double se = std::sqrt(std::max(0.0, sum2[c] / n - mean[c] * mean[c]) / n);
+        EXPECT_NEAR(mean[c], expected[c], 3 * se + 1e-9 * expected[c]) << "channel " << c;
+      }
     }
   }
+}
+
+// A coated texel's mixture (its base lobes with their coat shares, its coat lobes, its radial
+// correction) evaluates as texel_eval evaluates the texel — the evaluation the pyramid's metrics hold
+// to the exact reference (coat_layer.h) — at every level, level 0's texels included.
+TEST(LobeMixtureBsdf, ACoatedTexelEvaluatesAsThePyramidsTexel) {
+  const MipData mip = build_mip(synthetic::orange_peel(16));
+  const std::array<std::pair<glm::dvec3, glm::dvec3>, 4> pairs{{
+      {glm::normalize(glm::dvec3(0.3, 0.1, 1)), glm::normalize(glm::dvec3(-0.3, -0.1, 1))},
+      {glm::normalize(glm::dvec3(0.5, 0.0, 1)), glm::normalize(glm::dvec3(-0.2, 0.3, 1))},
+      {glm::normalize(glm::dvec3(0.9, 0.2, 0.3)), glm::normalize(glm::dvec3(0.1, -0.8, 0.5))},
+      {glm::normalize(glm::dvec3(-0.2, 0.1, 0.2)), glm::normalize(glm::dvec3(0.9, -0.1, 0.15))},  // grazing: the coat's Fresnel
+  }};
+  int coated = 0;
+  for (int level = 0; level < mip.levels(); ++level)
+    for (int j = 0; j < mip.extent(level).height; j += 3)
+      for (int i = 0; i < mip.extent(level).width; i += 2) {
+        Lobe scratch, coat_scratch;
+        const CoatTexel coat = brdf_coat(mip, level, i, j, coat_scratch);
+        coated += coat.present();
+        LobeMixtureBsdf b(brdf_texel(mip, level, i, j, scratch), coat.lobes);
+        EXPECT_EQ(b.coat_size(), static_cast<int>(coat.lobes.size()));
+        b.set_correction(mip.brdf.correction(level, i, j), &mip.brdf.radial_grid());
+        for (const auto& [wi, wo] : pairs) {
+          const glm::dvec3 want = texel_eval(mip, TextureFilter::brdf, level, i, j, wi, wo);
+          const glm::dvec3 got(b.eval(glm::vec3(wi), glm::vec3(wo)));
+          for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(got[c], want[c], 1e-5 * want[c] + 1e-7) << "level " << level << " texel " << i << "," << j;
+        }
+      }
+  EXPECT_GT(coated, 10);
 }
 
 // The mixture's sampler: pdf() is the density sample() draws from (χ² over 64 bins of the
@@ -104,13 +140,23 @@ TEST(LobeMixtureBsdf, SamplingMatchesItsPdfAndIntegral) {
   // A coarse texel of the bumpy wall and one of the tray: spread lobes and a sharp one.
   const MipData wall = build_mip(synthetic::painted_wall(16));
   const MipData tray = build_mip(synthetic::tray(16));
+  // A coated one (a patchy glossy coat with its own bumps, over the tray) at level 2, and a level-0
+  // texel of it: the coat lobes sampled among the base's.
+  const MipData peel = build_mip(synthetic::orange_peel(16));
+  Lobe peel0, peel0_coat;
+  const std::span<const Lobe> peel0_base = brdf_texel(peel, 0, 5, 3, peel0);
+  const CoatTexel peel0_coat_lobes = brdf_coat(peel, 0, 5, 3, peel0_coat);
   // And roughness mixtures with atoms (lobe.h): one under a band, one under a second atom.
   std::array<Lobe, 2> atoms{lobe_from_texel(glm::vec3(0.9f), 1.0f, 0.08f, glm::normalize(glm::vec3(0.1f, 0.0f, 1.0f)), 0.5f),
                             lobe_from_texel(glm::vec3(0.5f), 0.5f, 0.1f, glm::normalize(glm::vec3(-0.1f, 0.1f, 1.0f)), 0.5f)};
   atoms[0].alpha2_hi = 0.2f, atoms[0].ggx = 0.3f;
   atoms[1].alpha2_hi = 0.05f, atoms[1].ggx = 0.5f, atoms[1].skirt = 0.0f;
+  ASSERT_GT(peel.brdf.coat(2, 1, 2).lobes.size(), 0u);
+  ASSERT_TRUE(peel0_coat_lobes.present());
   for (const LobeMixtureBsdf& bsdf : {LobeMixtureBsdf(wall.brdf.texel(2, 1, 2)), LobeMixtureBsdf(tray.brdf.texel(3, 0, 1)),
-                                      LobeMixtureBsdf(std::span<const Lobe>(atoms))}) {
+                                      LobeMixtureBsdf(std::span<const Lobe>(atoms)),
+                                      LobeMixtureBsdf(peel.brdf.texel(2, 1, 2), peel.brdf.coat(2, 1, 2).lobes),
+                                      LobeMixtureBsdf(peel0_base, peel0_coat_lobes.lobes)}) {
     ASSERT_GT(bsdf.size(), 0);
     const glm::vec3 wo = glm::normalize(glm::vec3(0.4f, -0.2f, 0.8f));
     // Bins: 8 in cos²θ (equal cosine-weighted mass) × 8 in φ; expected mass by midpoint quadrature.
@@ -156,6 +202,7 @@ TEST(LobeMixtureBsdf, SamplingMatchesItsPdfAndIntegral) {
     EXPECT_LT(chi2, 120.0);  // 63 degrees of freedom: p ≈ 1e-5
     EXPECT_NEAR(mass + double(absorbed) / n, 1.0, 0.01);  // what is not above the horizon was absorbed
     EXPECT_NEAR(weight_sum / n, integral, 0.02 * integral);
+    EXPECT_LE(integral, 1.0);  // no texel reflects more than it receives
   }
 }
 
