@@ -14,6 +14,7 @@
 #include "appearance/gltf_surface_bsdf.h"
 #include "appearance/rng.h"
 #include "mip/exact_reference.h"
+#include "exact_mean_check.h"
 #include "random_directions.h"
 #include "mip/metrics.h"
 #include "mip/mip_data.h"
@@ -26,6 +27,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
+using testing_directions::expect_coarse_exact_is_the_mean;
 using testing_directions::random_above;
 
 // A texel's parameters with its specular layer.
@@ -136,17 +138,9 @@ TEST(SpecularLayer, CoarseExactIsTheMeanOfTheTexels) {
   std::vector<Texel> ts;
   for (int k = 0; k < 64; ++k) ts.push_back(random_texel(rng, 1.7));
   const MaterialTexels m = texels_of(ts, 8);
-  const ExactReference exact(m);
-  for (int trial = 0; trial < 200; ++trial) {
-    const int level = 1 + trial % 3, n = 8 >> level;
-    const int i = int(rng.next_u32() % unsigned(n)), j = int(rng.next_u32() % unsigned(n));
-    const glm::dvec3 wi = random_above(rng), wo = random_above(rng);
-    glm::dvec3 sum(0);
-    for (int y = j << level; y < (j + 1) << level; ++y)
-      for (int x = i << level; x < (i + 1) << level; ++x) sum += f_eff_khr(ts[m.index(x, y)], wi, wo);
-    const glm::dvec3 want = sum / double(1 << (2 * level)), got = exact.eval(level, i, j, wi, wo);
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], want[c], 1e-6 * want[c] + 1e-12) << "level " << level;
-  }
+  expect_coarse_exact_is_the_mean(m, rng, [&](int x, int y, const glm::dvec3& wi, const glm::dvec3& wo) {
+    return f_eff_khr(ts[m.index(x, y)], wi, wo);
+  });
 }
 
 // The layer is linear in the lobes: merging texels that differ only in it (and in colour and

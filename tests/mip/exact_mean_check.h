@@ -1,0 +1,31 @@
+#pragma once
+// The check every layer's tests share: a coarse texel's exact reference (mip/exact_reference.h) is the
+// mean of its level-0 texels' f_eff, each given by an independent transcription of the layer's
+// specification in double.
+#include <gtest/gtest.h>
+
+#include "appearance/rng.h"
+#include "mip/exact_reference.h"
+#include "random_directions.h"
+
+namespace svbrdf::testing_directions {
+
+// 200 trials over levels 1–3 of `m` (a square material of at least 8×8 texels): a random texel and a
+// random pair of directions, the reference against the mean of f_eff(x, y, wi, wo) over the level-0
+// texels (x, y) it covers, to 1e-6 relative.
+template <class FEff>
+void expect_coarse_exact_is_the_mean(const MaterialTexels& m, Rng& rng, const FEff& f_eff) {
+  const ExactReference exact(m);
+  for (int trial = 0; trial < 200; ++trial) {
+    const int level = 1 + trial % 3, n = m.width >> level;
+    const int i = int(rng.next_u32() % unsigned(n)), j = int(rng.next_u32() % unsigned(n));
+    const glm::dvec3 wi = random_above(rng), wo = random_above(rng);
+    glm::dvec3 sum(0);
+    for (int y = j << level; y < (j + 1) << level; ++y)
+      for (int x = i << level; x < (i + 1) << level; ++x) sum += f_eff(x, y, wi, wo);
+    const glm::dvec3 want = sum / double(1 << (2 * level)), got = exact.eval(level, i, j, wi, wo);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], want[c], 1e-6 * want[c] + 1e-12) << "level " << level;
+  }
+}
+
+}  // namespace svbrdf::testing_directions
