@@ -1,7 +1,8 @@
 #pragma once
 // The level-0 texels of one material of a glTF 2.0 file (.gltf or .glb), for
 // `svbrdf-bake mip SCENE.gltf --material NAME|INDEX`: its baseColor, metallicRoughness, normal,
-// specular and specular colour textures and factors, and its ior, decoded as textures/material_loader.h defines (sRGB base color through
+// specular and specular colour textures and factors, its ior and its clear coat (weight, roughness and
+// normal textures and factors), decoded as textures/material_loader.h defines (sRGB base color through
 // OCIO). Images may be files beside the glTF, data: URIs or buffer views. Texture transforms and
 // texCoord sets are ignored: the MIP build works on the images' own texel grid.
 #include <filesystem>

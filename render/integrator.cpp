@@ -140,10 +140,12 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
         tint *= mip->base_color(s.filter, footprint(sp, mip->base_color_uv_set(), dpdx, dpdy));
       choice = mip->texture().choose(s.filter, fp, tint, u_select);
       prefetch_emission(sp, *w.textures);
-      // A level-0 texel of a normal-mapped material is shaded as a material without MIP data
-      // shades it (below: the normal turned toward the viewer, or the microsurface), not by its lone
-      // lobe, whose f_eff vanishes wherever the mapped normal turns from the viewer.
-      if (choice.level == 0 && sp.material->normal_texture.present()) mip = nullptr;
+      // A level-0 texel of a normal-mapped material (its base's or its coat's map) is shaded as a
+      // material without MIP data shades it (below: the normal turned toward the viewer, or the
+      // microsurface), not by its lone lobe, whose f_eff vanishes wherever the mapped normal turns from
+      // the viewer.
+      if (choice.level == 0 && (sp.material->normal_texture.present() || sp.material->clearcoat_normal_texture.present()))
+        mip = nullptr;
     }
 
     // Next-event estimation of the environment, its shadow ray first: the ray needs the hit's

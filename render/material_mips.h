@@ -5,14 +5,15 @@
 // built from them, looked up in the uv its textures read.
 //
 // Which materials take part ("active"): those whose BRDF the lobes model — the glTF metallic-
-// roughness BRDF with its KHR_materials_specular and KHR_materials_ior layer (lobe.h), with
-// KHR_materials_transmission/diffuse_roughness at their defaults and not unlit — and that have at
-// least one of the five textures (base color, metallic-roughness, normal, specular, specular
-// color). Every other material is shaded by
+// roughness BRDF with its KHR_materials_specular and KHR_materials_ior layer (lobe.h) and its
+// KHR_materials_clearcoat coat (coat_layer.h), with KHR_materials_transmission/diffuse_roughness at
+// their defaults and not unlit — and that have at least one of the textures their texels read
+// (render/texel_inputs.h: base color, metallic-roughness, normal, specular, specular color, and with a
+// coat its weight, roughness and normal). Every other material is shaded by
 // SurfaceBsdf with level0 lookups under every filter (an untextured one has nothing to filter); a
 // textured one that is left out gets one warning saying why.
 //
-// One texel grid per material: the five textures must share their uv set, KHR_texture_transform
+// One texel grid per material: those textures must share their uv set, KHR_texture_transform
 // and wrap modes. Their sizes may differ by integer factors along each axis: the smaller ones are
 // replicated (nearest) onto the largest grid, which is exact — the texel of the small texture that
 // contains a uv is the one whose replica contains it. A base colour texture that is looked up
