@@ -1,0 +1,267 @@
+#include "apps/render_command.h"
+
+#include <cerrno>
+#include <climits>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <tuple>
+#include <utility>
+
+#include "base/checked_number.h"
+#include "base/cli_checks.h"
+#include "base/error.h"
+#include "base/interrupt.h"
+#include "base/message_line.h"
+#include "gltf/scene_reader.h"
+#include "mip/texture_filter.h"
+#include "render/output.h"
+#include "render/progress.h"
+#include "render/render_setup.h"
+#include "textures/color.h"
+#include "textures/image.h"
+
+namespace svbrdf {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// The most footprint scale --footprint-scale takes: a sample's texture footprint 64 times its pixel's
+// reads MIP levels six steps coarser than the pixel's own. Scales above 1 are for experiments (the
+// blur an engine's wider filter gives, a pyramid's coarse levels seen up close); past 64 the image is
+// the texture's mean over most of the frame, no filter of the pixel any more, and a scale like 1e30
+// only says that the value was mistyped.
+constexpr double kMaxFootprintScale = 64.0;
+// The most scattering events a path may have: the LOD recipes' own bound (scenes/lod_scenes.cpp). A
+// path that long already carries nothing visible; a bound keeps a mistyped 10^9 from rendering
+// mirrors facing each other for hours.
+constexpr int kMaxDepth = 1024;
+// ±64 stops scale the PNG by 2^±64: every pixel is black or white long before, and 2^128 would
+// overflow a float.
+constexpr double kMaxExposure = 64.0;
+
+// "WxH" with both whole numbers ≥ 1 and no more than the image writer's side (kMaxImageSide), then
+// within --max-texels and the memory budget at the film's bytes per pixel.
+std::pair<int, int> parse_resolution(const std::string& text) {
+  const Error bad = input_error("--res " + text, "expected WxH with whole numbers, e.g. 640x360");
+  const std::size_t x = text.find_first_of("xX");
+  if (x == std::string::npos) throw bad;
+  long long side[2];
+  const std::string parts[2] = {text.substr(0, x), text.substr(x + 1)};
+  for (int i = 0; i < 2; ++i) {
+    const char* begin = parts[i].c_str();
+    char* end = nullptr;
+    errno = 0;
+    side[i] = std::strtoll(begin, &end, 10);
+    if (end == begin || *end != '\0' || errno == ERANGE || parts[i].find_first_of("+- ") != std::string::npos) throw bad;
+    if (side[i] < 1) throw input_error("--res " + text, "width and height must be at least 1");
+    if (side[i] > kMaxImageSide)
+      throw input_error("--res " + text, "a side of more than " + std::to_string(kMaxImageSide) +
+                                                    " pixels is more than the image writer takes");
+  }
+  check_image_size(std::uint64_t(side[0]), std::uint64_t(side[1]), Film::kBytesPerPixel, "--res " + text);
+  return {static_cast<int>(side[0]), static_cast<int>(side[1])};
+}
+
+// "the 16 samples per pixel", or "the 16 to 32 samples per pixel" for a render stopped within a pass
+// (renderer.h), with the count asked for.
+std::string samples_text(const RenderStats& stats, int spp) {
+  std::string text = "the " + std::to_string(stats.pixel_samples_min);
+  if (stats.pixel_samples_max != stats.pixel_samples_min) text += " to " + std::to_string(stats.pixel_samples_max);
+  return text + " samples per pixel that had accumulated, of " + std::to_string(spp);
+}
+
+}  // namespace
+
+void RenderCommand::add_options(CLI::App& app) {
+  app.add_option("scene", scene_file, "glTF file (.gltf or .glb); none renders the project's showcase scene");
+  app.add_option("-o,--out", out, "output OpenEXR file (linear radiance); default out/<scene>.exr");
+  app.add_option("--png", png, "display PNG (default: beside the EXR, same stem)");
+  app.add_option("--spp", spp, "samples per pixel")->check(cli::whole_in(1, INT_MAX));
+  app.add_option("--res", res, "resolution WxH (default: the camera's aspect at 360 rows, else 640x360)");
+  app.add_option("--camera", camera, "camera index or name (default: the scene's first, else a framing camera)");
+  app.add_option("--seed", seed, "random seed")->check(cli::unsigned_whole);
+  app.add_option("--threads", threads, "worker threads (0: all cores; more than the machine runs at once are capped)")
+      ->check(cli::whole_in(0, INT_MAX));
+  app.add_option("--max-depth", max_depth, "maximum number of scattering events (0.." + std::to_string(kMaxDepth) + ")")
+      ->check(cli::whole_in(0, kMaxDepth));
+  app.add_option("--time-limit", time_limit,
+                 "stop after this many seconds (once every pixel has a sample) and write what accumulated, exit 0")
+      ->check(cli::non_negative);
+  app.add_option("--max-texels", max_texels,
+                 "the most texels one image may have: a texture, a MIP level, the frame (default 2^26 = 8192x8192; "
+                 "at most 2^40)")
+      ->check(cli::whole_in(1, cli::kMaxTexelsOption));
+  app.add_option("--env", env, "environment: r,g,b radiance or an equirectangular HDR/EXR file "
+                               "(default: white 1 when the scene has no lights, none when it has)");
+  app.add_option("--sun", sun, "add a directional light: elevation,azimuth[,irradiance] (degrees, W/m^2)");
+  app.add_option("--light-units", light_units,
+                 "how the file's KHR_lights_punctual intensities are read: photometric (the specification's lux and "
+                 "candela, divided by 683 lm/W) | radiometric (W/m^2 and W/sr as written)")
+      ->check(CLI::IsMember({"photometric", "radiometric"}));
+  app.add_option("--variant", variant,
+                 "KHR_materials_variants: the material variant to render (default: each primitive's own material)");
+  const std::vector<std::string> filters = filter_names();
+  std::string filter_help = "texture filter:";
+  for (const std::string& f : filters) filter_help += (f == filters.front() ? " " : " | ") + f;
+  filter_help += " (default brdf: the BRDF-averaged MIP; level0: the nearest texel, no MIP, the ground truth at many spp)";
+  app.add_option("--filter", filter, filter_help)->check(CLI::IsMember(filters));
+  app.add_option("--footprint-scale", footprint_scale,
+                 "each camera sample's texture footprint as a fraction of its pixel's, in (0, 64] (default 1/sqrt(spp), "
+                 "its share of the pixel; pbrt-v4 uses max(1/8, 1/sqrt(spp)); 1: the whole pixel)")
+      ->check(cli::number_in(0.0, kMaxFootprintScale, true, false));
+  app.add_option("--light-sampling", light_sampling, "environment sampling: mis | nee | bsdf")
+      ->check(CLI::IsMember({"mis", "nee", "bsdf"}));
+  app.add_option("--normal-mapping", normal_mapping,
+                 "how normal maps shade: shading (the mapped normal, turned toward the viewer where it faces away; "
+                 "dark where it turns from a light, as in Cycles; the default) | microfacet (Schuessler et al. 2017: "
+                 "never black where the surface is lit, energy kept, strong maps flattened under low light)")
+      ->check(CLI::IsMember({"shading", "microfacet"}));
+  app.add_option("--clamp", clamp,
+                 "cap on the radiance one indirect light sample brings back, per channel (0: off, the default; "
+                 "removes fireflies at the cost of bias)")
+      ->check(cli::non_negative);
+  app.add_option("--aperture", aperture,
+                 "depth of field: the thin lens's radius in scene units (metres in glTF), in [0, 1e15] (default 0, "
+                 "glTF's pinhole: glTF cameras carry no aperture)")
+      ->check(cli::number_in(0.0, Camera::kMaxLensLength));
+  app.add_option("--focus-distance", focus_distance,
+                 "depth of field: the distance along the view axis that is sharp, in (0, 1e15] (default: that of the "
+                 "first surface the ray through the frame's centre meets, else of the scene's centre)")
+      ->check(cli::number_in(0.0, Camera::kMaxLensLength, true));
+  app.add_option("--exposure", exposure, "exposure in stops for the PNG, in [-64, 64] (the EXR is never scaled)")
+      ->check(cli::number_in(-kMaxExposure, kMaxExposure));
+  app.add_option("--ocio-config", ocio, "OpenColorIO config for texture decoding and the PNG (default: $OCIO, else the built-in one)");
+  app.add_option("--display", display, "the OCIO display the PNG is encoded for (default: the config's default display)");
+  app.add_option("--view", view,
+                 "the OCIO view of that display the PNG shows, e.g. Standard or Filmic in Blender's config (default: "
+                 "the display's default view; the EXR is always scene-linear)");
+  mip_cache.add_to(&app);
+  app.add_flag("--float", use_float, "write 32-bit float EXR (default half)");
+  app.add_flag("--transparent", transparent,
+               "a transparent background: the camera does not see the environment (which still lights the scene), "
+               "so the EXR's alpha is what the scene covers of each pixel, and the PNG has alpha too");
+  app.add_flag("--aov", aovs, "also write the albedo, normal, depth and MIP level, as layers of the EXR (albedo.R/G/B, N.X/Y/Z, Z, mip_level.X)");
+  app.add_flag("-q,--quiet", quiet, "no progress output or notes (warnings and errors are still printed)");
+}
+
+RenderOutcome run_render(RenderCommand& c, const fs::path& scene_path, const char* program) {
+  // Before any input is read: every image, MIP level and the frame are held to it.
+  resource_limits().max_texels = c.max_texels;
+  const int threads = cli::capped_threads(c.threads, program);
+  const TextureFilter texture_filter = *parse_filter(c.filter);
+  SceneSetup setup;
+  setup.camera = c.camera;
+  setup.env = c.env;
+  setup.sun = c.sun;
+  setup.filter = texture_filter;
+  setup.aperture = c.aperture;
+  setup.focus_distance = c.focus_distance;
+  if (!c.res.empty()) std::tie(setup.width, setup.height) = parse_resolution(c.res);
+  // The showcase is lit by a sun and its sky; glTF has no ratified way to carry an environment, so
+  // the recipe bakes the sky beside the scene and the default render uses it unless --env says else.
+  if (c.scene_file.empty() && c.env.empty() && fs::exists(scene_path.parent_path() / "sky.hdr"))
+    setup.env = (scene_path.parent_path() / "sky.hdr").string();
+  const bool write = !c.out.empty();
+  if (write && fs::path(c.out).extension() != ".exr") throw input_error("--out " + c.out, "the output must be an .exr file");
+
+  OutputOptions oo;
+  oo.exr = c.out;
+  oo.png = c.png;
+  oo.float32 = c.use_float;
+  oo.exposure = c.exposure;
+  oo.aovs = c.aovs;
+  oo.transparent = c.transparent;
+  // Before the scene is read: a render must not end in "cannot write" for a path that was wrong
+  // from the start. Also removes the temporaries a killed run left there.
+  if (write) prepare_outputs(oo);
+
+  const ColorConfig color = ColorConfig::resolve(c.ocio.empty() ? std::nullopt : std::optional<fs::path>(c.ocio));
+  // Before the scene is read: a display or view the config lacks is refused at once.
+  std::tie(oo.display, oo.view) = color.display_view(c.display, c.view);
+  LoadOptions load;
+  load.light_units = c.light_units == "radiometric" ? LightUnits::radiometric : LightUnits::photometric;
+  load.variant = c.variant;
+  SetupProgress setup_progress(program, c.quiet);
+  setup.progress = &setup_progress;
+  // The brdf filter's builds are the ones worth keeping (render/mip_cache.h).
+  const std::unique_ptr<MipCache> mip_cache = texture_filter == TextureFilter::brdf ? c.mip_cache.open(program) : nullptr;
+  setup.mip_cache = mip_cache.get();
+  setup_progress.begin("reading " + scene_path.filename().string() + " and decoding its images");
+  Scene scene = load_gltf(scene_path, load);
+  setup_progress.end();
+  for (const std::string& w : scene.warnings) std::fprintf(stderr, "%s: warning: %s\n", program, message_line(w).c_str());
+  const PreparedScene prepared(std::move(scene), setup, color);
+  print_mip_cache_warnings(mip_cache.get(), program);
+  if (const auto counts = prepared.mip_cache_counts(); !c.quiet && counts.read + counts.built > 0)
+    std::fprintf(stderr, "%s: MIP maps: %d read from the MIP cache %s, %d built\n", program, counts.read,
+                 message_line(mip_cache->folder().string()).c_str(), counts.built);
+  // glTF carries no environment: whichever one lights the render is said, once (a note, not a
+  // warning: --quiet silences it with the progress).
+  if (!c.quiet && !prepared.environment_note().empty())
+    std::fprintf(stderr, "%s: environment: %s\n", program, message_line(prepared.environment_note()).c_str());
+  if (!c.quiet && prepared.camera().has_lens())
+    std::fprintf(stderr, "%s: depth of field: a lens of radius %g focused at %g along the view axis%s\n", program,
+                 double(prepared.camera().lens_radius()), double(prepared.camera().focus_distance()),
+                 c.focus_distance > 0.0f ? "" : " (autofocus on the frame's centre)");
+  for (const std::string& w : prepared.warnings()) std::fprintf(stderr, "%s: warning: %s\n", program, message_line(w).c_str());
+  for (const std::string& w : prepared.mip_warnings(texture_filter))
+    std::fprintf(stderr, "%s: warning: %s\n", program, message_line(w).c_str());
+  const std::uint64_t pixels = std::uint64_t(prepared.camera().width()) * std::uint64_t(prepared.camera().height());
+  // The sample counters are 64-bit: spp × pixels must fit (it does unless --max-texels is huge).
+  if (const auto total = checked_mul(pixels, std::uint64_t(c.spp)); !total || *total >= (std::uint64_t(1) << 63))
+    throw input_error("--spp " + std::to_string(c.spp),
+                      "with " + std::to_string(pixels) + " pixels, more samples than a 63-bit counter holds");
+
+  RenderOptions options;
+  options.spp = c.spp;
+  options.threads = threads;
+  options.seed = c.seed;
+  options.time_limit = c.time_limit;
+  options.integrator.max_depth = c.max_depth;
+  options.integrator.filter = texture_filter;
+  options.integrator.footprints = c.aovs;  // the MIP-level AOV; the MIP filters compute their own
+  options.integrator.footprint_scale = c.footprint_scale;  // 0: resolved to 1/√spp by render()
+  options.integrator.clamp = c.clamp;
+  options.integrator.normal_mapping = c.normal_mapping == "microfacet" ? NormalMapping::microfacet : NormalMapping::shading;
+  options.aovs = c.aovs;
+  options.integrator.background = !c.transparent;
+  options.integrator.light_sampling = c.light_sampling == "nee"    ? LightSampling::nee
+                                      : c.light_sampling == "bsdf" ? LightSampling::bsdf
+                                                                   : LightSampling::mis;
+  options.cancel = &interrupt_requested();
+  setup_progress.end();
+  ProgressPrinter printer(c.quiet);
+  options.progress = [&](const ProgressInfo& p) { printer.update(p); };
+  // The first signal stops the render, which then writes what accumulated; a second one exits at
+  // once for a user who does not want to wait.
+  set_interrupt_mode(InterruptMode::stop_once, " a second time; the render was abandoned, nothing written");
+  RenderOutcome outcome;
+  outcome.film = render(prepared.world(), options, &outcome.stats);
+  const RenderStats& stats = outcome.stats;
+  // Writing the EXR and the PNG is short and must not be cut between the two: signals now only
+  // change the exit status.
+  set_interrupt_mode(InterruptMode::record);
+  printer.finish({stats.samples, pixels * std::uint64_t(c.spp), stats.rays, stats.seconds});
+
+  if (write) {
+    write_outputs(outcome.film, oo, color);
+    if (!c.quiet) std::fprintf(stderr, "%s: wrote %s\n", program, c.out.c_str());
+  }
+  const char* what = write ? "wrote" : "rendered";
+  if (const int sig = interrupt_signal()) {
+    std::fprintf(stderr, "%s: %s; %s %s\n", program, sig == SIGTERM ? "terminated (SIGTERM)" : "interrupted (SIGINT)", what,
+                 samples_text(stats, c.spp).c_str());
+    outcome.status = 128 + sig;
+  } else if (stats.timed_out && stats.pixel_samples_min < std::uint32_t(c.spp)) {
+    // Stopped early by the budget the user set: not a failure (exit 0), but the image has fewer
+    // samples than asked for, which --quiet must not hide.
+    std::fprintf(stderr, "%s: stopped at the time limit (%g s); %s %s\n", program, c.time_limit, what,
+                 samples_text(stats, c.spp).c_str());
+  }
+  return outcome;
+}
+
+}  // namespace svbrdf

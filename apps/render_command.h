@@ -1,0 +1,44 @@
+#pragma once
+// svbrdf-render's command line: its options as values, their definitions, and the render they ask
+// for. The program (render_main.cpp) and the Python module's render() (python/) parse the same
+// options with the same checks and render through these same steps, so one scene and one set of
+// options give the same image and the same one-line refusals from either.
+#include <CLI/CLI.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "apps/mip_cache_options.h"
+#include "base/resource_limits.h"
+#include "render/renderer.h"
+
+namespace svbrdf {
+
+struct RenderCommand {
+  std::string scene_file, out, png, res, camera, env, sun, filter = "brdf", light_sampling = "mis", ocio,
+      light_units = "photometric", normal_mapping = "shading", variant, display, view;
+  int spp = 64, threads = 0, max_depth = 16;
+  std::uint64_t seed = 0, max_texels = resource_limits().max_texels;
+  double time_limit = 0.0;
+  float exposure = 0.0f, footprint_scale = 0.0f, clamp = 0.0f, aperture = 0.0f, focus_distance = 0.0f;
+  bool use_float = false, quiet = false, aovs = false, transparent = false;
+  MipCacheOptions mip_cache;
+
+  // Defines every option of svbrdf-render on `app`, bound to the members above.
+  void add_options(CLI::App& app);
+};
+
+struct RenderOutcome {
+  Film film{0, 0};
+  RenderStats stats;
+  int status = 0;  // 0, or 128 + the signal that stopped the render
+};
+
+// Renders `scene` as `command` asks, printing what svbrdf-render prints on stderr under the name
+// `program`. The EXR and PNG are written when command.out names the EXR (the program gives it a
+// default; the Python module, which returns the film, leaves it empty unless asked). Throws
+// svbrdf::Error for bad input and failures, with the program's lines.
+RenderOutcome run_render(RenderCommand& command, const std::filesystem::path& scene, const char* program);
+
+}  // namespace svbrdf
