@@ -33,7 +33,7 @@ set_target_properties(${_svbrdf_installed} PROPERTIES INSTALL_RPATH "${_svbrdf_r
 set_target_properties(svbrdf_draco PROPERTIES EXPORT_NAME draco_decoder)
 if(BUILD_SHARED_LIBS)
   # The modules the programs alone link are shared too; they install beside the exported ones.
-  set(_svbrdf_program_modules scenes lod plots compare random_family)
+  set(_svbrdf_program_modules scenes lod plots compare random_family render_command)
   foreach(_m IN LISTS _svbrdf_program_modules)
     set_target_properties(svbrdf_${_m} PROPERTIES INSTALL_RPATH "${_svbrdf_rpath}")
     install(TARGETS svbrdf_${_m} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})

@@ -264,6 +264,16 @@ void check_image_size(const std::string& where, long long width, long long heigh
 
 Image read_image(const std::filesystem::path& path) { return read_image(path, nullptr); }
 
+Image image_from_stored(const void* data, PixelFormat format, int width, int height, int channels, const std::string& where) {
+  check_image_size(where, width, height, channels);
+  if (channels < 1 || channels > 64) throw input_error(where, "unsupported channel count " + std::to_string(channels));
+  Image img(width, height, channels);
+  // The conversion read_opened's read_image applies to a file's stored values.
+  if (!OIIO::convert_pixel_values(to_oiio(format), data, OIIO::TypeDesc::FLOAT, img.pixels.data(), int(img.pixels.size())))
+    throw Error(where + ": cannot convert the pixel values", Error::Kind::internal);
+  return img;
+}
+
 Image read_image(const std::filesystem::path& path, PixelFormat* stored_format) {
   const std::string where = path.string();
   std::error_code ec;

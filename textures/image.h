@@ -30,6 +30,12 @@ Image read_image(const std::filesystem::path& path);
 
 enum class PixelFormat { uint8, uint16, half, float32 };
 
+// Pixels held in memory as a file would store them (`format`: 8- or 16-bit integers, half or float;
+// width · height · channels values, interleaved, rows from the top) → the floats read_image gives for
+// a file of those values: integers scaled by OpenImageIO's conversion to [0, 1], floats as they are.
+// Throws svbrdf::Error naming `where` for a size check_image_size refuses.
+Image image_from_stored(const void* data, PixelFormat format, int width, int height, int channels, const std::string& where);
+
 // The channels of an image file named `names`, in that order: e.g. {"N.X", "N.Y", "N.Z"}, a layer of
 // a render's EXR. Throws svbrdf::Error naming the file and the channel when one is missing.
 Image read_image_channels(const std::filesystem::path& path, const std::vector<std::string>& names);
