@@ -15,6 +15,7 @@
 #include "test_models.h"
 #include "tests/common/run_command.h"
 #include "textures/image.h"
+#include "tests/common/test_paths.h"
 
 namespace svbrdf::testing {
 namespace {

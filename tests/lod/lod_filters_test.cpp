@@ -20,6 +20,7 @@
 #include "lod/comparison.h"
 #include "scenes/lod_scenes.h"
 #include "render/renderer.h"
+#include "tests/common/test_paths.h"
 
 namespace svbrdf {
 namespace {

@@ -19,6 +19,7 @@
 #include "lod/metrics.h"
 #include "scenes/lod_scenes.h"
 #include "textures/material_loader.h"
+#include "tests/common/test_paths.h"
 
 namespace svbrdf {
 namespace {

@@ -10,6 +10,7 @@
 
 #include "base/error.h"
 #include "scenes/recipe.h"
+#include "tests/common/test_paths.h"
 
 namespace svbrdf {
 namespace {

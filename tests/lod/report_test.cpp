@@ -16,6 +16,7 @@
 #include "lod/report.h"
 #include "tests/common/read_only_folder.h"
 #include "tests/common/run_command.h"
+#include "tests/common/test_paths.h"
 
 namespace svbrdf {
 namespace {

@@ -21,6 +21,7 @@
 #include "textures/image.h"
 #include "textures/normal_map.h"
 #include "tests/common/run_command.h"
+#include "tests/common/test_paths.h"
 
 namespace svbrdf {
 namespace {

@@ -13,6 +13,7 @@
 #include "base/json.h"
 #include "tests/common/temp_dir.h"
 #include "textures/material_loader.h"
+#include "tests/common/test_paths.h"
 
 namespace svbrdf {
 namespace {

@@ -15,6 +15,7 @@
 #include "tests/common/run_command.h"
 #include "tests/common/spawn.h"
 #include "textures/image.h"
+#include "tests/common/test_paths.h"
 
 namespace svbrdf {
 namespace {

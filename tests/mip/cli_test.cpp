@@ -18,6 +18,7 @@
 #include "textures/material_loader.h"
 #include "scenes/texture_set.h"
 #include "textures/normal_map.h"
+#include "tests/common/test_paths.h"
 
 namespace svbrdf {
 namespace {

@@ -22,6 +22,7 @@
 #include "tests/mip/synthetic_materials.h"
 #include "tests/common/run_command.h"
 #include "tests/common/temp_dir.h"
+#include "tests/common/test_paths.h"
 
 namespace svbrdf {
 namespace {

@@ -14,6 +14,7 @@
 #include "apps/random_family_summary.h"
 #include "base/json.h"
 #include "tests/common/run_command.h"
+#include "tests/common/test_paths.h"
 
 namespace svbrdf {
 namespace {

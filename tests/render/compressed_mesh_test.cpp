@@ -24,6 +24,7 @@
 #include "render/renderer.h"
 #include "textures/image.h"
 #include "render_program.h"
+#include "tests/common/test_paths.h"
 
 namespace svbrdf {
 namespace {

@@ -18,6 +18,7 @@
 #include "base/message_line.h"
 #include "gltf_samples.h"
 #include "gltf_test_files.h"
+#include "tests/common/test_paths.h"
 
 namespace svbrdf {
 namespace {

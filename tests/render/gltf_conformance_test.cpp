@@ -26,6 +26,7 @@
 #include "gltf/scene_reader.h"
 #include "render_program.h"
 #include "gltf_test_files.h"
+#include "tests/common/test_paths.h"
 
 namespace svbrdf {
 namespace {

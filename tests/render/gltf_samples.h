@@ -2,6 +2,7 @@
 // The glTF sample models of ../shared/data/gltf-samples with what each contains.
 #include <cstddef>
 #include <filesystem>
+#include "tests/common/test_paths.h"
 
 namespace svbrdf::test {
 

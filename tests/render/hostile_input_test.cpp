@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "gltf_test_files.h"
+#include "tests/common/test_paths.h"
 
 namespace svbrdf {
 namespace {

@@ -19,6 +19,7 @@
 #include "gltf_test_files.h"
 #include "render_program.h"
 #include "textures/image.h"
+#include "tests/common/test_paths.h"
 
 namespace svbrdf {
 namespace {

@@ -10,6 +10,7 @@
 #include "base/message_line.h"
 #include "gltf_test_files.h"
 #include "textures/image.h"
+#include "tests/common/test_paths.h"
 
 namespace svbrdf {
 namespace {

@@ -11,6 +11,7 @@
 
 #include "tests/common/run_command.h"
 #include "tests/common/spawn.h"
+#include "tests/common/test_paths.h"
 
 namespace svbrdf::test {
 

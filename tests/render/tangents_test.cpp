@@ -5,6 +5,7 @@
 
 #include "gltf/scene_reader.h"
 #include "gltf/tangents.h"
+#include "tests/common/test_paths.h"
 
 namespace svbrdf {
 namespace {
