@@ -35,10 +35,10 @@ install: build
 # Runs every test but the heavy ones labelled `long` (`make test-long` runs those). CI passes
 # OPTIMIZED_ONLY=1: in Release it runs only the comparisons that need an optimized build (the labels
 # below), and every other suite under the sanitizers (`make asan`), which assert the same and more.
-OPTIMIZED_LABELS := lod|blender|optimized
+OPTIMIZED_LABELS := ^lod$$|^blender$$|-optimized$$
 test: build
 	cd $(BUILD) && ctest -j $(JOBS) --output-on-failure --timeout 600 -LE long \
-	  $(if $(OPTIMIZED_ONLY),-L '^($(OPTIMIZED_LABELS))$$',) $(CTEST_ARGS)
+	  $(if $(OPTIMIZED_ONLY),-L '$(OPTIMIZED_LABELS)',) $(CTEST_ARGS)
 
 test-long: build
 	cd $(BUILD) && ctest -j $(JOBS) --output-on-failure --timeout 1800 -L long $(CTEST_ARGS)
