@@ -22,6 +22,8 @@ Vectors::Vectors(const py::handle& object, const char* where) {
   if (array.ndim() < 1 || array.shape(array.ndim() - 1) != 3)
     bad_argument(where, "expected an array of shape (N, 3), got " + shape_text(array));
   count = static_cast<std::size_t>(array.size() / 3);
+  first = array.data();
+  step = count == 1 ? 0 : 3;
   for (py::ssize_t d = 0; d + 1 < array.ndim(); ++d) shape.push_back(array.shape(d));
 }
 

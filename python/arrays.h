@@ -28,9 +28,12 @@ struct Vectors {
 
   Vectors(const py::handle& object, const char* where);
   glm::vec3 operator[](std::size_t k) const {
-    const float* p = array.data() + (count == 1 ? 0 : 3 * k);
+    const float* p = first + step * k;
     return {p[0], p[1], p[2]};
   }
+
+  const float* first = nullptr;  // the first vector's x
+  std::size_t step = 0;          // floats from one vector to the next: 3, or 0 for one vector paired with many
 };
 
 // Two arrays of vectors taken pairwise: the same leading shape, or one of them a single vector.
@@ -41,6 +44,19 @@ struct VectorPairs {
   VectorPairs(const py::handle& first, const char* first_name, const py::handle& second, const char* second_name,
               const char* call);
 };
+
+// work(k, a, b) for each pair k in order, a and b referring into the arrays themselves (three floats in
+// a row are a glm::vec3: tightly packed, float-aligned). The loop holds plain pointers in locals and
+// copies nothing: reloading the arrays' addresses, branching on their shapes or copying the vectors
+// to pass them by reference at every pair costs as much as a cheap model's eval.
+template <class Work>
+void for_each_pair(const VectorPairs& p, Work&& work) {
+  static_assert(sizeof(glm::vec3) == 3 * sizeof(float) && alignof(glm::vec3) == alignof(float));
+  const auto* a = reinterpret_cast<const glm::vec3*>(p.a.first);
+  const auto* b = reinterpret_cast<const glm::vec3*>(p.b.first);
+  const std::size_t step_a = p.a.step / 3, step_b = p.b.step / 3, count = p.count;
+  for (std::size_t k = 0; k < count; ++k, a += step_a, b += step_b) work(k, *a, *b);
+}
 
 // An uninitialized array of `shape` with `last` more values per element (0: none).
 template <class T>

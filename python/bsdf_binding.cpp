@@ -57,10 +57,11 @@ class PyBsdf {
     float* f = out.mutable_data();
     {
       py::gil_scoped_release unlocked;
-      for (std::size_t k = 0; k < p.count; ++k) {
-        const Rgb v = bsdf_->eval(p.a[k], p.b[k]);
+      const Bsdf& bsdf = *bsdf_;
+      for_each_pair(p, [&](std::size_t k, const glm::vec3& wi, const glm::vec3& wo) {
+        const Rgb v = bsdf.eval(wi, wo);
         f[3 * k] = v.x, f[3 * k + 1] = v.y, f[3 * k + 2] = v.z;
-      }
+      });
     }
     return out;
   }
@@ -71,7 +72,8 @@ class PyBsdf {
     float* d = out.mutable_data();
     {
       py::gil_scoped_release unlocked;
-      for (std::size_t k = 0; k < p.count; ++k) d[k] = bsdf_->pdf(p.a[k], p.b[k]);
+      const Bsdf& bsdf = *bsdf_;
+      for_each_pair(p, [&](std::size_t k, const glm::vec3& wi, const glm::vec3& wo) { d[k] = bsdf.pdf(wi, wo); });
     }
     return out;
   }
@@ -86,13 +88,14 @@ class PyBsdf {
     std::uint8_t* k8 = kind.mutable_data();
     {
       py::gil_scoped_release unlocked;
-      for (std::size_t k = 0; k < p.count; ++k) {
-        const BsdfSample s = bsdf_->sample(p.a[k], p.b[k]);
+      const Bsdf& bsdf = *bsdf_;
+      for_each_pair(p, [&](std::size_t k, const glm::vec3& wo, const glm::vec3& u) {
+        const BsdfSample s = bsdf.sample(wo, u);
         w[3 * k] = s.wi.x, w[3 * k + 1] = s.wi.y, w[3 * k + 2] = s.wi.z;
         d[k] = s.pdf;
         g[3 * k] = s.weight.x, g[3 * k + 1] = s.weight.y, g[3 * k + 2] = s.weight.z;
         k8[k] = s.kind == SampleKind::finite ? 0 : s.kind == SampleKind::impulse ? 1 : 2;
-      }
+      });
     }
     return py::make_tuple(wi, pdf, weight, kind);
   }
