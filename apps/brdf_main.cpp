@@ -65,6 +65,25 @@ const char* kind_name(SampleKind k) {
   return "absorbed";
 }
 
+void print_sample(const BsdfSample& s) {
+  std::printf("%.9g %.9g %.9g %.9g %.9g %.9g %.9g %s\n", static_cast<double>(s.wi.x), static_cast<double>(s.wi.y),
+              static_cast<double>(s.wi.z), static_cast<double>(s.pdf), static_cast<double>(s.weight.x),
+              static_cast<double>(s.weight.y), static_cast<double>(s.weight.z), kind_name(s.kind));
+}
+
+// sample --stdin: one sample per stdin line "wo.x wo.y wo.z u1 u2 u3", so that a caller samples for
+// the directions and at the numbers it chose (a stratification, another program's draws).
+void sample_lines(const Bsdf& bsdf) {
+  std::string line;
+  long number = 0;
+  glm::vec3 wo, u;
+  while (std::getline(std::cin, line)) {
+    ++number;
+    if (parse_sample_line(line, number, wo, u)) print_sample(bsdf.sample(wo, u));
+  }
+  if (std::cin.bad()) throw Error("stdin: read error", Error::Kind::internal);
+}
+
 void check_angle(double deg, double hi, const std::string& option) {
   if (!(deg >= 0 && deg <= hi))
     throw input_error(option, "angle " + std::to_string(deg) + " is out of range [0, " + std::to_string(hi) + "]");
@@ -96,9 +115,16 @@ int main(int argc, char** argv) {
   std::string wo_text;
   long long count = 1;
   std::uint64_t seed = 0;
-  sample->add_option("--wo", wo_text, "the outgoing direction x,y,z (unit)")->required();
+  sample->add_option("--wo", wo_text, "the outgoing direction x,y,z (unit); required unless --stdin");
   sample->add_option("--count", count, "number of samples, 0 to 10^9")->check(cli::whole_in(0, 1000000000LL));
   sample->add_option("--seed", seed, "random seed")->check(cli::unsigned_whole);
+  bool u_from_stdin = false;
+  sample->add_flag("--stdin", u_from_stdin,
+                   "instead of --count samples for --wo drawn from --seed: one sample per stdin line "
+                   "'wo.x wo.y wo.z u1 u2 u3' (u in [0, 1))")
+      ->excludes("--wo")
+      ->excludes("--count")
+      ->excludes("--seed");
 
   CLI::App* albedo = app.add_subcommand("albedo", "directional albedo of the finite part and the impulse total");
   add_model_options(albedo, m);
@@ -126,15 +152,17 @@ int main(int argc, char** argv) {
       const auto bsdf = m.build();
       run_lines(*bsdf, pdf->parsed());
     } else if (sample->parsed()) {
+      if (u_from_stdin) {
+        sample_lines(*m.build());
+        return 0;
+      }
+      if (wo_text.empty()) throw input_error("sample", "--wo is required (or --stdin)");
       const glm::vec3 wo = parse_direction(wo_text, "--wo");
       const auto bsdf = m.build();
       Rng rng(mix64(seed), 0x5eed);
       for (long long i = 0; i < count; ++i) {
         const float ux = rng.next_float(), uy = rng.next_float(), uz = rng.next_float();
-        const BsdfSample s = bsdf->sample(wo, {ux, uy, uz});
-        std::printf("%.9g %.9g %.9g %.9g %.9g %.9g %.9g %s\n", static_cast<double>(s.wi.x), static_cast<double>(s.wi.y),
-                    static_cast<double>(s.wi.z), static_cast<double>(s.pdf), static_cast<double>(s.weight.x),
-                    static_cast<double>(s.weight.y), static_cast<double>(s.weight.z), kind_name(s.kind));
+        print_sample(bsdf->sample(wo, {ux, uy, uz}));
       }
     } else if (albedo->parsed()) {
       check_angle(theta_o, 90, "--theta-o");

@@ -12,6 +12,7 @@
 #include <sstream>
 #include <vector>
 
+#include "appearance/registry.h"
 #include "test_models.h"
 #include "tests/common/run_command.h"
 #include "textures/image.h"
@@ -83,6 +84,40 @@ TEST(Cli, EvalPdfSampleAlbedoFormats) {
       << a.out;
   EXPECT_NEAR(f[0], 0.3, 1e-4);
   EXPECT_NEAR(imp[0], 0.4, 1e-6);
+}
+
+// sample --stdin samples for the direction and at the numbers each line gives: the line the model's own
+// sample() gives for them, printed as the seeded form prints it.
+TEST(Cli, SampleAtTheNumbersOnStdin) {
+  const CliRun s = run("sample lambert --param albedo=0.2 --impulse mirror:0.4 --stdin",
+                       "0 0.6 0.8 0.25 0.5 0.75\n# comment\n\n0 0 1 0.9 0.125 0.5\n0.6 0 0.8 0.5 0.7 0.3\n");
+  ASSERT_EQ(s.status, 0) << s.err;
+  const auto bsdf = make_model("lambert", {"albedo=0.2"}, {"mirror:0.4"});
+  const std::array<std::pair<glm::vec3, SampleU>, 3> cases = {{{{0.0f, 0.6f, 0.8f}, {0.25f, 0.5f, 0.75f}},
+                                                              {{0.0f, 0.0f, 1.0f}, {0.9f, 0.125f, 0.5f}},
+                                                              {{0.6f, 0.0f, 0.8f}, {0.5f, 0.7f, 0.3f}}}};
+  std::string expected;
+  for (const auto& [wo, u] : cases) {
+    const BsdfSample b = bsdf->sample(wo, u);
+    char line[256];
+    std::snprintf(line, sizeof line, "%.9g %.9g %.9g %.9g %.9g %.9g %.9g %s\n", double(b.wi.x), double(b.wi.y), double(b.wi.z),
+                  double(b.pdf), double(b.weight.x), double(b.weight.y), double(b.weight.z),
+                  b.kind == SampleKind::finite ? "finite" : b.kind == SampleKind::impulse ? "impulse" : "absorbed");
+    expected += line;
+  }
+  EXPECT_EQ(s.out, expected);
+  for (const char* bad : {"0 0 1 0.5 0.5\n", "0 0 1 0.5 0.5 1\n", "0 0 1 0.5 -0.1 0.5\n", "0 0 1 0.5 nan 0.5\n",
+                          "0 0 2 0.5 0.5 0.5\n", "0 0 1 0.5 0.5 0.5 0.5\n"}) {
+    const CliRun r = run("sample lambert --stdin", std::string("0 0 1 0.5 0.5 0.5\n") + bad);
+    EXPECT_EQ(r.status, 2) << bad;
+    EXPECT_EQ(lines(r.err), 1) << r.err;
+    EXPECT_EQ(r.err.rfind("svbrdf-brdf: stdin line 2: ", 0), 0u) << r.err;
+  }
+  for (const char* both : {"--wo 0,0,1", "--count 3", "--seed 1"})
+    EXPECT_EQ(run(std::string("sample lambert --stdin ") + both, "0 0 1 0.5 0.5 0.5\n").status, 2) << both;
+  const CliRun no_wo = run("sample lambert --count 1");
+  EXPECT_EQ(no_wo.status, 2);
+  EXPECT_EQ(no_wo.err, "svbrdf-brdf: sample: --wo is required (or --stdin)\n");
 }
 
 TEST(Cli, PlotsAreWrittenAsSvg) {

@@ -67,6 +67,35 @@ class BsdfAgainstProgram(unittest.TestCase):
         np.testing.assert_array_equal(one, b.eval(self.wi, np.repeat(self.wo[:1], len(self.wi), axis=0)))
         self.assertEqual(b.eval(self.wi[0], self.wo[0]).shape, (3,))
 
+    def test_sample_equals_the_program_bit_for_bit(self):
+        # The program samples for the wo and at the u of each stdin line (sample --stdin). u, written with
+        # %.9g, reaches it as the same float32 values; wo it renormalizes in double precision
+        # (direction_text.cpp), which may move a float32 unit vector by an ulp: the module is given the
+        # direction the program samples for, computed as the program computes it.
+        rng = np.random.default_rng(11)
+        wo = random_directions(rng, 200)
+        wo[:, 2] = np.abs(wo[:, 2])
+        u = rng.random((200, 3), dtype=np.float32)
+        lines = ''.join('%.9g %.9g %.9g %.9g %.9g %.9g\n' % (*a, *b) for a, b in zip(wo, u))
+        read = np.array([[float('%.9g' % x) for x in a] for a in wo])
+        program_wo = (read / np.sqrt(read[:, 0] * read[:, 0] + read[:, 1] * read[:, 1] + read[:, 2] * read[:, 2])[:, None])
+        program_wo = program_wo.astype(np.float32)
+        for model, params in MODELS + [('lambert', {'albedo': 0.2, 'impulses': ['mirror:0.4']})]:
+            with self.subTest(model=model, params=params):
+                params = dict(params)
+                impulses = params.pop('impulses', [])
+                args = [program('svbrdf-brdf'), 'sample', model, '--stdin'] + param_args(params)
+                status, out, err = run(args + [a for i in impulses for a in ('--impulse', i)], lines)
+                self.assertEqual(status, 0, err)
+                rows = [line.split() for line in out.splitlines()]
+                expected = np.array([[float(x) for x in r[:7]] for r in rows], dtype=np.float32)
+                wi, pdf, weight, kind = svbrdf.Bsdf(model, impulses=impulses, **params).sample(program_wo, u)
+                self.assertEqual([svbrdf.SAMPLE_KINDS[k] for k in kind], [r[7] for r in rows])
+                self.assertGreater(np.count_nonzero(kind == 0), 20)
+                np.testing.assert_array_equal(wi, expected[:, 0:3])
+                np.testing.assert_array_equal(pdf, expected[:, 3])
+                np.testing.assert_array_equal(weight, expected[:, 4:7])
+
     def test_sample_agrees_with_eval_and_pdf(self):
         # A finite sample's pdf is pdf(wi, wo) and its weight f·cos/pdf (bsdf.h), computed through the
         # module's own eval and pdf on the directions it returns.
