@@ -147,7 +147,8 @@ void RenderCommand::add_options(CLI::App& app) {
   app.add_flag("-q,--quiet", quiet, "no progress output or notes (warnings and errors are still printed)");
 }
 
-RenderOutcome run_render(RenderCommand& c, const fs::path& scene_path, const char* program) {
+RenderOutcome run_render(RenderCommand& c, const fs::path& scene_path, const char* program,
+                         const std::atomic<bool>& cancel) {
   // Before any input is read: every image, MIP level and the frame are held to it.
   resource_limits().max_texels = c.max_texels;
   const int threads = cli::capped_threads(c.threads, program);
@@ -231,7 +232,7 @@ RenderOutcome run_render(RenderCommand& c, const fs::path& scene_path, const cha
   options.integrator.light_sampling = c.light_sampling == "nee"    ? LightSampling::nee
                                       : c.light_sampling == "bsdf" ? LightSampling::bsdf
                                                                    : LightSampling::mis;
-  options.cancel = &interrupt_requested();
+  options.cancel = &cancel;
   setup_progress.end();
   ProgressPrinter printer(c.quiet);
   options.progress = [&](const ProgressInfo& p) { printer.update(p); };

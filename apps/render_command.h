@@ -5,6 +5,7 @@
 // options give the same image and the same one-line refusals from either.
 #include <CLI/CLI.hpp>
 
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -38,7 +39,10 @@ struct RenderOutcome {
 // Renders `scene` as `command` asks, printing what svbrdf-render prints on stderr under the name
 // `program`. The EXR and PNG are written when command.out names the EXR (the program gives it a
 // default; the Python module, which returns the film, leaves it empty unless asked). Throws
-// svbrdf::Error for bad input and failures, with the program's lines.
-RenderOutcome run_render(RenderCommand& command, const std::filesystem::path& scene, const char* program);
+// svbrdf::Error for bad input and failures, with the program's lines. `cancel` stops the render once
+// set (the program's is the flag its signal handler sets, interrupt_requested(); the Python module
+// sets its own when Python sees a Ctrl-C); the render then returns what accumulated.
+RenderOutcome run_render(RenderCommand& command, const std::filesystem::path& scene, const char* program,
+                         const std::atomic<bool>& cancel);
 
 }  // namespace svbrdf

@@ -42,6 +42,6 @@ int main(int argc, char** argv) {
   return svbrdf::run_program("svbrdf-render", app, argc, argv, [&] {
     const fs::path scene_path = command.scene_file.empty() ? find_showcase(argv[0]) : fs::path(command.scene_file);
     if (command.out.empty()) command.out = (fs::path("out") / scene_path.stem()).string() + ".exr";
-    return svbrdf::run_render(command, scene_path, "svbrdf-render").status;
+    return svbrdf::run_render(command, scene_path, "svbrdf-render", svbrdf::interrupt_requested()).status;
   });
 }

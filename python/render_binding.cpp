@@ -5,6 +5,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <atomic>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "base/error.h"
 #include "python/arrays.h"
 #include "python/bindings.h"
+#include "python/interruptible.h"
 #include "textures/image.h"
 
 namespace svbrdf::python {
@@ -73,11 +75,11 @@ py::object render_scene(const py::object& scene, const py::kwargs& kwargs) {
   } catch (const CLI::ParseError& e) {
     throw input_error("", e.what());
   }
+  // A Ctrl-C stops the render as it stops the program's, and raises KeyboardInterrupt.
   RenderOutcome outcome;
-  {
-    py::gil_scoped_release unlocked;
-    outcome = run_render(command, command.scene_file, "svbrdf.render");
-  }
+  call_interruptibly([&](const std::atomic<bool>& cancel) {
+    outcome = run_render(command, command.scene_file, "svbrdf.render", cancel);
+  });
   if (!command.aovs) return rgba_array(outcome.film);
   py::dict out;
   out["rgba"] = rgba_array(outcome.film);
@@ -98,7 +100,8 @@ filter="param", sun=(45, 30), aov=True, ...); they are checked as the program ch
 the image as float32 (H, W, 4): the linear RGBA the program's EXR holds (bit for bit with float=True
 there); with aov=True a dict of it ("rgba") and the layers albedo, normal, depth, mip_level. Nothing
 is written unless out= names an EXR (then the EXR and PNG are written as the program writes them).
-Quiet unless quiet=False.)");
+Quiet unless quiet=False. A Ctrl-C stops the render (once its first pass is done) and raises
+KeyboardInterrupt; with out=, the files hold what had accumulated, as the program writes them.)");
   m.def("read_image", [](const py::object& path) {
           const std::string file = py::module_::import("os").attr("fspath")(path).cast<std::string>();
           Image image;

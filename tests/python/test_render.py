@@ -1,7 +1,10 @@
 """svbrdf.render against svbrdf-render: a small render of a sample model with the same options and seed is
 the program's float EXR bit for bit; bad options raise the program's line."""
 import os
+import signal
 import tempfile
+import threading
+import time
 import unittest
 
 import numpy as np
@@ -37,6 +40,27 @@ class RenderAgainstProgram(unittest.TestCase):
         self.assertEqual(sorted(layers), ['albedo', 'depth', 'mip_level', 'normal', 'rgba'])
         self.assertEqual(layers['normal'].shape, (8, 8, 3))
         self.assertEqual(layers['depth'].shape, (8, 8, 1))
+
+    def test_ctrl_c_stops_the_render_and_raises_keyboard_interrupt(self):
+        # A render of more samples than it can take within its time limit, 20 s, unless the SIGINT sent
+        # 0.5 s in stops it. A KeyboardInterrupt within 10 s is one render() raised itself, not one
+        # Python raised once the render had returned at its limit; 10 s is 20 times the expected delay,
+        # for a loaded machine.
+        small = {'spp': 1, 'res': '8x8', 'seed': 3, 'filter': 'param'}
+        before = svbrdf.render(SCENE, **small)
+        previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+        timer = threading.Timer(0.5, os.kill, (os.getpid(), signal.SIGINT))
+        try:
+            start = time.monotonic()
+            timer.start()
+            with self.assertRaises(KeyboardInterrupt):
+                svbrdf.render(SCENE, spp=1 << 30, res='16x16', time_limit=20, threads=1, filter='param')
+            self.assertLess(time.monotonic() - start, 10)
+        finally:
+            timer.cancel()
+            signal.signal(signal.SIGINT, previous)
+        # The module is as before: the same render gives the same image.
+        np.testing.assert_array_equal(svbrdf.render(SCENE, **small), before)
 
     def test_bad_options_raise_the_programs_line(self):
         cases = [({'spp': 0}, ['--spp', '0']), ({'res': '10'}, ['--res', '10']),
