@@ -56,9 +56,12 @@ bool parse_sample_line(const std::string& line, long line_number, glm::vec3& wo,
   read_six(line, where, "wo.x wo.y wo.z u1 u2 u3", v);
   wo = unit({v[0], v[1], v[2]}, where, "wo");
   for (int i = 0; i < 3; ++i) {
-    u[i] = static_cast<float>(v[3 + i]);
-    // [0, 1) as a float: a number just below 1 rounds to 1, which a sampler never receives.
-    if (!(u[i] >= 0.0f && u[i] < 1.0f)) throw input_error(where, "number " + std::to_string(4 + i) + " is not in [0, 1)");
+    // In [0, 1) as a float: a number just below 1 rounds to 1, which a sampler never receives. Checked
+    // before the conversion too, which is undefined for a double beyond float's range.
+    const double x = v[3 + i];
+    if (!(x >= 0.0 && x < 1.0) || !(static_cast<float>(x) < 1.0f))
+      throw input_error(where, "number " + std::to_string(4 + i) + " is not in [0, 1)");
+    u[i] = static_cast<float>(x);
   }
   return true;
 }
