@@ -1,8 +1,8 @@
 #pragma once
 // The text forms of directions that svbrdf-brdf reads (brdf-models.md, last section): an input line
 // of six numbers "wi.x wi.y wi.z wo.x wo.y wo.z" (sample --stdin: "wo.x wo.y wo.z u1 u2 u3") and
-// "x,y,z" for --wo. Directions must be unit
-// length (within 1e-3; they are then renormalized): a wrong one is an error, not silently fixed.
+// "x,y,z" for --wo. Directions must be unit length (within 1e-3; they are then renormalized): a wrong
+// one is an error, not silently fixed.
 #include <string>
 
 #include <glm/glm.hpp>

@@ -106,9 +106,11 @@ TEST(Cli, SampleAtTheNumbersOnStdin) {
     expected += line;
   }
   EXPECT_EQ(s.out, expected);
-  for (const char* bad : {"0 0 1 0.5 0.5\n", "0 0 1 0.5 0.5 1\n", "0 0 1 0.5 -0.1 0.5\n", "0 0 1 0.5 nan 0.5\n", "0 0 1 1e300 0.5 0.5\n",
-                          "0 0 1 0.99999999 0.5 0.5\n",
-                          "0 0 2 0.5 0.5 0.5\n", "0 0 1 0.5 0.5 0.5 0.5\n"}) {
+  // Too few or too many numbers, u outside [0, 1) (1e300 beyond float's range; 0.99999999 rounds to 1 as
+  // a float), a NaN, a wo that is not unit length.
+  for (const char* bad : {"0 0 1 0.5 0.5\n", "0 0 1 0.5 0.5 0.5 0.5\n", "0 0 1 0.5 0.5 1\n", "0 0 1 0.5 -0.1 0.5\n",
+                          "0 0 1 1e300 0.5 0.5\n", "0 0 1 0.99999999 0.5 0.5\n", "0 0 1 0.5 nan 0.5\n",
+                          "0 0 2 0.5 0.5 0.5\n"}) {
     const CliRun r = run("sample lambert --stdin", std::string("0 0 1 0.5 0.5 0.5\n") + bad);
     EXPECT_EQ(r.status, 2) << bad;
     EXPECT_EQ(lines(r.err), 1) << r.err;
