@@ -81,16 +81,19 @@ PairTerms<T> coat_pair(const PairTerms<T>& p, const glm::vec<3, T>& n) {
 }
 
 // weight · c·Fc·V·D of one coat lobe for a pair, about its own normal (its shape s), times the share of
-// its texels whose coat normal faces both directions; without the base's cosine factor K.
+// its texels whose coat normal faces both directions; without the base's cosine factor K. `fresnel_w`,
+// when the caller has it (CoatFresnel::add returns it), is Schlick's weight at |wo·n̂|.
 template <class T>
-glm::vec<3, T> coat_lobe_eval(const Lobe& coat, const LobeShape<T>& s, const PairTerms<T>& p) {
+glm::vec<3, T> coat_lobe_eval(const Lobe& coat, const LobeShape<T>& s, const PairTerms<T>& p, T fresnel_w = T(-1)) {
   using V3 = glm::vec<3, T>;
   if (!p.valid || !s.valid) return V3(0);
   const LobeSide<T> ci = lobe_wo_side(s, glm::dot(s.n, p.wi));
   if (!(ci.factor > 0)) return V3(0);
   const LobeSide<T> co = lobe_wo_side(s, glm::dot(s.n, p.wo));
   if (!(co.factor > 0)) return V3(0);
-  return (T(coat.weight) * ci.factor * co.factor) * lobe_brdf(coat, s, coat_pair(p, s.n), ci.c, co.c);
+  PairTerms<T> q = p;
+  q.fresnel_w = fresnel_w >= 0 ? fresnel_w : coat_pair(p, s.n).fresnel_w;
+  return (T(coat.weight) * ci.factor * co.factor) * lobe_brdf(coat, s, q, ci.c, co.c);
 }
 
 // K(wi, wo)/wi.z (the top of this file), summed one base lobe at a time (each with its shape): 0 where no
@@ -106,6 +109,13 @@ struct CoatCosine {
     if (!(i.factor > 0)) return;
     const LobeSide<T> o = lobe_wo_side(s, glm::dot(s.n, p.wo));
     num += share * i.factor * o.factor;
+  }
+  // The same, given the product of the lobe's two sides' factors that lobe_eval reported (lobe.h).
+  void add_sides(const Lobe& l, const LobeShape<T>& s, T sides) {
+    const T share = T(l.weight) * T(l.coat);
+    if (!s.valid || !(share > 0)) return;
+    den += share;
+    num += share * sides;
   }
   T value(const PairTerms<T>& p) const { return den > 0 ? num / den * p.inv_wi_z : T(0); }
 };
@@ -131,6 +141,15 @@ struct CoatFresnel {
     const T w = schlick_weight(std::min(std::abs(glm::dot(wo, n)) / len, T(1)));
     num += T(l.weight) * (T(kCoatF0) + (T(1) - T(kCoatF0)) * w);
     den += T(l.weight);
+  }
+  // The same given the lobe's shape (its unit normal n̂); returns Schlick's weight at |wo·n̂|, which the
+  // lobe's own term takes too (coat_lobe_eval), or −1 where the lobe has no shape.
+  T add(const Lobe& l, const LobeShape<T>& s, const glm::vec<3, T>& wo) {
+    if (!s.valid) return T(-1);
+    const T w = schlick_weight(std::min(std::abs(glm::dot(wo, s.n)), T(1)));
+    num += T(l.weight) * (T(kCoatF0) + (T(1) - T(kCoatF0)) * w);
+    den += T(l.weight);
+    return w;
   }
   T value() const { return den > 0 ? num / den : T(0); }
 };

@@ -376,15 +376,20 @@ glm::vec<3, T> lobe_brdf(const Lobe& lobe, const LobeShape<T>& s, const PairTerm
          (vis * d * spec_scale) * (f0 + (V3(T(lobe.f90)) - f0) * w);
 }
 
-// weight · f_eff of one lobe for one pair (see the top of this file), in precision T.
+// weight · f_eff of one lobe for one pair (see the top of this file), in precision T. `sides`, when
+// given, receives the product of its two sides' factors (0 where the lobe contributes nothing): what a
+// coated texel's cosine factor sums (coat_layer.h CoatCosine), so that it costs no second evaluation.
 template <class T>
-glm::vec<3, T> lobe_eval(const Lobe& lobe, const LobeShape<T>& s, const PairTerms<T>& p, T spec_scale = T(1)) {
+glm::vec<3, T> lobe_eval(const Lobe& lobe, const LobeShape<T>& s, const PairTerms<T>& p, T spec_scale = T(1),
+                         T* sides = nullptr) {
   using V3 = glm::vec<3, T>;
+  if (sides) *sides = 0;
   if (!p.valid || !s.valid) return V3(0);
   const LobeSide<T> i = lobe_wi_side(s, glm::dot(s.n, p.wi));
   if (!(i.factor > 0)) return V3(0);
   const LobeSide<T> o = lobe_wo_side(s, glm::dot(s.n, p.wo));
   if (!(o.factor > 0)) return V3(0);
+  if (sides) *sides = i.factor * o.factor;
   return (T(lobe.weight) * i.factor * o.factor * p.inv_wi_z) * lobe_brdf(lobe, s, p, i.c, o.c, spec_scale);
 }
 

@@ -59,20 +59,22 @@ Rgb LobeMixtureBsdf::eval(const glm::vec3& wi, const glm::vec3& wo) const {
   }
   // The layered f_eff of coat_layer.h, as coated_eval writes it: the base lobes (the radial correction
   // is theirs) less what the coat reflects of them, plus the coat lobes under the base's cosine factor.
+  // Each lobe's horizons and each coat lobe's Schlick weight are evaluated once, for both their uses.
   Rgb coated(0);
   CoatCosine<float> cosine;
   for (int k = 0; k < count_; ++k) {
-    const Rgb fk = lobe_eval(slot(k).lobe, slot(k).shape, p, scale);
+    float sides;
+    const Rgb fk = lobe_eval(slot(k).lobe, slot(k).shape, p, scale, &sides);
     f += fk;
     coated += slot(k).lobe.coat * fk;
-    cosine.add(slot(k).lobe, slot(k).shape, p);
+    cosine.add_sides(slot(k).lobe, slot(k).shape, sides);
   }
   CoatFresnel<float> fresnel;
   Rgb coat(0);
   const float k_cos = cosine.value(p);
   for (int k = count_; k < count_ + coat_count_; ++k) {
-    fresnel.add(slot(k).lobe, p.wo);
-    if (k_cos > 0) coat += coat_lobe_eval(slot(k).lobe, slot(k).shape, p);
+    const float w = fresnel.add(slot(k).lobe, slot(k).shape, p.wo);
+    if (k_cos > 0) coat += coat_lobe_eval(slot(k).lobe, slot(k).shape, p, w);
   }
   return f - fresnel.value() * coated + k_cos * coat;
 }

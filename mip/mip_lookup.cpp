@@ -167,6 +167,7 @@ LobeMixtureBsdf lookup_brdf(const MipData& mip, const Footprint& footprint, floa
   LobeMixtureBsdf b;
   if (mip.brdf.levels() == 0) return b;
   const FilterTap t = select_tap(mip.brdf.level0(), mip.brdf.levels(), footprint, u, wrap, max_probes);
+  if (t.level >= 1) mip.brdf.prefetch(t.level, t.i, t.j);  // the base's and the coat's reads at once
   Lobe scratch, coat_scratch;
   b.assign(brdf_texel(mip, t.level, t.i, t.j, scratch), brdf_coat(mip, t.level, t.i, t.j, coat_scratch).lobes);
   b.set_correction(mip.brdf.correction(t.level, t.i, t.j), &mip.brdf.radial_grid());

@@ -142,6 +142,26 @@ void BM_EvalBrdfTexel(benchmark::State& state) {
 }
 BENCHMARK(BM_EvalBrdfTexel)->Arg(0)->Arg(3)->Arg(6);
 
+// The same on the coated tray: the layered eval alone, without the lookup's cache misses.
+void BM_EvalBrdfTexelCoated(benchmark::State& state) {
+  const MipData& mip = coated_tray_mip();
+  const std::vector<Hit> hs = hits(4096, 1024, 64);
+  const int level = static_cast<int>(state.range(0));
+  const Extent e = mip.extent(level);
+  std::vector<LobeMixtureBsdf> texels;
+  for (int t = 0; t < 64; ++t) {
+    Lobe scratch, coat_scratch;
+    const int i = (t * 37) % e.width, j = (t * 11) % e.height;
+    texels.emplace_back(brdf_texel(mip, level, i, j, scratch), brdf_coat(mip, level, i, j, coat_scratch).lobes);
+  }
+  std::size_t k = 0;
+  for (auto _ : state) {
+    const Hit& h = hs[k & 4095];
+    benchmark::DoNotOptimize(texels[k++ & 63].eval(h.wi, h.wo));
+  }
+}
+BENCHMARK(BM_EvalBrdfTexelCoated)->Arg(0)->Arg(3)->Arg(6);
+
 // Level 0 as the renderer would shade it: the hit's texel of the 1024² tray, the texel's frame, the
 // model `eval(t, local wi, local wo)` in it, the f_eff factor max(0, n·wi)/wi.z.
 template <class Eval>
