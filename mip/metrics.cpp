@@ -77,11 +77,10 @@ BrdfTable level_mean(const MipData& mip, TextureFilter mode, int level) {
         for (int t = r.begin(); t < r.end(); ++t) {
           const int i = t % e.width, j = t / e.width;
           const double w = texel_area(e0, level, i, j) / total;
-          if (mode == TextureFilter::brdf) {
+          if (mode == TextureFilter::brdf)
             accumulate_brdf_texel(mip, level, i, j, w, acc);
-          } else {
-            accumulate_lobe_float(param_lobe(mip.param.texel(level, i, j), mode), w, acc);
-          }
+          else
+            accumulate_param_texel(mip, mode, level, i, j, w, acc);
         }
         return acc;
       },

@@ -134,11 +134,9 @@ std::span<const Lobe> MipTexture::lobes(const Choice& c, Scratch& scratch) const
     ParamCoat coat;
     ParamTexel t = filter_params(p.param, c.footprint, wrap(), kMaxProbes, &layer, &coat);
     t.base_color *= c.tint;
-    scratch.lobe[0] = param_lobe(t, c.filter, layer);
-    if (p.param.has_coat()) {
-      scratch.lobe[0].coat = std::clamp(coat.clearcoat, 0.0f, 1.0f);
-      scratch.coat = param_coat_lobe(coat, c.filter);
-    }
+    const ParamLobes l = param_lobes(t, c.filter, layer, p.param.has_coat() ? &coat : nullptr);
+    scratch.lobe[0] = l.base;
+    if (l.coated) scratch.coat = l.coat;
     return {scratch.lobe, 1};
   }
   if (c.level >= 1) {

@@ -31,21 +31,13 @@ void check_texel(const MipData& mip, int level, int i, int j) {
                                      std::to_string(e.height) + ")");
 }
 
-void accumulate_brdf_texel(const MipData& mip, int level, int i, int j, double weight, std::span<glm::dvec3> acc,
-                           const glm::vec3& tint) {
-  const RadialCorrection* c = mip.brdf.correction(level, i, j);
-  const float* scales = nullptr;
-  static thread_local std::vector<float> per_pair;
-  if (c) {
-    const DirectionGrid& g = DirectionGrid::get();
-    per_pair.resize(DirectionGrid::kPairs);
-    for (int p = 0; p < DirectionGrid::kPairs; ++p)
-      per_pair[static_cast<std::size_t>(p)] = correction_at(*c, mip.brdf.radial_grid(), g.pair_f(p).h);
-    scales = per_pair.data();
-  }
-  Lobe scratch, coat_scratch;
-  const CoatTexel coat = brdf_coat(mip, level, i, j, coat_scratch);
-  const std::span<const Lobe> lobes = brdf_texel(mip, level, i, j, scratch);
+namespace {
+
+// acc += weight · f_eff of a texel of base lobes (each tinted by `tint` unless it is 1, their specular
+// terms scaled per pair by `scales` where not null) under its coat, over the direction grid's pairs, in
+// float as the renderer evaluates it.
+void accumulate_texel(std::span<const Lobe> lobes, const CoatTexel& coat, const float* scales, double weight,
+                      std::span<glm::dvec3> acc, const glm::vec3& tint) {
   if (!coat.present()) {
     for (const Lobe& l : lobes) accumulate_lobe_float(tint == glm::vec3(1.0f) ? l : tinted(l, tint), weight, acc, scales);
     return;
@@ -63,33 +55,74 @@ void accumulate_brdf_texel(const MipData& mip, int level, int i, int j, double w
   accumulate_coat<float>(lobes, coat, base, base_coated, weight, acc);
 }
 
+// The parameter filters' texel (param_pyramid.h param_lobes), the mean coat's lobe made into `out`.
+ParamLobes param_texel_lobes(const MipData& mip, TextureFilter filter, int level, int i, int j) {
+  return param_lobes(mip.param.texel(level, i, j), filter, mip.param.specular(level, i, j), mip.param.coat(level, i, j));
+}
+CoatTexel coat_of(const ParamLobes& l) {
+  if (!l.coated || !(l.coat.weight > 0)) return {};
+  return {{&l.coat, 1}};
+}
+
+}  // namespace
+
+void accumulate_brdf_texel(const MipData& mip, int level, int i, int j, double weight, std::span<glm::dvec3> acc,
+                           const glm::vec3& tint) {
+  const RadialCorrection* c = mip.brdf.correction(level, i, j);
+  const float* scales = nullptr;
+  static thread_local std::vector<float> per_pair;
+  if (c) {
+    const DirectionGrid& g = DirectionGrid::get();
+    per_pair.resize(DirectionGrid::kPairs);
+    for (int p = 0; p < DirectionGrid::kPairs; ++p)
+      per_pair[static_cast<std::size_t>(p)] = correction_at(*c, mip.brdf.radial_grid(), g.pair_f(p).h);
+    scales = per_pair.data();
+  }
+  Lobe scratch, coat_scratch;
+  const CoatTexel coat = brdf_coat(mip, level, i, j, coat_scratch);
+  accumulate_texel(brdf_texel(mip, level, i, j, scratch), coat, scales, weight, acc, tint);
+}
+
+void accumulate_param_texel(const MipData& mip, TextureFilter filter, int level, int i, int j, double weight,
+                            std::span<glm::dvec3> acc) {
+  const ParamLobes l = param_texel_lobes(mip, filter, level, i, j);
+  accumulate_texel({&l.base, 1}, coat_of(l), nullptr, weight, acc, glm::vec3(1.0f));
+}
+
 glm::dvec3 texel_eval(const MipData& mip, TextureFilter filter, int level, int i, int j, const glm::dvec3& wi,
                       const glm::dvec3& wo) {
   const PairTerms<float> p = pair_terms<float>(glm::vec3(wi), glm::vec3(wo));
+  // The texel's base lobes (with the pyramid's radial correction) and its coat.
+  Lobe scratch, coat_scratch;
+  std::span<const Lobe> lobes;
+  CoatTexel coat;
+  float k = 1.0f;
+  ParamLobes param;
   if (filter == TextureFilter::brdf) {
-    Lobe scratch;
     const RadialCorrection* c = mip.brdf.correction(level, i, j);
-    const float k = c ? correction_at(*c, mip.brdf.radial_grid(), p.h) : 1.0f;
-    glm::vec3 base(0.0f), base_coated(0.0f);
-    const std::span<const Lobe> lobes = brdf_texel(mip, level, i, j, scratch);
-    for (const Lobe& l : lobes) {
-      const glm::vec3 f = lobe_eval<float>(l, lobe_shape<float>(l), p, k);
-      base += f;
-      base_coated += l.coat * f;
-    }
-    Lobe coat_scratch;
-    return glm::dvec3(coated_eval(base, base_coated, lobes, brdf_coat(mip, level, i, j, coat_scratch), p));
+    k = c ? correction_at(*c, mip.brdf.radial_grid(), p.h) : 1.0f;
+    lobes = brdf_texel(mip, level, i, j, scratch);
+    coat = brdf_coat(mip, level, i, j, coat_scratch);
+  } else {
+    param = param_texel_lobes(mip, filter, level, i, j);
+    lobes = {&param.base, 1};
+    coat = coat_of(param);
   }
-  return glm::dvec3(lobe_eval<float>(param_lobe(mip.param.texel(level, i, j), filter, mip.param.specular(level, i, j)), p));
+  glm::vec3 base(0.0f), base_coated(0.0f);
+  for (const Lobe& l : lobes) {
+    const glm::vec3 f = lobe_eval<float>(l, lobe_shape<float>(l), p, k);
+    base += f;
+    base_coated += l.coat * f;
+  }
+  return glm::dvec3(coated_eval(base, base_coated, lobes, coat, p));
 }
 
 BrdfTable texel_table(const MipData& mip, TextureFilter filter, int level, int i, int j) {
   BrdfTable t = make_table();
-  if (filter == TextureFilter::brdf) {
+  if (filter == TextureFilter::brdf)
     accumulate_brdf_texel(mip, level, i, j, 1.0, t);
-  } else {
-    accumulate_lobe_float(param_lobe(mip.param.texel(level, i, j), filter, mip.param.specular(level, i, j)), 1.0, t);
-  }
+  else
+    accumulate_param_texel(mip, filter, level, i, j, 1.0, t);
   return t;
 }
 

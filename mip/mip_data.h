@@ -68,6 +68,12 @@ BrdfTable texel_table(const MipData& mip, TextureFilter filter, int level, int i
 void accumulate_brdf_texel(const MipData& mip, int level, int i, int j, double weight, std::span<glm::dvec3> acc,
                            const glm::vec3& tint = glm::vec3(1.0f));
 
+// acc += weight · the parameter filters' texel (level, i, j) under `filter` (param, toksvig, vmf) over
+// the direction grid's pairs, in float as the renderer evaluates it: the lobe of its mean parameters and
+// specular layer under its mean coat (param_pyramid.h param_lobes).
+void accumulate_param_texel(const MipData& mip, TextureFilter filter, int level, int i, int j, double weight,
+                            std::span<glm::dvec3> acc);
+
 // Bytes per texel a filter stores at a level.
 int bytes_per_texel(const MipData& mip, TextureFilter filter, int level);
 

@@ -49,6 +49,17 @@ Lobe param_coat_lobe(const ParamCoat& c, TextureFilter filter) {
   return l;
 }
 
+ParamLobes param_lobes(const ParamTexel& t, TextureFilter filter, const SpecularLayer& layer, const ParamCoat* coat) {
+  ParamLobes out;
+  out.base = param_lobe(t, filter, layer);
+  if (coat) {
+    out.base.coat = std::clamp(coat->clearcoat, 0.0f, 1.0f);
+    out.coat = param_coat_lobe(*coat, filter);
+    out.coated = true;
+  }
+  return out;
+}
+
 namespace {
 
 // Each texel of `level` from its children in `fine`: mean(children) gets a function that calls its

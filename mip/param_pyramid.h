@@ -58,6 +58,17 @@ Lobe param_lobe(const ParamTexel& t, TextureFilter filter, const SpecularLayer& 
 // (Lobe::coat) is the mean clearcoat.
 Lobe param_coat_lobe(const ParamCoat& c, TextureFilter filter);
 
+// A parameter texel as the filters that read this pyramid shade it: param_lobe of its mean parameters
+// and specular layer and, for a material with a coat (`coat` not null), under the coated material of its
+// mean coat — the coat lobe param_coat_lobe makes, the base lobe's coat share the mean clearcoat. At
+// level 0 these are the texel's own lobes, level0_lobe's and level0_coat's (exact_reference.h).
+struct ParamLobes {
+  Lobe base;
+  Lobe coat;             // valid where `coated`
+  bool coated = false;
+};
+ParamLobes param_lobes(const ParamTexel& t, TextureFilter filter, const SpecularLayer& layer, const ParamCoat* coat);
+
 class ParamPyramid {
  public:
   ParamPyramid() = default;

@@ -1,7 +1,8 @@
 // The clear coat of KHR_materials_clearcoat in the BRDF MIP (mip/coat_layer.h): the exact reference of
 // a coated texel against the extension's layering transcribed in double and against the renderer's
 // glTF surface BSDF (appearance/gltf_surface_bsdf.h), a coarse texel's exact reference against the
-// mean of those, its table against its evaluation, and the coat read from a glTF material's images.
+// mean of those, its table against its evaluation, the parameter filter's texel as the coated material
+// of the mean parameters, and the coat read from a glTF material's images.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,6 +12,7 @@
 #include "appearance/gltf_surface_bsdf.h"
 #include "appearance/rng.h"
 #include "mip/exact_reference.h"
+#include "mip/mip_data.h"
 #include "exact_mean_check.h"
 #include "random_directions.h"
 #include "textures/material_loader.h"
@@ -181,6 +183,72 @@ TEST(CoatLayer, ExactTableIsItsEvaluation) {
       for (int c = 0; c < 3; ++c) EXPECT_NEAR(t[static_cast<std::size_t>(p)][c], want[c], 1e-12 + 1e-9 * want[c]) << "pair " << p;
     }
   }
+}
+
+// The parameter filter's texel (what svbrdf-bake eval and compare measure for `param`) is the coated
+// material of the texels' mean parameters, coat included: at level 0 the texel itself, as the exact
+// reference evaluates it; at a coarse level the extension's layering of the mean base colour, metallic,
+// roughness and normal under the mean clearcoat, coat roughness and coat normal (normals normalized).
+// The filter evaluates in float: 1e-5 of the double transcription, 1e-3 on a sharp coat (the tolerance
+// of Level0IsTheExtensionsLayering); its table is its evaluation over the metric's pairs.
+TEST(CoatLayer, ParamFilterTexelIsTheCoatedMeanMaterial) {
+  Rng rng(44, 1);
+  std::vector<Texel> ts;
+  for (int k = 0; k < 16; ++k) ts.push_back(random_texel(rng));
+  const MipData mip = build_mip(texels_of(ts, 4));
+  const ExactReference exact(mip.level0);
+  // The mean texel over level `level`'s texel (i, j), as the parameter pyramid holds it.
+  const auto mean_texel = [&](int level, int i, int j) {
+    const Coverage c = coverage(mip.extent(0), level, i, j);
+    Texel m;
+    m.base = glm::dvec3(0), m.metallic = 0, m.roughness = 0, m.normal = glm::dvec3(0);
+    m.clearcoat = 0, m.coat_roughness = 0, m.coat_normal = glm::dvec3(0);
+    for (int y = c.rows.begin; y < c.rows.end; ++y)
+      for (int x = c.columns.begin; x < c.columns.end; ++x) {
+        const Texel& t = ts[mip.level0.index(x, y)];
+        m.base += t.base, m.metallic += t.metallic, m.roughness += t.roughness, m.normal += t.normal;
+        m.clearcoat += t.clearcoat, m.coat_roughness += t.coat_roughness, m.coat_normal += t.coat_normal;
+      }
+    const double n = double(c.count());
+    m.base /= n, m.metallic /= n, m.roughness /= n, m.clearcoat /= n, m.coat_roughness /= n;
+    m.normal = glm::normalize(m.normal), m.coat_normal = glm::normalize(m.coat_normal);
+    return m;
+  };
+  int compared = 0, coated = 0;
+  for (const auto& [level, i, j] : {std::array{0, 1, 2}, std::array{0, 3, 0}, std::array{1, 1, 0}, std::array{2, 0, 0}}) {
+    const Texel t = mean_texel(level, i, j);
+    const double tolerance = t.coat_roughness < 0.2 ? 1e-3 : 1e-5;
+    for (int trial = 0; trial < 400; ++trial) {
+      glm::dvec3 wi = random_above(rng), wo = random_above(rng);
+      if (trial % 2) {
+        const glm::dvec3 nc = t.coat_normal;
+        wo = glm::normalize(2 * glm::dot(wi, nc) * nc - wi + 0.05 * random_above(rng));
+        if (wo.z <= 0.02) continue;
+      }
+      const glm::dvec3 got = texel_eval(mip, TextureFilter::param, level, i, j, wi, wo);
+      const glm::dvec3 want = f_eff_khr(t, wi, wo);
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(got[c], want[c], tolerance * want[c] + 1e-9) << "level " << level << " texel " << i << "," << j;
+        if (level == 0) {
+          const double e = exact.eval(0, i, j, wi, wo)[c];
+          EXPECT_NEAR(got[c], e, tolerance * e + 1e-9) << "level 0 texel " << i << "," << j;
+        }
+        compared += want[c] > 0;
+      }
+      Texel bare = t;
+      bare.clearcoat = 0;
+      coated += glm::length(want - f_eff_khr(bare, wi, wo)) > 0.1 * glm::length(want);
+    }
+    const BrdfTable table = texel_table(mip, TextureFilter::param, level, i, j);
+    const DirectionGrid& g = DirectionGrid::get();
+    for (int p = 0; p < DirectionGrid::kPairs; p += 11) {
+      const glm::dvec3 e = texel_eval(mip, TextureFilter::param, level, i, j, g.direction(DirectionGrid::wi_index(p)),
+                                      g.direction(DirectionGrid::wo_index(p)));
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(table[static_cast<std::size_t>(p)][c], e[c], 1e-9 + 1e-5 * e[c]) << "pair " << p;
+    }
+  }
+  EXPECT_GT(compared, 3000);
+  EXPECT_GT(coated, 200);
 }
 
 // The coat's images decode as the renderer reads them: weight from R, roughness from G, each times its
