@@ -122,14 +122,17 @@ TEST(CoatPyramid, UniformCoatKeepsItsMeans) {
   const MipData mip = build_mip(car_paint(16));
   for (int level = 1; level < mip.levels(); ++level) {
     const Extent e = mip.extent(level);
-    for (int j = 0; j < e.height; ++j)
+    for (int j = 0; j < e.height; ++j) {
       for (int i = 0; i < e.width; ++i) {
         const CoatTexel c = mip.brdf.coat(level, i, j);
         ASSERT_EQ(c.lobes.size(), 1u);  // one coat normal, one roughness: one lobe
         EXPECT_NEAR(c.lobes[0].weight, 1.0f, 1e-3f);
         EXPECT_NEAR(c.lobes[0].normal.z, 1.0f, 1e-4f);
-        for (const Lobe& l : mip.brdf.texel(level, i, j)) EXPECT_EQ(l.coat, 1.0f);
+        for (const Lobe& l : mip.brdf.texel(level, i, j)) {
+          EXPECT_EQ(l.coat, 1.0f);
+        }
       }
+    }
   }
   const MipData bare = build_mip(synthetic::painted_wall(16));
   EXPECT_FALSE(bare.brdf.has_coat());
