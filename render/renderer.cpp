@@ -11,6 +11,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "base/error.h"
 #include "render/embree_device.h"
 
 namespace svbrdf {
@@ -24,7 +25,8 @@ Film::Film(int w, int h)
       albedo_sum(std::size_t(w) * h, glm::vec3(0.0f)),
       normal_sum(std::size_t(w) * h, glm::vec3(0.0f)),
       depth_sum(std::size_t(w) * h, 0.0f),
-      level_sum(std::size_t(w) * h, 0.0f) {}
+      level_sum(std::size_t(w) * h, 0.0f),
+      frame{0, 0, w, h} {}
 
 namespace {
 template <typename F>
@@ -68,8 +70,16 @@ float resolve_footprint_scale(float scale, int spp) {
 }
 
 Film render(const RenderWorld& world, const RenderOptions& opt, RenderStats* stats) {
-  const int w = world.camera->width(), h = world.camera->height();
+  // The film holds the crop's pixels alone; a pixel keeps its place in the frame (fx, fy) for its
+  // random numbers and its ray, so it is the pixel a render of the whole frame gives.
+  const int frame_w = world.camera->width(), frame_h = world.camera->height();
+  const PixelRect rect = opt.crop.empty() ? PixelRect{0, 0, frame_w, frame_h} : opt.crop;
+  if (rect.x0 < 0 || rect.y0 < 0 || rect.x1 > frame_w || rect.y1 > frame_h)
+    throw Error("render: the crop reaches past the " + std::to_string(frame_w) + "x" + std::to_string(frame_h) + " frame",
+                Error::Kind::internal);
+  const int w = rect.width(), h = rect.height();
   Film film(w, h);
+  film.frame = {rect.x0, rect.y0, frame_w, frame_h};
   const int spp = std::max(opt.spp, 1);
   // The MIP data the filter reads, built now if PreparedScene has not already.
   if (world.mips) world.mips->prepare(opt.integrator.filter);
@@ -137,13 +147,14 @@ Film render(const RenderWorld& world, const RenderOptions& opt, RenderStats* sta
               for (int y = ty * kTile; y < std::min(h, (ty + 1) * kTile); ++y)
                 for (int x = tx * kTile; x < std::min(w, (tx + 1) * kTile); ++x) {
                   const std::size_t p = std::size_t(y) * w + x;
-                  const std::uint64_t seed = pixel_seed(opt.seed, x, y, w);  // once per pixel, not per sample
+                  const int fx = rect.x0 + x, fy = rect.y0 + y;
+                  const std::uint64_t seed = pixel_seed(opt.seed, fx, fy, frame_w);  // once per pixel, not per sample
                   for (int s = first; s < last; ++s) {
                     // Stopped: this pixel keeps the samples it has; the loops run out without tracing.
                     if (stoppable && stop.load(std::memory_order_relaxed)) break;
-                    Rng rng(seed, std::uint32_t(s));  // pixel_rng(opt.seed, x, y, w, s)
+                    Rng rng(seed, std::uint32_t(s));  // pixel_rng(opt.seed, fx, fy, frame_w, s)
                     const float jx = rng.next_float(), jy = rng.next_float();
-                    const PathSample ps = trace_path(world, integrator, float(x) + jx, float(y) + jy, rng);
+                    const PathSample ps = trace_path(world, integrator, float(fx) + jx, float(fy) + jy, rng);
                     tile_rays += ps.rays;
                     // A non-finite sample would poison the pixel; it counts as black (never seen in tests).
                     const Rgb L = std::isfinite(ps.radiance.x + ps.radiance.y + ps.radiance.z) ? ps.radiance : Rgb(0.0f);

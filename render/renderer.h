@@ -10,6 +10,7 @@
 #include <functional>
 #include <vector>
 
+#include "render/crop.h"
 #include "render/integrator.h"
 #include "textures/image.h"
 
@@ -23,6 +24,8 @@ struct Film {
   std::vector<std::uint32_t> samples, opaque;
   std::vector<glm::vec3> albedo_sum, normal_sum;
   std::vector<float> depth_sum, level_sum;
+  // Where these width × height pixels lie in the camera's frame: all of it, or RenderOptions::crop.
+  FrameWindow frame;
 
   // What one pixel costs while rendering: the sums above, plus the images written at the end (the
   // EXR's 12 channels with its AOV layers, the display image's 4).
@@ -53,6 +56,7 @@ struct RenderOptions {
   std::uint64_t seed = 0;
   IntegratorSettings integrator;
   bool aovs = true;                         // accumulate albedo, normal, depth and MIP level
+  PixelRect crop;                           // the part of the frame to render; empty: all of it
   double time_limit = 0.0;                  // seconds; 0 = none
   const std::atomic<bool>* cancel = nullptr;  // set by a signal handler (Ctrl-C, SIGTERM)
   std::function<void(const ProgressInfo&)> progress;  // called about every 0.2 s from one thread

@@ -306,6 +306,23 @@ Image read_image_channels(const std::filesystem::path& path, const std::vector<s
   return out;
 }
 
+ExrImage read_exr(const std::filesystem::path& path) {
+  ExrImage out;
+  out.image = read_image(path);  // every check of a file read
+  auto in = OIIO::ImageInput::open(path.string(), &straight_alpha_config());
+  if (!in) throw input_error(path.string(), "cannot read image: " + reason(OIIO::geterror(), "unrecognized format"));
+  if (std::string(in->format_name()) != "openexr") throw input_error(path.string(), "is not an OpenEXR file");
+  const OIIO::ImageSpec& spec = in->spec();
+  if (spec.full_x != 0 || spec.full_y != 0)
+    throw input_error(path.string(), "its display window starts at (" + std::to_string(spec.full_x) + ", " +
+                                         std::to_string(spec.full_y) + "), not at (0, 0)");
+  out.names = spec.channelnames;
+  for (int c = 0; c < spec.nchannels; ++c) out.formats.push_back(from_oiio(spec.channelformat(c)));
+  out.window = {spec.x, spec.y, spec.full_width, spec.full_height};
+  in->close();
+  return out;
+}
+
 Image read_image_from_memory(std::span<const std::byte> bytes, std::string_view mime_type, const std::string& name) {
   return decode_memory(bytes, mime_type, name, nullptr);
 }
@@ -343,6 +360,11 @@ std::vector<std::byte> encode_image(const std::filesystem::path& path, const Ima
 
 std::vector<std::byte> encode_exr(const std::filesystem::path& path, const Image& image, const std::vector<std::string>& names,
                                   const std::vector<PixelFormat>& formats) {
+  return encode_exr(path, image, names, formats, FrameWindow{0, 0, image.width, image.height});
+}
+
+std::vector<std::byte> encode_exr(const std::filesystem::path& path, const Image& image, const std::vector<std::string>& names,
+                                  const std::vector<PixelFormat>& formats, const FrameWindow& window) {
   if (names.size() != std::size_t(image.channels) || formats.size() != names.size())
     throw Error(path.string() + ": " + std::to_string(names.size()) + " channel names and " + std::to_string(formats.size()) +
                     " formats for an image of " + std::to_string(image.channels) + " channels",
@@ -356,6 +378,11 @@ std::vector<std::byte> encode_exr(const std::filesystem::path& path, const Image
     if (names[std::size_t(c)] == "A") spec.alpha_channel = c;
     if (names[std::size_t(c)] == "Z") spec.z_channel = c;
   }
+  spec.x = window.x;
+  spec.y = window.y;
+  spec.full_x = spec.full_y = 0;
+  spec.full_width = window.frame_width;
+  spec.full_height = window.frame_height;
   return encode_with_spec(path, image, std::move(spec));
 }
 

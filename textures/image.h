@@ -61,6 +61,30 @@ std::vector<std::byte> encode_image(const std::filesystem::path& path, const Ima
 std::vector<std::byte> encode_exr(const std::filesystem::path& path, const Image& image, const std::vector<std::string>& names,
                                   const std::vector<PixelFormat>& formats);
 
+// Where an image lies in the frame it is part of: OpenEXR's data window (the pixels stored, from
+// column x, row y) inside its display window (the frame, frame_width × frame_height from (0, 0)),
+// as "Interpreting OpenEXR Images" defines the two. A crop of a render stores only its own pixels,
+// and viewers, compositors and the merge of tiles place it in its frame by these.
+struct FrameWindow {
+  int x = 0, y = 0, frame_width = 0, frame_height = 0;
+};
+
+// encode_exr for an image that is the part of a larger frame `window` says.
+std::vector<std::byte> encode_exr(const std::filesystem::path& path, const Image& image, const std::vector<std::string>& names,
+                                  const std::vector<PixelFormat>& formats, const FrameWindow& window);
+
+// An OpenEXR file whole: its channels as floats (the data window's pixels), their names and stored
+// formats in the file's order, and where the data window lies in the display window.
+struct ExrImage {
+  Image image;
+  std::vector<std::string> names;
+  std::vector<PixelFormat> formats;
+  FrameWindow window;
+};
+// Throws svbrdf::Error naming the file when it is missing, not an OpenEXR file, truncated or corrupt,
+// or its display window does not start at (0, 0).
+ExrImage read_exr(const std::filesystem::path& path);
+
 // Largest image the project reads or makes: a side of 32768 texels, 2^28 texels in all (1 GiB per
 // float channel). Anything larger, or an empty image, is refused as bad input.
 inline constexpr int kMaxImageSide = 32768;
