@@ -35,9 +35,10 @@ install: build
 # Runs every test but the heavy ones labelled `long` (`make test-long` runs those). CI passes
 # OPTIMIZED_ONLY=1: in Release it runs only the tests of the labels below — the comparisons that need an
 # optimized build, and the Python module's, which the sanitizer build leaves out (an instrumented module
-# needs its runtime preloaded into the interpreter) — and every other suite under the sanitizers
-# (`make asan`), which assert the same and more.
-OPTIMIZED_LABELS := ^lod$$|^blender$$|-optimized$$|^python$$
+# needs its runtime preloaded into the interpreter), and the farm test on a one-node Slurm cluster
+# (label slurm: its daemons and tasks in Release, not its assertions, are what it exercises) — and every
+# other suite under the sanitizers (`make asan`), which assert the same and more.
+OPTIMIZED_LABELS := ^lod$$|^blender$$|-optimized$$|^python$$|^slurm$$
 test: build
 	cd $(BUILD) && ctest -j $(JOBS) --output-on-failure --timeout 600 -LE long \
 	  $(if $(OPTIMIZED_ONLY),-L '$(OPTIMIZED_LABELS)',) $(CTEST_ARGS)

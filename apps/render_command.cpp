@@ -16,6 +16,7 @@
 #include "base/message_line.h"
 #include "gltf/scene_reader.h"
 #include "mip/texture_filter.h"
+#include "render/crop.h"
 #include "render/output.h"
 #include "render/progress.h"
 #include "render/render_setup.h"
@@ -77,10 +78,18 @@ std::string samples_text(const RenderStats& stats, int spp) {
 
 void RenderCommand::add_options(CLI::App& app) {
   app.add_option("scene", scene_file, "glTF file (.gltf or .glb); none renders the project's showcase scene");
+  app.add_option("tiles", more_inputs, "with --merge: the tiles (the first stands where the scene does)");
   app.add_option("-o,--out", out, "output OpenEXR file (linear radiance); default out/<scene>.exr");
   app.add_option("--png", png, "display PNG (default: beside the EXR, same stem)");
   app.add_option("--spp", spp, "samples per pixel")->check(cli::whole_in(1, INT_MAX));
   app.add_option("--res", res, "resolution WxH (default: the camera's aspect at 360 rows, else 640x360)");
+  app.add_option("--crop", crop,
+                 "render only the window x0,y0,x1,y1 of the frame (pixels, columns [x0, x1), rows [y0, y1)): its EXR "
+                 "alone, in float, placed in the frame (data and display windows), each pixel that of the whole "
+                 "render; for --merge");
+  app.add_option("--tile", tile,
+                 "render only tile I of N (I from 0 to N-1): the frame cut into N bands of whole rows, band I the rows "
+                 "[floor(I*H/N), floor((I+1)*H/N)); written as --crop writes, for --merge");
   app.add_option("--camera", camera, "camera index or name (default: the scene's first, else a framing camera)");
   app.add_option("--seed", seed, "random seed")->check(cli::unsigned_whole);
   app.add_option("--threads", threads, "worker threads (0: all cores; more than the machine runs at once are capped)")
@@ -147,6 +156,19 @@ void RenderCommand::add_options(CLI::App& app) {
   app.add_flag("-q,--quiet", quiet, "no progress output or notes (warnings and errors are still printed)");
 }
 
+OutputOptions RenderCommand::output_options() const {
+  if (!out.empty() && fs::path(out).extension() != ".exr") throw input_error("--out " + out, "the output must be an .exr file");
+  OutputOptions oo;
+  oo.exr = out;
+  oo.png = png;
+  oo.float32 = use_float;
+  oo.exposure = exposure;
+  oo.aovs = aovs;
+  oo.transparent = transparent;
+  oo.tile = !crop.empty() || !tile.empty();
+  return oo;
+}
+
 RenderOutcome run_render(RenderCommand& c, const fs::path& scene_path, const char* program,
                          const std::atomic<bool>& cancel) {
   // Before any input is read: every image, MIP level and the frame are held to it.
@@ -165,16 +187,21 @@ RenderOutcome run_render(RenderCommand& c, const fs::path& scene_path, const cha
   // the recipe bakes the sky beside the scene and the default render uses it unless --env says else.
   if (c.scene_file.empty() && c.env.empty() && fs::exists(scene_path.parent_path() / "sky.hdr"))
     setup.env = (scene_path.parent_path() / "sky.hdr").string();
+  if (!c.more_inputs.empty())
+    throw input_error(c.more_inputs.front(), "a second scene: svbrdf-render renders one (--merge takes tiles)");
   const bool write = !c.out.empty();
-  if (write && fs::path(c.out).extension() != ".exr") throw input_error("--out " + c.out, "the output must be an .exr file");
+  OutputOptions oo = c.output_options();
+  const bool tile = oo.tile;
+  if (!c.crop.empty() && !c.tile.empty())
+    throw input_error("--crop " + c.crop, "and --tile " + c.tile + " both name the part to render; give one");
+  // A tile must hold, pixel for pixel, what the whole frame's render holds (render/crop.h); a clock
+  // would stop each machine at other sample counts.
+  if (tile && c.time_limit > 0.0)
+    throw input_error("--time-limit", "a tile is rendered whole, to every sample asked for, so that the merged "
+                                      "image is the single render's; leave out --time-limit with --crop or --tile");
+  if (tile && !c.png.empty())
+    throw input_error("--png " + c.png, "a tile (--crop, --tile) is written as its EXR alone; --merge writes the PNG");
 
-  OutputOptions oo;
-  oo.exr = c.out;
-  oo.png = c.png;
-  oo.float32 = c.use_float;
-  oo.exposure = c.exposure;
-  oo.aovs = c.aovs;
-  oo.transparent = c.transparent;
   // Before the scene is read: a render must not end in "cannot write" for a path that was wrong
   // from the start. Also removes the temporaries a killed run left there.
   if (write) prepare_outputs(oo);
@@ -210,7 +237,11 @@ RenderOutcome run_render(RenderCommand& c, const fs::path& scene_path, const cha
   for (const std::string& w : prepared.warnings()) std::fprintf(stderr, "%s: warning: %s\n", program, message_line(w).c_str());
   for (const std::string& w : prepared.mip_warnings(texture_filter))
     std::fprintf(stderr, "%s: warning: %s\n", program, message_line(w).c_str());
-  const std::uint64_t pixels = std::uint64_t(prepared.camera().width()) * std::uint64_t(prepared.camera().height());
+  const int frame_w = prepared.camera().width(), frame_h = prepared.camera().height();
+  const PixelRect crop = !c.crop.empty()  ? parse_crop(c.crop, frame_w, frame_h)
+                         : !c.tile.empty() ? parse_tile(c.tile, frame_w, frame_h)
+                                           : PixelRect{0, 0, frame_w, frame_h};
+  const std::uint64_t pixels = std::uint64_t(crop.width()) * std::uint64_t(crop.height());
   // The sample counters are 64-bit: spp × pixels must fit (it does unless --max-texels is huge).
   if (const auto total = checked_mul(pixels, std::uint64_t(c.spp)); !total || *total >= (std::uint64_t(1) << 63))
     throw input_error("--spp " + std::to_string(c.spp),
@@ -220,6 +251,7 @@ RenderOutcome run_render(RenderCommand& c, const fs::path& scene_path, const cha
   options.spp = c.spp;
   options.threads = threads;
   options.seed = c.seed;
+  options.crop = crop;
   options.time_limit = c.time_limit;
   options.integrator.max_depth = c.max_depth;
   options.integrator.filter = texture_filter;
@@ -247,11 +279,14 @@ RenderOutcome run_render(RenderCommand& c, const fs::path& scene_path, const cha
   set_interrupt_mode(InterruptMode::record);
   printer.finish({stats.samples, pixels * std::uint64_t(c.spp), stats.rays, stats.seconds});
 
-  if (write) {
+  // A tile stopped early holds fewer samples than the whole render's pixels: it is not written, so
+  // that no merge can take it (a requeued task renders it again).
+  const bool keep = write && !(tile && stats.pixel_samples_min < std::uint32_t(c.spp));
+  if (keep) {
     write_outputs(outcome.film, oo, color);
     if (!c.quiet) std::fprintf(stderr, "%s: wrote %s\n", program, c.out.c_str());
   }
-  const char* what = write ? "wrote" : "rendered";
+  const char* what = keep ? "wrote" : write ? "wrote nothing (a tile is written whole or not at all): rendered" : "rendered";
   if (const int sig = interrupt_signal()) {
     std::fprintf(stderr, "%s: %s; %s %s\n", program, sig == SIGTERM ? "terminated (SIGTERM)" : "interrupted (SIGINT)", what,
                  samples_text(stats, c.spp).c_str());

@@ -9,25 +9,33 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "apps/mip_cache_options.h"
 #include "base/resource_limits.h"
+#include "render/output.h"
 #include "render/renderer.h"
 
 namespace svbrdf {
 
 struct RenderCommand {
   std::string scene_file, out, png, res, camera, env, sun, filter = "brdf", light_sampling = "mis", ocio,
-      light_units = "photometric", normal_mapping = "shading", variant, display, view;
+      light_units = "photometric", normal_mapping = "shading", variant, display, view, crop, tile;
   int spp = 64, threads = 0, max_depth = 16;
   std::uint64_t seed = 0, max_texels = resource_limits().max_texels;
   double time_limit = 0.0;
   float exposure = 0.0f, footprint_scale = 0.0f, clamp = 0.0f, aperture = 0.0f, focus_distance = 0.0f;
   bool use_float = false, quiet = false, aovs = false, transparent = false;
   MipCacheOptions mip_cache;
+  // Positionals after the scene: the rest of the tiles for svbrdf-render --merge (apps/render_merge.h);
+  // a render refuses them. Defined here, so that the program and the module parse alike.
+  std::vector<std::string> more_inputs;
 
   // Defines every option of svbrdf-render on `app`, bound to the members above.
   void add_options(CLI::App& app);
+  // The outputs these options ask for (OCIO's display and view not yet resolved). Throws bad input
+  // for an --out that is not an .exr file.
+  OutputOptions output_options() const;
 };
 
 struct RenderOutcome {

@@ -4,9 +4,13 @@
 #include <CLI/CLI.hpp>
 
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "apps/baked_scenes.h"
 #include "apps/render_command.h"
+#include "apps/render_merge.h"
+#include "apps/render_slurm.h"
 #include "apps/run_program.h"
 #include "base/error.h"
 #include "base/interrupt.h"
@@ -39,7 +43,22 @@ int main(int argc, char** argv) {
   CLI::App app{"svbrdf-render: path-trace a textured glTF 2.0 scene"};
   svbrdf::RenderCommand command;
   command.add_options(app);
+  bool merge = false;
+  app.add_flag("--merge", merge,
+               "assemble tiles (--tile, --crop) into the whole frame's EXR and PNG: svbrdf-render --merge -o OUT.exr "
+               "TILE.exr... with the output options of the render (--png, --float, --exposure, --transparent, --ocio-config, "
+               "--display, --view)");
+  svbrdf::SlurmOptions slurm;
+  slurm.add_to(app);
   return svbrdf::run_program("svbrdf-render", app, argc, argv, [&] {
+    if (merge) {
+      std::vector<fs::path> tiles;
+      if (!command.scene_file.empty()) tiles.emplace_back(command.scene_file);
+      tiles.insert(tiles.end(), command.more_inputs.begin(), command.more_inputs.end());
+      svbrdf::run_merge(command, tiles, "svbrdf-render");
+      return 0;
+    }
+    if (!slurm.mode.empty()) return svbrdf::run_slurm(slurm, command, argc, argv);
     const fs::path scene_path = command.scene_file.empty() ? find_showcase(argv[0]) : fs::path(command.scene_file);
     if (command.out.empty()) command.out = (fs::path("out") / scene_path.stem()).string() + ".exr";
     return svbrdf::run_render(command, scene_path, "svbrdf-render", svbrdf::interrupt_requested()).status;

@@ -1,0 +1,43 @@
+#pragma once
+// svbrdf-render --slurm: a render spread over a Slurm cluster. One sbatch array job renders the frame's
+// tiles, one task a tile (--tile I/N, written beside the output), and a merge job that depends on
+// it (--dependency=afterok) assembles them (--merge) into the output, the same bit for bit as one
+// render on one machine. `print` prints the submission as a shell script (two sbatch calls, each
+// batch script inline); `submit` runs that same script and prints the two job ids. Slurm itself
+// retries a task whose node fails or which is preempted (--requeue). The tasks run in the folder
+// the submission was made from, with the same program path: the cluster's nodes must share that
+// file system (docs/farm.md).
+#include <CLI/CLI.hpp>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "apps/render_command.h"
+
+namespace svbrdf {
+
+struct SlurmOptions {
+  std::string mode;  // "print" or "submit"; empty: render here
+  int tiles = 4;
+  std::string partition, account, time;
+  std::vector<std::string> sbatch_options;  // more #SBATCH lines, e.g. --mem=4G, for both jobs
+
+  void add_to(CLI::App& app);
+};
+
+// The shell script that submits the render: `program` (an absolute path), `render_args` the
+// command line's options and scene without the --slurm ones, -o/--out and --png (each task adds its
+// --tile and its output), run in `folder`.
+std::string slurm_submission(const SlurmOptions& slurm, const RenderCommand& command, const std::filesystem::path& program,
+                             const std::vector<std::string>& render_args, const std::filesystem::path& folder);
+
+// The command line's arguments (argv[1..]) without the options `drop` names, each with its value
+// ("--out x", "--out=x", "-ox").
+std::vector<std::string> without_options(const std::vector<std::string>& args, const std::vector<std::string>& drop);
+
+// Prints the submission (print), or runs it through /bin/sh (submit), whose lines name the job ids.
+// Returns the exit status; throws svbrdf::Error when sbatch fails.
+int run_slurm(const SlurmOptions& slurm, const RenderCommand& command, int argc, char** argv);
+
+}  // namespace svbrdf
