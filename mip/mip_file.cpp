@@ -202,9 +202,19 @@ class LevelCheck {
     // Not in name order: the band put in it first.
     scratch_.resize(band.size());
     const std::size_t texels = band.size() / native_.stride;
-    for (std::size_t c = 0; c < sizes_.size(); ++c)
-      for (std::size_t t = 0; t < texels; ++t)
-        std::memcpy(&scratch_[t * ordered_.stride + ordered_.offsets[c]], &band[t * native_.stride + native_.offsets[c]], sizes_[c]);
+    // A texel at a time (its bytes stay in cache), each channel copied with its size known to the
+    // compiler: a copy of a size known only at run time is a library call per texel and channel.
+    for (std::size_t t = 0; t < texels; ++t) {
+      std::byte* to = scratch_.data() + t * ordered_.stride;
+      const std::byte* from = band.data() + t * native_.stride;
+      for (std::size_t c = 0; c < sizes_.size(); ++c) {
+        std::byte* d = to + ordered_.offsets[c];
+        const std::byte* f = from + native_.offsets[c];
+        if (sizes_[c] == 2) std::memcpy(d, f, 2);
+        else if (sizes_[c] == 4) std::memcpy(d, f, 4);
+        else std::memcpy(d, f, sizes_[c]);
+      }
+    }
     add_band(bands_, scratch_);
   }
   std::optional<Error> mismatch(int max_lobes, float radial_inner, float radial_outer) const {
