@@ -1,5 +1,6 @@
 #include "render/texture_set.h"
 
+#include <algorithm>
 #include <bit>
 
 #include <tbb/parallel_for.h>
@@ -21,32 +22,65 @@ int repeat_mask(WrapMode mode, int n) {
 
 // The 8-bit form of an image and its linearized copy, or null when some channel takes a value that
 // is not one of 256 codes, or one code stands for two different values (then lookups read floats).
+// Bands of rows in parallel, each with its own tables, merged in band order with the same checks: the
+// first texel in scan order that shows a code gives its values, as a single pass would.
 std::unique_ptr<TextureSet::Packed> TextureSet::pack(const Image& raw, const Image* linear) {
   if (raw.width <= 0 || raw.height <= 0 || raw.channels < 1) return nullptr;
   auto k = std::make_unique<Packed>();
   k->width = raw.width, k->height = raw.height;
   k->codes.resize(4 * static_cast<std::size_t>(raw.width) * raw.height);
-  std::array<std::array<bool, 256>, 4> seen{};
-  for (int j = 0; j < raw.height; ++j)
-    for (int i = 0; i < raw.width; ++i) {
-      const glm::vec4 v = texel(raw, i, j);
-      const glm::vec4 l = linear ? texel(*linear, i, j) : v;
-      std::uint8_t* out = &k->codes[4 * (static_cast<std::size_t>(j) * raw.width + i)];
-      for (std::size_t c = 0; c < 4; ++c) {
-        const float x = v[int(c)] * 255.0f;
-        if (!(x > -0.5f && x < 255.5f)) return nullptr;
-        const auto code = static_cast<std::size_t>(x + 0.5f);  // rounds: x + 0.5 > 0
-        if (std::fabs(x - static_cast<float>(code)) > 1e-3f) return nullptr;
-        out[c] = static_cast<std::uint8_t>(code);
-        float &rv = k->raw[c][code], &lv = k->linear[c][code];
-        if (!seen[c][code]) {
-          rv = v[int(c)], lv = l[int(c)];
-          seen[c][code] = true;
-        } else if (rv != v[int(c)] || lv != l[int(c)]) {
-          return nullptr;  // one code, two values: not an 8-bit image after all
+  struct Band {
+    Table raw{}, linear{};
+    std::array<std::array<bool, 256>, 4> seen{};
+    bool ok = true;
+  };
+  const int band_rows = kPackBandRows;
+  std::vector<Band> bands(static_cast<std::size_t>((raw.height + band_rows - 1) / band_rows));
+  tbb::parallel_for(std::size_t(0), bands.size(), [&](std::size_t b) {
+    Band& band = bands[b];
+    const int first = static_cast<int>(b) * band_rows, last = std::min(raw.height, first + band_rows);
+    for (int j = first; j < last; ++j)
+      for (int i = 0; i < raw.width; ++i) {
+        const glm::vec4 v = texel(raw, i, j);
+        const glm::vec4 l = linear ? texel(*linear, i, j) : v;
+        std::uint8_t* out = &k->codes[4 * (static_cast<std::size_t>(j) * raw.width + i)];
+        for (std::size_t c = 0; c < 4; ++c) {
+          const float x = v[int(c)] * 255.0f;
+          if (!(x > -0.5f && x < 255.5f)) {
+            band.ok = false;
+            return;
+          }
+          const auto code = static_cast<std::size_t>(x + 0.5f);  // rounds: x + 0.5 > 0
+          if (std::fabs(x - static_cast<float>(code)) > 1e-3f) {
+            band.ok = false;
+            return;
+          }
+          out[c] = static_cast<std::uint8_t>(code);
+          float &rv = band.raw[c][code], &lv = band.linear[c][code];
+          if (!band.seen[c][code]) {
+            rv = v[int(c)], lv = l[int(c)];
+            band.seen[c][code] = true;
+          } else if (rv != v[int(c)] || lv != l[int(c)]) {
+            band.ok = false;  // one code, two values: not an 8-bit image after all
+            return;
+          }
         }
       }
-    }
+  });
+  std::array<std::array<bool, 256>, 4> seen{};
+  for (const Band& band : bands) {
+    if (!band.ok) return nullptr;
+    for (std::size_t c = 0; c < 4; ++c)
+      for (std::size_t code = 0; code < 256; ++code) {
+        if (!band.seen[c][code]) continue;
+        if (!seen[c][code]) {
+          k->raw[c][code] = band.raw[c][code], k->linear[c][code] = band.linear[c][code];
+          seen[c][code] = true;
+        } else if (k->raw[c][code] != band.raw[c][code] || k->linear[c][code] != band.linear[c][code]) {
+          return nullptr;
+        }
+      }
+  }
   return k;
 }
 

@@ -69,6 +69,10 @@ class TextureSet {
   // Whether lookups of the slot's texture take the 8-bit path.
   bool packed(const TextureRef& ref) const { return textures_[static_cast<std::size_t>(ref.texture)].packed != nullptr; }
 
+  // Rows of an image that the 8-bit form is made of at a time, in parallel (each band with its own
+  // tables, merged in order): enough texels a band to repay a task, bands enough for every core.
+  static constexpr int kPackBandRows = 32;
+
   // Texture size in texels (for footprints and the MIP-level AOV).
   glm::ivec2 size(const TextureRef& ref) const {
     const Image& im = *textures_[static_cast<std::size_t>(ref.texture)].raw;

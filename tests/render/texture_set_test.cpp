@@ -63,5 +63,49 @@ TEST(TextureSet, EightBitPathEqualsTheFloatLookup) {
   }
 }
 
+// The 8-bit form is made in bands of rows (TextureSet::kPackBandRows) in parallel: a code that stands
+// for two values in two different bands, or in one, keeps the float path; codes first seen in
+// different bands give one table, whose lookups equal the float lookups.
+TEST(TextureSet, EightBitBandsAgree) {
+  const int rows = 3 * TextureSet::kPackBandRows + 5;
+  auto scene_of = [&](float last_texel) {
+    Scene s;
+    ImageDesc d;
+    d.pixels = Image(4, rows, 3);
+    for (std::size_t k = 0; k < d.pixels.pixels.size(); ++k) d.pixels.pixels[k] = float((k / 3) % 256) / 255.0f;
+    d.pixels.pixels[0] = 10.0f / 255.0f;  // code 10 in the first band
+    d.pixels.pixels[d.pixels.pixels.size() - 3] = last_texel;  // the last band's first channel
+    s.images.push_back(std::move(d));
+    TextureDesc t;
+    t.image = 0;
+    s.textures.push_back(t);
+    MaterialDesc m;
+    m.base_color_texture.texture = 0;
+    s.materials.push_back(m);
+    return s;
+  };
+  TextureRef r;
+  r.texture = 0;
+  // Code 10 again, 5e-4 codes off: within pack()'s tolerance of a code, but another value.
+  EXPECT_FALSE(TextureSet(scene_of((10.0f + 5e-4f) / 255.0f)).packed(r));
+  const Scene same = scene_of(10.0f / 255.0f);
+  const TextureSet set(same);
+  ASSERT_TRUE(set.packed(r));
+  Sampler nearest = same.textures[0].sampler;
+  nearest.filter = FilterMode::nearest;
+  Image lin = same.images[0].pixels;
+  ColorConfig::builtin().srgb_texture_to_linear(lin);
+  for (int j = 0; j < rows; ++j)
+    for (int i = 0; i < 4; ++i) {
+      const glm::vec2 uv((float(i) + 0.5f) / 4.0f, (float(j) + 0.5f) / float(rows));
+      EXPECT_EQ(set.lookup(r, uv, false), sample(same.images[0].pixels, nearest, uv)) << i << ", " << j;
+      EXPECT_EQ(set.lookup(r, uv, true), sample(lin, nearest, uv)) << i << ", " << j << " (linear)";
+    }
+  // Within one band: the same conflict in the first band's second texel.
+  Scene one = scene_of(10.0f / 255.0f);
+  one.images[0].pixels.pixels[3] = (10.0f + 5e-4f) / 255.0f;
+  EXPECT_FALSE(TextureSet(one).packed(r));
+}
+
 }  // namespace
 }  // namespace svbrdf
