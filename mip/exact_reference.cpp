@@ -3,7 +3,49 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
+#include "mip/sheen_layer.h"
+
 namespace svbrdf {
+
+glm::dvec3 level0_eval(const MaterialTexels& m, std::size_t k, const PairTerms<double>& p) {
+  Lobe scratch;
+  const Lobe base = level0_lobe(m, k);
+  glm::dvec3 f = lobe_eval<double>(base, p);
+  if (m.has_sheen()) {
+    const SheenTerms s = sheen_terms(m.sheen_layer(k), glm::normalize(glm::dvec3(base.normal)), p);
+    f = s.scaling * f + s.f;
+  }
+  return coated_eval(f, double(base.coat) * f, {&base, 1}, level0_coat(m, k, scratch), p);
+}
+
+void accumulate_level0_double(const MaterialTexels& m, std::size_t k, double scale, std::span<glm::dvec3> table) {
+  const Lobe base = level0_lobe(m, k);
+  Lobe scratch;
+  const CoatTexel coat = level0_coat(m, k, scratch);
+  if (!m.has_sheen()) {
+    accumulate_coated_double({&base, 1}, coat, scale, table);
+    return;
+  }
+  // The lobe's table, scaled and added to pair by pair by the sheen, is the base under the coat.
+  static thread_local BrdfTable f, f_coated;
+  f.assign(DirectionGrid::kPairs, glm::dvec3(0));
+  accumulate_lobe_double(base, 1.0, f);
+  const DirectionGrid& g = DirectionGrid::get();
+  const SheenLayer sheen = m.sheen_layer(k);
+  const glm::dvec3 n = glm::normalize(glm::dvec3(base.normal));
+  for (int q = 0; q < DirectionGrid::kPairs; ++q) {
+    const SheenTerms s = sheen_terms(sheen, n, g.pair_d(q));
+    glm::dvec3& v = f[static_cast<std::size_t>(q)];
+    v = s.scaling * v + s.f;
+  }
+  if (!coat.present()) {
+    for (std::size_t q = 0; q < f.size(); ++q) table[q] += scale * f[q];
+    return;
+  }
+  f_coated.resize(f.size());
+  for (std::size_t q = 0; q < f.size(); ++q) f_coated[q] = double(base.coat) * f[q];
+  accumulate_coat<double>({&base, 1}, coat, f, f_coated, scale, table);
+}
 
 glm::dvec3 ExactReference::eval(int level, int i, int j, const glm::dvec3& wi, const glm::dvec3& wo) const {
   const Coverage c = coverage(level0(), level, i, j);
@@ -13,13 +55,7 @@ glm::dvec3 ExactReference::eval(int level, int i, int j, const glm::dvec3& wi, c
       tbb::blocked_range<int>(c.rows.begin, c.rows.end), glm::dvec3(0),
       [&](const tbb::blocked_range<int>& r, glm::dvec3 acc) {
         for (int y = r.begin(); y < r.end(); ++y)
-          for (int x = c.columns.begin; x < c.columns.end; ++x) {
-            const std::size_t k = texels_.index(x, y);
-            Lobe scratch;
-            const Lobe base = level0_lobe(texels_, k);
-            const glm::dvec3 f = lobe_eval<double>(base, p);
-            acc += coated_eval(f, double(base.coat) * f, {&base, 1}, level0_coat(texels_, k, scratch), p);
-          }
+          for (int x = c.columns.begin; x < c.columns.end; ++x) acc += level0_eval(texels_, texels_.index(x, y), p);
         return acc;
       },
       [](const glm::dvec3& a, const glm::dvec3& b) { return a + b; });
@@ -31,12 +67,7 @@ BrdfTable ExactReference::table(int level, int i, int j) const {
   const double scale = 1.0 / static_cast<double>(c.count());
   auto rows = [&](int y0, int y1, BrdfTable& acc) {
     for (int y = y0; y < y1; ++y)
-      for (int x = c.columns.begin; x < c.columns.end; ++x) {
-        const std::size_t k = texels_.index(x, y);
-        const Lobe base = level0_lobe(texels_, k);
-        Lobe scratch;
-        accumulate_coated_double({&base, 1}, level0_coat(texels_, k, scratch), scale, acc);
-      }
+      for (int x = c.columns.begin; x < c.columns.end; ++x) accumulate_level0_double(texels_, texels_.index(x, y), scale, acc);
   };
   // A texel of a few rows is one task (the callers run many texels in parallel); a coarse texel
   // splits its rows among the threads, each with its own table.

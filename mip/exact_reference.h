@@ -2,7 +2,8 @@
 // The exact reference F_L,ij of ../shared/spec/brdf-mip.md ("The ground truth at a coarse level"): the
 // mean of f_eff over the level-0 texels that texel (i, j) of level L covers, by brute force, in double
 // precision, parallel over the covered rows (oneTBB). A coated material's texels are the layered
-// f_eff of coat_layer.h. Usable at any level; slow at coarse levels by
+// f_eff of coat_layer.h, and a material with a sheen's the sheen's layering under it (sheen_layer.h).
+// Usable at any level; slow at coarse levels by
 // nature (every covered texel is evaluated).
 #include <glm/glm.hpp>
 
@@ -27,6 +28,12 @@ inline CoatTexel level0_coat(const MaterialTexels& m, std::size_t k, Lobe& scrat
   if (!m.has_coat()) return {};
   return level0_coat(m.coat_layer(k), scratch);
 }
+
+// f_eff of level-0 texel k of a material (its lobe, under its sheen and its coat) for a pair, in double
+// precision.
+glm::dvec3 level0_eval(const MaterialTexels& m, std::size_t k, const PairTerms<double>& p);
+// table += scale · the same over the direction grid's pairs.
+void accumulate_level0_double(const MaterialTexels& m, std::size_t k, double scale, std::span<glm::dvec3> table);
 
 // The level-0 texels a texel of any level covers (power-of-two or not; pyramid_shape.h).
 struct Coverage {

@@ -33,6 +33,14 @@ struct CoatLayer {
   glm::vec3 normal{0.0f, 0.0f, 1.0f};
 };
 
+// The sheen at a texel (KHR_materials_sheen): its linear colour (sheenColorFactor ·
+// sheenColorTexture.rgb) and perceptual roughness (sheenRoughnessFactor · sheenRoughnessTexture.a),
+// about the texel's shading normal. Colour 0 is no sheen.
+struct SheenLayer {
+  glm::vec3 color{0.0f};
+  float roughness = 0.0f;
+};
+
 struct MaterialTexels {
   int width = 0;
   int height = 0;
@@ -54,6 +62,12 @@ struct MaterialTexels {
   std::vector<glm::vec3> clearcoat_normal;  // unit, tangent space, z up
   float clearcoat_factor = 0.0f;
   float clearcoat_roughness_factor = 0.0f;
+  // The sheen, per texel where a texture makes it vary (as the coat): `sheen_color` and
+  // `sheen_roughness` are empty where the factor holds.
+  std::vector<glm::vec3> sheen_color;  // linear Rec.709
+  std::vector<float> sheen_roughness;
+  glm::vec3 sheen_color_factor{0.0f};
+  float sheen_roughness_factor = 0.0f;
 
   MaterialTexels() = default;
   MaterialTexels(int w, int h)
@@ -79,6 +93,14 @@ struct MaterialTexels {
             clearcoat_normal.empty() ? glm::vec3(0.0f, 0.0f, 1.0f) : clearcoat_normal[k]};
   }
   bool has_coat() const { return clearcoat_factor > 0.0f; }
+  // Texel k's sheen, and whether the material has one at all.
+  SheenLayer sheen_layer(std::size_t k) const {
+    return {sheen_color.empty() ? sheen_color_factor : sheen_color[k],
+            sheen_roughness.empty() ? sheen_roughness_factor : sheen_roughness[k]};
+  }
+  bool has_sheen() const {
+    return sheen_color_factor.r > 0.0f || sheen_color_factor.g > 0.0f || sheen_color_factor.b > 0.0f;
+  }
   bool plain_specular() const {
     return specular.empty() && specular_color.empty() &&
            SpecularLayer{specular_factor, specular_color_factor, ior}.plain();
