@@ -14,14 +14,15 @@
 #include "mip/exact_reference.h"
 #include "mip/mip_data.h"
 #include "exact_mean_check.h"
+#include "gltf_transcription.h"
 #include "random_directions.h"
 #include "textures/material_loader.h"
 
 namespace svbrdf {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
+using gltf_transcription::ggx_vd;
+using gltf_transcription::kPi;
 using testing_directions::expect_coarse_exact_is_the_mean;
 using testing_directions::random_above;
 
@@ -33,16 +34,6 @@ struct Texel {
   double clearcoat = 1, coat_roughness = 0.1;
   glm::dvec3 coat_normal{0, 0, 1};
 };
-
-// GGX D and the height-correlated Smith V of glTF 2.0 Appendix B at α = max(r², 1e-3) about n.
-double ggx_vd(double roughness, const glm::dvec3& n, const glm::dvec3& wi, const glm::dvec3& wo) {
-  const glm::dvec3 h = glm::normalize(wi + wo);
-  const double a = std::max(roughness * roughness, 1e-3), a2 = a * a;
-  const double nh = glm::dot(n, h), ni = glm::dot(n, wi), no = glm::dot(n, wo);
-  const double d = nh > 0 ? a2 / (kPi * std::pow(nh * nh * (a2 - 1) + 1, 2)) : 0.0;
-  const double v = 0.5 / (no * std::sqrt(a2 + (1 - a2) * ni * ni) + ni * std::sqrt(a2 + (1 - a2) * no * no));
-  return d * v;
-}
 
 // f_eff of the texel, transcribed in double from glTF 2.0 Appendix B (metal_brdf, dielectric_brdf
 // with the fresnel_mix of ior 1.5) and the KHR_materials_clearcoat text (fresnel_coat with

@@ -12,14 +12,15 @@
 #include "appearance/rng.h"
 #include "appearance/sheen.h"
 #include "exact_mean_check.h"
+#include "gltf_transcription.h"
 #include "mip/exact_reference.h"
 #include "random_directions.h"
 
 namespace svbrdf {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
+using gltf_transcription::ggx_vd;
+using gltf_transcription::kPi;
 using testing_directions::expect_coarse_exact_is_the_mean;
 using testing_directions::random_above;
 
@@ -32,16 +33,6 @@ struct Texel {
   double sheen_roughness = 0.5;
   double clearcoat = 0, coat_roughness = 0.1;
 };
-
-// GGX D and the height-correlated Smith V of glTF 2.0 Appendix B at α = max(r², 1e-3) about n.
-double ggx_vd(double roughness, const glm::dvec3& n, const glm::dvec3& wi, const glm::dvec3& wo) {
-  const glm::dvec3 h = glm::normalize(wi + wo);
-  const double a = std::max(roughness * roughness, 1e-3), a2 = a * a;
-  const double nh = glm::dot(n, h), ni = glm::dot(n, wi), no = glm::dot(n, wo);
-  const double d = nh > 0 ? a2 / (kPi * std::pow(nh * nh * (a2 - 1) + 1, 2)) : 0.0;
-  const double v = 0.5 / (no * std::sqrt(a2 + (1 - a2) * ni * ni) + ni * std::sqrt(a2 + (1 - a2) * no * no));
-  return d * v;
-}
 
 // f_eff of the texel transcribed in double from glTF 2.0 Appendix B (the base, with the fresnel_mix of
 // ior 1.5) and the KHR_materials_sheen text: sheen_brdf = sheenColor·D·V with the Charlie
@@ -105,6 +96,13 @@ Texel random_texel(Rng& rng, bool coated) {
   return t;
 }
 
+// n random texels.
+std::vector<Texel> random_texels(Rng& rng, int n, bool coated) {
+  std::vector<Texel> ts;
+  for (int k = 0; k < n; ++k) ts.push_back(random_texel(rng, coated));
+  return ts;
+}
+
 MaterialTexels texels_of(const std::vector<Texel>& ts, int size, bool coated) {
   MaterialTexels m(size, size);
   m.sheen_color.resize(m.size());
@@ -132,8 +130,7 @@ MaterialTexels texels_of(const std::vector<Texel>& ts, int size, bool coated) {
 TEST(SheenLayer, Level0IsTheExtensionsLayering) {
   Rng rng(51, 1);
   for (const bool coated : {false, true}) {
-    std::vector<Texel> ts;
-    for (int k = 0; k < 16; ++k) ts.push_back(random_texel(rng, coated));
+    const std::vector<Texel> ts = random_texels(rng, 16, coated);
     const MaterialTexels m = texels_of(ts, 4, coated);
     ASSERT_TRUE(m.has_sheen());
     const ExactReference exact(m);
@@ -166,8 +163,7 @@ TEST(SheenLayer, Level0IsTheExtensionsLayering) {
 // A coarse texel's exact reference is the mean of its texels' layered f_eff.
 TEST(SheenLayer, CoarseExactIsTheMeanOfTheTexels) {
   Rng rng(52, 1);
-  std::vector<Texel> ts;
-  for (int k = 0; k < 64; ++k) ts.push_back(random_texel(rng, true));
+  const std::vector<Texel> ts = random_texels(rng, 64, true);
   const MaterialTexels m = texels_of(ts, 8, true);
   expect_coarse_exact_is_the_mean(m, rng, [&](int x, int y, const glm::dvec3& wi, const glm::dvec3& wo) {
     return f_eff_khr(ts[m.index(x, y)], wi, wo);
@@ -178,8 +174,7 @@ TEST(SheenLayer, CoarseExactIsTheMeanOfTheTexels) {
 TEST(SheenLayer, ExactTableIsItsEvaluation) {
   Rng rng(53, 1);
   for (const bool coated : {false, true}) {
-    std::vector<Texel> ts;
-    for (int k = 0; k < 16; ++k) ts.push_back(random_texel(rng, coated));
+    const std::vector<Texel> ts = random_texels(rng, 16, coated);
     const MaterialTexels m = texels_of(ts, 4, coated);
     const ExactReference exact(m);
     const DirectionGrid& g = DirectionGrid::get();
