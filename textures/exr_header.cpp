@@ -44,6 +44,11 @@ std::string value_fits(const std::string& type, std::uint64_t at, std::uint32_t 
         if (length == max_name) return "a channel name is longer than " + std::to_string(max_name) + " bytes";
       }
       if (length == 0) return p + 1 == end ? "" : "the channel list ends before its stated size";
+      // The fields start with the pixel type: OpenEXR defines 0 (uint), 1 (half) and 2 (float);
+      // OpenImageIO aborts on any other instead of refusing the file.
+      std::uint32_t pixel_type = 0;
+      if (end - (p + length + 1) < 16 || !u32(p + length + 1, pixel_type)) return "the channel list runs past its stated size";
+      if (pixel_type > 2) return "a channel's pixel type is " + std::to_string(pixel_type) + "; OpenEXR has 0 (uint), 1 (half) and 2 (float)";
       p += length + 1 + 16;
     }
   }
