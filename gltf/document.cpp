@@ -184,6 +184,7 @@ class Reader {
       const std::string rewritten = binary ? glb_with_json(bytes, document.dump()) : document.dump();
       parse(rewritten, binary, rewritten.size());
     }
+    check_every_primitive_read(document);
     return_draco_index_views(lent, doc_.model);
     return_stand_ins(stand_ins, doc_.model);
     decode_meshopt(meshopt, doc_.model, path_);
@@ -202,6 +203,30 @@ class Reader {
  private:
   [[noreturn]] void fail(const std::string& where, const std::string& what) const {
     throw input_error(path_.string() + (where.empty() ? "" : ": " + where), what);
+  }
+
+  // tinygltf 2.7 leaves out, without an error, a primitive it cannot read: one whose attributes
+  // (required, glTF 2.0 mesh.primitive) are missing or not an object of accessor indices. Every
+  // primitive the file lists must have been read, or the file is refused naming the first such one.
+  void check_every_primitive_read(const nlohmann::json& document) const {
+    const auto meshes = document.find("meshes");
+    if (meshes == document.end() || !meshes->is_array()) return;
+    for (std::size_t m = 0; m < meshes->size() && m < doc_.model.meshes.size(); ++m) {
+      const nlohmann::json& mesh = (*meshes)[m];
+      const auto prims = mesh.is_object() ? mesh.find("primitives") : mesh.end();
+      if (prims == mesh.end() || !prims->is_array() || doc_.model.meshes[m].primitives.size() == prims->size()) continue;
+      std::size_t p = 0;
+      const auto readable = [](const nlohmann::json& prim) {
+        const auto a = prim.is_object() ? prim.find("attributes") : prim.end();
+        if (a == prim.end() || !a->is_object()) return false;
+        for (const auto& v : *a)
+          if (!v.is_number_integer()) return false;
+        return true;
+      };
+      while (p + 1 < prims->size() && readable((*prims)[p])) ++p;
+      fail("meshes[" + std::to_string(m) + "].primitives[" + std::to_string(p) + "]",
+           "a primitive that cannot be read: its attributes, required, must be an object of accessor indices");
+    }
   }
 
   // The whole file, refused before reading when it is not a regular file or larger than the memory
