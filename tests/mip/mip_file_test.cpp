@@ -386,11 +386,14 @@ TEST(MipFile, ReadsNormalCodesAsDocumented) {
 // it, naming the attribute: a second part that states 1.1 GB for an attribute in a file of 2.9 KB,
 // which OpenEXR allocated before failing at the end of the file; and a fourth part whose channel list
 // runs past its stated size, which OpenEXR reads up to its end anyway and then takes other bytes for
-// the next attribute's size (seconds and gigabytes again).
+// the next attribute's size (seconds and gigabytes again; its first part's channel list also states a
+// pixel type OpenEXR does not define, which is met first); and channels of pixel types OpenEXR does
+// not define, on which OpenImageIO aborts instead of refusing.
 TEST(MipFile, HeadersThatWouldMakeOpenExrAllocateWhatTheFileStatesAreRefused) {
   const std::filesystem::path dir = std::filesystem::path(SVBRDF_SOURCE_DIR) / "fuzz/regressions/mip_file";
   for (const auto& [file, needle] : {std::pair{"attribute-larger-than-the-file.exr", "states 1148215651 bytes"},
-                                     std::pair{"channel-list-past-its-size.exr", "\"channels\" of part 3 (chlist)"}}) {
+                                     std::pair{"channel-list-past-its-size.exr", "\"channels\" of part 0 (chlist)"},
+                                     std::pair{"channel-of-unknown-pixel-type.exr", "(chlist): a channel's pixel type is "}}) {
     SCOPED_TRACE(file);
     try {
       read_mip_file(dir / file);
