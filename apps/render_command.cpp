@@ -14,6 +14,7 @@
 #include "base/error.h"
 #include "base/interrupt.h"
 #include "base/message_line.h"
+#include "apps/render_frames.h"
 #include "gltf/scene_reader.h"
 #include "mip/texture_filter.h"
 #include "render/crop.h"
@@ -74,6 +75,46 @@ std::string samples_text(const RenderStats& stats, int spp) {
   return text + " samples per pixel that had accumulated, of " + std::to_string(spp);
 }
 
+// Renders one frame (or a tile of it) of `world` and writes it to `oo` when command.out is set: the
+// render's progress, its stop on a signal, and what it says of how it ended.
+RenderOutcome render_and_write(const RenderCommand& c, const RenderWorld& world, RenderOptions options,
+                               const OutputOptions& oo, const ColorConfig& color, const char* program) {
+  const bool write = !c.out.empty(), tile = oo.tile;
+  const std::uint64_t pixels = std::uint64_t(options.crop.width()) * std::uint64_t(options.crop.height());
+  ProgressPrinter printer(c.quiet);
+  options.progress = [&](const ProgressInfo& p) { printer.update(p); };
+  // The first signal stops the render, which then writes what accumulated; a second one exits at
+  // once for a user who does not want to wait.
+  set_interrupt_mode(InterruptMode::stop_once, " a second time; the render was abandoned, nothing written");
+  RenderOutcome outcome;
+  outcome.film = render(world, options, &outcome.stats);
+  const RenderStats& stats = outcome.stats;
+  // Writing the EXR and the PNG is short and must not be cut between the two: signals now only
+  // change the exit status.
+  set_interrupt_mode(InterruptMode::record);
+  printer.finish({stats.samples, pixels * std::uint64_t(c.spp), stats.rays, stats.seconds});
+
+  // A tile stopped early holds fewer samples than the whole render's pixels: it is not written, so
+  // that no merge can take it (a requeued task renders it again).
+  const bool keep = write && !(tile && stats.pixel_samples_min < std::uint32_t(c.spp));
+  if (keep) {
+    write_outputs(outcome.film, oo, color);
+    if (!c.quiet) std::fprintf(stderr, "%s: wrote %s\n", program, oo.exr.string().c_str());
+  }
+  const char* what = keep ? "wrote" : write ? "wrote nothing (a tile is written whole or not at all): rendered" : "rendered";
+  if (const int sig = interrupt_signal()) {
+    std::fprintf(stderr, "%s: %s; %s %s\n", program, sig == SIGTERM ? "terminated (SIGTERM)" : "interrupted (SIGINT)", what,
+                 samples_text(stats, c.spp).c_str());
+    outcome.status = 128 + sig;
+  } else if (stats.timed_out && stats.pixel_samples_min < std::uint32_t(c.spp)) {
+    // Stopped early by the budget the user set: not a failure (exit 0), but the image has fewer
+    // samples than asked for, which --quiet must not hide.
+    std::fprintf(stderr, "%s: stopped at the time limit (%g s); %s %s\n", program, c.time_limit, what,
+                 samples_text(stats, c.spp).c_str());
+  }
+  return outcome;
+}
+
 }  // namespace
 
 void RenderCommand::add_options(CLI::App& app) {
@@ -90,6 +131,13 @@ void RenderCommand::add_options(CLI::App& app) {
   app.add_option("--tile", tile,
                  "render only tile I of N (I from 0 to N-1): the frame cut into N bands of whole rows, band I the rows "
                  "[floor(I*H/N), floor((I+1)*H/N)); written as --crop writes, for --merge");
+  app.add_option("--frames", frames,
+                 "render frames A to B (A-B) or frame N of the camera's glTF animation, frame f at time f/fps seconds, "
+                 "each to its own files: a run of # in the --out name becomes the zero-padded frame number "
+                 "(out.####.exr: out.0012.exr), else the number goes before the extension (out.exr: out.0012.exr); "
+                 "--png likewise");
+  app.add_option("--fps", fps, "with --frames: frames per second (default 24), in (0, 1e6]")
+      ->check(cli::number_in(0.0, 1e6, true));
   app.add_option("--camera", camera, "camera index or name (default: the scene's first, else a framing camera)");
   app.add_option("--seed", seed, "random seed")->check(cli::unsigned_whole);
   app.add_option("--threads", threads, "worker threads (0: all cores; more than the machine runs at once are capped)")
@@ -202,9 +250,21 @@ RenderOutcome run_render(RenderCommand& c, const fs::path& scene_path, const cha
   if (tile && !c.png.empty())
     throw input_error("--png " + c.png, "a tile (--crop, --tile) is written as its EXR alone; --merge writes the PNG");
 
+  if (c.fps != 0.0 && c.frames.empty()) throw input_error("--fps", "sets the rate of --frames; give --frames too");
+  const std::optional<FrameRange> range = c.frames.empty() ? std::nullopt : std::optional(parse_frames(c.frames));
+  const double fps = c.fps > 0.0 ? c.fps : kDefaultFps;
+  // Frame f's outputs (apps/render_frames.h).
+  const auto frame_outputs = [&](int f) {
+    OutputOptions o = oo;
+    o.exr = frame_path(c.out, f, "--out");
+    if (!c.png.empty()) o.png = frame_path(c.png, f, "--png");
+    return o;
+  };
+
   // Before the scene is read: a render must not end in "cannot write" for a path that was wrong
   // from the start. Also removes the temporaries a killed run left there.
-  if (write) prepare_outputs(oo);
+  // The first frame's here, each further frame's before it renders.
+  if (write) prepare_outputs(range ? frame_outputs(range->first) : oo);
 
   const ColorConfig color = ColorConfig::resolve(c.ocio.empty() ? std::nullopt : std::optional<fs::path>(c.ocio));
   // Before the scene is read: a display or view the config lacks is refused at once.
@@ -212,6 +272,7 @@ RenderOutcome run_render(RenderCommand& c, const fs::path& scene_path, const cha
   LoadOptions load;
   load.light_units = c.light_units == "radiometric" ? LightUnits::radiometric : LightUnits::photometric;
   load.variant = c.variant;
+  load.camera_animation = range.has_value();
   SetupProgress setup_progress(program, c.quiet);
   setup.progress = &setup_progress;
   // The brdf filter's builds are the ones worth keeping (render/mip_cache.h).
@@ -221,7 +282,12 @@ RenderOutcome run_render(RenderCommand& c, const fs::path& scene_path, const cha
   Scene scene = load_gltf(scene_path, load);
   setup_progress.end();
   for (const std::string& w : scene.warnings) std::fprintf(stderr, "%s: warning: %s\n", program, message_line(w).c_str());
-  const PreparedScene prepared(std::move(scene), setup, color);
+  PreparedScene prepared(std::move(scene), setup, color);
+  // Every frame's pose checked before the first renders; the notes below are the first frame's.
+  if (range) {
+    check_frame_poses(prepared.camera_desc(), *range, fps, scene_path.string());
+    prepared.pose_camera(frame_pose(prepared.camera_desc(), range->first, fps));
+  }
   print_mip_cache_warnings(mip_cache.get(), program);
   if (const auto counts = prepared.mip_cache_counts(); !c.quiet && counts.read + counts.built > 0)
     std::fprintf(stderr, "%s: MIP maps: %d read from the MIP cache %s, %d built\n", program, counts.read,
@@ -266,36 +332,27 @@ RenderOutcome run_render(RenderCommand& c, const fs::path& scene_path, const cha
                                                                    : LightSampling::mis;
   options.cancel = &cancel;
   setup_progress.end();
-  ProgressPrinter printer(c.quiet);
-  options.progress = [&](const ProgressInfo& p) { printer.update(p); };
-  // The first signal stops the render, which then writes what accumulated; a second one exits at
-  // once for a user who does not want to wait.
-  set_interrupt_mode(InterruptMode::stop_once, " a second time; the render was abandoned, nothing written");
+  if (!range) return render_and_write(c, prepared.world(), options, oo, color, program);
   RenderOutcome outcome;
-  outcome.film = render(prepared.world(), options, &outcome.stats);
-  const RenderStats& stats = outcome.stats;
-  // Writing the EXR and the PNG is short and must not be cut between the two: signals now only
-  // change the exit status.
-  set_interrupt_mode(InterruptMode::record);
-  printer.finish({stats.samples, pixels * std::uint64_t(c.spp), stats.rays, stats.seconds});
-
-  // A tile stopped early holds fewer samples than the whole render's pixels: it is not written, so
-  // that no merge can take it (a requeued task renders it again).
-  const bool keep = write && !(tile && stats.pixel_samples_min < std::uint32_t(c.spp));
-  if (keep) {
-    write_outputs(outcome.film, oo, color);
-    if (!c.quiet) std::fprintf(stderr, "%s: wrote %s\n", program, c.out.c_str());
-  }
-  const char* what = keep ? "wrote" : write ? "wrote nothing (a tile is written whole or not at all): rendered" : "rendered";
-  if (const int sig = interrupt_signal()) {
-    std::fprintf(stderr, "%s: %s; %s %s\n", program, sig == SIGTERM ? "terminated (SIGTERM)" : "interrupted (SIGINT)", what,
-                 samples_text(stats, c.spp).c_str());
-    outcome.status = 128 + sig;
-  } else if (stats.timed_out && stats.pixel_samples_min < std::uint32_t(c.spp)) {
-    // Stopped early by the budget the user set: not a failure (exit 0), but the image has fewer
-    // samples than asked for, which --quiet must not hide.
-    std::fprintf(stderr, "%s: stopped at the time limit (%g s); %s %s\n", program, c.time_limit, what,
-                 samples_text(stats, c.spp).c_str());
+  for (int f = range->first;; ++f) {
+    // A signal between two frames: the frames before are whole, and the next is not begun.
+    if (const int sig = interrupt_signal()) {
+      std::fprintf(stderr, "%s: %s before frame %d; frames %d to %d were written\n", program,
+                   sig == SIGTERM ? "terminated (SIGTERM)" : "interrupted (SIGINT)", f, range->first, f - 1);
+      outcome.status = 128 + sig;
+      break;
+    }
+    const OutputOptions frame_oo = frame_outputs(f);
+    if (f != range->first) {
+      prepared.pose_camera(frame_pose(prepared.camera_desc(), f, fps));
+      if (write) prepare_outputs(frame_oo);
+    }
+    options.seed = frame_seed(c.seed, f);
+    if (!c.quiet)
+      std::fprintf(stderr, "%s: frame %d (t = %g s), %d of %d\n", program, f, frame_time(f, fps), f - range->first + 1,
+                   range->count());
+    outcome = render_and_write(c, prepared.world(), options, frame_oo, color, program);
+    if (outcome.status != 0 || f == range->last) break;
   }
   return outcome;
 }

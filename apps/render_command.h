@@ -20,10 +20,11 @@ namespace svbrdf {
 
 struct RenderCommand {
   std::string scene_file, out, png, res, camera, env, sun, filter = "brdf", light_sampling = "mis", ocio,
-      light_units = "photometric", normal_mapping = "shading", variant, display, view, crop, tile;
+      light_units = "photometric", normal_mapping = "shading", variant, display, view, crop, tile, frames;
   int spp = 64, threads = 0, max_depth = 16;
   std::uint64_t seed = 0, max_texels = resource_limits().max_texels;
   double time_limit = 0.0;
+  double fps = 0.0;  // 0: not given (kDefaultFps, apps/render_frames.h)
   float exposure = 0.0f, footprint_scale = 0.0f, clamp = 0.0f, aperture = 0.0f, focus_distance = 0.0f;
   bool use_float = false, quiet = false, aovs = false, transparent = false;
   MipCacheOptions mip_cache;
@@ -45,7 +46,8 @@ struct RenderOutcome {
 };
 
 // Renders `scene` as `command` asks, printing what svbrdf-render prints on stderr under the name
-// `program`. The EXR and PNG are written when command.out names the EXR (the program gives it a
+// `program`. With --frames, each frame in turn into its own files (apps/render_frames.h); the outcome
+// is the last frame's. The EXR and PNG are written when command.out names the EXR (the program gives it a
 // default; the Python module, which returns the film, leaves it empty unless asked). Throws
 // svbrdf::Error for bad input and failures, with the program's lines. `cancel` stops the render once
 // set (the program's is the flag its signal handler sets, interrupt_requested(); the Python module

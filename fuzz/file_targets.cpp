@@ -10,7 +10,10 @@ namespace svbrdf::fuzz {
 int gltf_input(const std::uint8_t* data, std::size_t size) {
   return read_or_refuse("gltf", [&] {
     // One name for both containers: the reader tells a .glb by its magic, not by its name.
-    (void)load_gltf(scratch_file("input.gltf", data, size));
+    // Camera animations read too: the reader of --frames, beside everything a still render reads.
+    LoadOptions options;
+    options.camera_animation = true;
+    (void)load_gltf(scratch_file("input.gltf", data, size), options);
   });
 }
 

@@ -185,6 +185,7 @@ class Reader {
       parse(rewritten, binary, rewritten.size());
     }
     check_every_primitive_read(document);
+    doc_.animation_channels = kept_channels(document);
     return_draco_index_views(lent, doc_.model);
     return_stand_ins(stand_ins, doc_.model);
     decode_meshopt(meshopt, doc_.model, path_);
@@ -227,6 +228,37 @@ class Reader {
       fail("meshes[" + std::to_string(m) + "].primitives[" + std::to_string(p) + "]",
            "a primitive that cannot be read: its attributes, required, must be an object of accessor indices");
     }
+  }
+
+  // Which channels of each animation tinygltf 2.7 kept (Document::animation_channels): its rule, an
+  // integer `sampler` and, where `target` is an object, an integer `node` and a string `path` in it.
+  // Where the count is not tinygltf's, each channel is taken to be the file's own.
+  std::vector<std::vector<int>> kept_channels(const nlohmann::json& document) const {
+    std::vector<std::vector<int>> out(doc_.model.animations.size());
+    const auto animations = document.find("animations");
+    for (std::size_t a = 0; a < out.size(); ++a) {
+      const std::size_t kept = doc_.model.animations[a].channels.size();
+      if (animations != document.end() && animations->is_array() && a < animations->size()) {
+        const nlohmann::json& anim = (*animations)[a];
+        const auto channels = anim.is_object() ? anim.find("channels") : anim.end();
+        if (channels != anim.end() && channels->is_array())
+          for (std::size_t c = 0; c < channels->size(); ++c) {
+            const nlohmann::json& ch = (*channels)[c];
+            if (!ch.is_object() || !ch.contains("sampler") || !ch["sampler"].is_number_integer()) continue;
+            const auto target = ch.find("target");
+            if (target != ch.end() && target->is_object() &&
+                (!target->contains("node") || !(*target)["node"].is_number_integer() || !target->contains("path") ||
+                 !(*target)["path"].is_string()))
+              continue;
+            out[a].push_back(int(c));
+          }
+      }
+      if (out[a].size() != kept) {
+        out[a].resize(kept);
+        for (std::size_t c = 0; c < kept; ++c) out[a][c] = int(c);
+      }
+    }
+    return out;
   }
 
   // The whole file, refused before reading when it is not a regular file or larger than the memory

@@ -25,6 +25,10 @@ struct Document {
   std::filesystem::path path;
   tinygltf::Model model;
   std::vector<ImageBytes> images;  // by image index, as many as model.images
+  // By animation, the index in the file's `channels` array of each channel tinygltf kept, so that a
+  // message names the file's channel: tinygltf 2.7 leaves out, without an error, a channel with no
+  // sampler or whose target has no node (one KHR_animation_pointer animates).
+  std::vector<std::vector<int>> animation_channels;
 };
 
 // Reads `path`. Throws svbrdf::Error "PATH: [JSON path: ]what" (bad input) when the file cannot be

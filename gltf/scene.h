@@ -5,6 +5,7 @@
 // space. Built by load_gltf (gltf/scene_reader.h); nothing in it refers back to tinygltf.
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -63,6 +64,8 @@ struct ImageDesc {
   std::optional<Sha256Digest> encoded_digest;
 };
 
+struct CameraMotion;  // gltf/animation.h
+
 struct CameraDesc {
   enum class Type { perspective, orthographic };
   std::string name;  // the camera's name, else its node's
@@ -71,8 +74,11 @@ struct CameraDesc {
   float aspect_ratio = 0.0f;  // 0 when the file gives none
   float xmag = 1.0f, ymag = 1.0f;  // half extents (orthographic)
   float znear = 0.0f, zfar = 0.0f;
-  glm::dmat4 to_world{1.0};  // the camera looks along its local −Z with +Y up
+  glm::dmat4 to_world{1.0};  // the camera looks along its local −Z with +Y up; the static pose
   int node = -1;
+  // What the file's animations do to the node and its ancestors (LoadOptions::camera_animation); null
+  // when they were not read or no animation moves the camera.
+  std::shared_ptr<const CameraMotion> motion;
 };
 
 // KHR_lights_punctual, in world space, in the renderer's radiometric units: a directional light's

@@ -16,6 +16,8 @@
 #include "base/error.h"
 #include "gltf/document.h"
 #include "gltf/accessor.h"
+#include "gltf/animation.h"
+#include "gltf/animation_reader.h"
 #include "gltf/draco_decode.h"
 #include "gltf/material_reader.h"
 #include "gltf/tangents.h"
@@ -395,6 +397,13 @@ class Loader {
         fail(w + ".camera", "names " + json_index("cameras", n.camera) + ", but the file has " +
                                 std::to_string(model_.cameras.size()) + " cameras");
       scene_.cameras.push_back(camera(n.camera, node, world));
+      if (options_.camera_animation) {
+        // The node and its ancestors, the root first: what an animation may move the camera by.
+        std::vector<int> chain;
+        for (int k = node; k >= 0; k = parent_[std::size_t(k)]) chain.insert(chain.begin(), k);
+        CameraMotion motion = gltf::read_camera_motion(doc_, chain, &scene_.warnings);
+        if (motion.animated()) scene_.cameras.back().motion = std::make_shared<const CameraMotion>(std::move(motion));
+      }
     }
     auto it = n.extensions.find("KHR_lights_punctual");
     if (it != n.extensions.end()) {
@@ -417,18 +426,9 @@ class Loader {
   CameraDesc camera(int ci, int node, const glm::dmat4& world) const {
     const tinygltf::Camera& c = model_.cameras[static_cast<std::size_t>(ci)];
     const std::string w = json_index("cameras", ci);
-    // A camera's node must place it: finite, and invertible in its upper 3×3 (glTF 2.0 §3.10.1 asks
-    // for no scale on a camera node; a zero scale would give rays no direction).
+    // A camera's node must place it (camera_transform_fault).
     const std::string wn = json_index("nodes", node);
-    for (int col = 0; col < 4; ++col)
-      for (int row = 0; row < 4; ++row)
-        if (!std::isfinite(world[col][row]) || std::abs(world[col][row]) > 1e18)
-          fail(wn, "places " + w + " with a transform that is not finite (or beyond 1e18)");
-    const double det = glm::determinant(glm::dmat3(world));
-    const double size = glm::length(glm::dvec3(world[0])) * glm::length(glm::dvec3(world[1])) *
-                        glm::length(glm::dvec3(world[2]));
-    if (!(std::abs(det) > 1e-12 * size) || !(size > 0))
-      fail(wn, "places " + w + " with a singular transform (a zero scale); a camera needs three independent axes");
+    if (const char* fault = camera_transform_fault(world)) fail(wn, "places " + w + " " + fault);
     CameraDesc d;
     d.name = !c.name.empty() ? c.name : !model_.nodes[std::size_t(node)].name.empty() ? model_.nodes[std::size_t(node)].name : w;
     d.node = node;
@@ -501,7 +501,8 @@ class Loader {
       for (std::size_t c = 0; c < model_.nodes[i].children.size(); ++c)
         check_node(model_.nodes[i].children[c], json_index("nodes", int(i)) + ".children[" + std::to_string(c) + "]");
 
-    const std::vector<int> parent = node_parents();
+    parent_ = node_parents();
+    const std::vector<int>& parent = parent_;
 
     std::vector<int> roots;
     std::string roots_where;
@@ -577,6 +578,7 @@ class Loader {
   gltf::Document doc_;
   tinygltf::Model& model_ = doc_.model;  // the document's, read by every step
   Scene scene_;
+  std::vector<int> parent_;  // each node's parent, −1 for a root (node_parents)
   std::vector<std::optional<LightDesc>> light_templates_;  // none: a light of a type not drawn
   std::vector<std::string> variant_names_;  // KHR_materials_variants, in the file's order
   int variant_ = -1;                         // the one --variant selects; −1: none

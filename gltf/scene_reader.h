@@ -11,9 +11,11 @@
 // (KHR_materials_variants). Missing normals
 // are generated flat, missing tangents (where a normal map needs them) MikkTSpace-compatible. An
 // unsupported extension in extensionsRequired is an error; one only in extensionsUsed is a warning.
-// Not read: animations and morph targets (the static pose is drawn), skins (meshes drawn in their
-// bind pose, with a warning), occlusion textures are kept in the MaterialDesc but a path tracer
-// computes occlusion itself.
+// Animations (gltf/animation.h) are read only when LoadOptions::camera_animation asks, and only
+// those that move a camera's node or its ancestors: everything is drawn in its static pose, and a
+// camera carries its motion for the frames of an animated render. Not read: morph targets, skins
+// (meshes drawn in their bind pose, with a warning); occlusion textures are kept in the
+// MaterialDesc but a path tracer computes occlusion itself.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -37,6 +39,9 @@ struct LoadOptions {
   // KHR_materials_variants: the variant whose materials the primitives take; empty: each primitive's
   // own material. A name the file does not have is an input error listing the file's variants.
   std::string variant;
+  // Read the animation channels that move each camera (CameraDesc::motion), checking them; a file's
+  // other animations are not read. Off, animations are not read at all (a still render).
+  bool camera_animation = false;
 };
 
 Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options = {});

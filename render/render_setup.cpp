@@ -102,12 +102,11 @@ PreparedScene::PreparedScene(Scene scene, const SceneSetup& setup, const ColorCo
                           ": its vertical field of view is kept and the horizontal one follows the frame");
     }
   }
+  camera_desc_ = desc;
+  aperture_ = setup.aperture;
+  focus_distance_ = setup.focus_distance;
   camera_ = std::make_unique<Camera>(desc, width, height);
-  if (setup.aperture != 0.0f || setup.focus_distance != 0.0f) {
-    if (!(setup.focus_distance >= 0.0f))  // a negative or NaN distance, not the autofocus's 0
-      camera_->set_lens(setup.aperture, setup.focus_distance);
-    camera_->set_lens(setup.aperture, setup.focus_distance > 0.0f ? setup.focus_distance : autofocus());
-  }
+  set_lens();
 
   world_.scene = &scene_;
   world_.textures = textures_.get();
@@ -149,6 +148,22 @@ PreparedScene::PreparedScene(Scene scene, const SceneSetup& setup, const ColorCo
     world_.environment = Environment::from_image(std::move(sky), setup.env);
     environment_note_ = "the equirectangular environment " + setup.env;
   }
+}
+
+void PreparedScene::set_lens() {
+  if (aperture_ != 0.0f || focus_distance_ != 0.0f) {
+    if (!(focus_distance_ >= 0.0f))  // a negative or NaN distance, not the autofocus's 0
+      camera_->set_lens(aperture_, focus_distance_);
+    camera_->set_lens(aperture_, focus_distance_ > 0.0f ? focus_distance_ : autofocus());
+  }
+}
+
+void PreparedScene::pose_camera(const glm::dmat4& to_world) {
+  CameraDesc posed = camera_desc_;
+  posed.to_world = to_world;
+  camera_ = std::make_unique<Camera>(posed, camera_->width(), camera_->height());
+  world_.camera = camera_.get();
+  set_lens();
 }
 
 float PreparedScene::autofocus() const {

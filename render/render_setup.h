@@ -50,6 +50,12 @@ class PreparedScene {
   const Camera& camera() const { return *camera_; }
   // The distance SceneSetup::focus_distance 0 focuses at.
   float autofocus() const;
+  // The camera as the file describes it: its static pose, and its motion when the file was read with
+  // LoadOptions::camera_animation (null for the framing camera of a scene that has none).
+  const CameraDesc& camera_desc() const { return camera_desc_; }
+  // Places the camera at `to_world` (a pose of camera_desc().motion, checked by the caller with
+  // camera_transform_fault), keeping the frame's size and the lens; an autofocus focuses anew.
+  void pose_camera(const glm::dmat4& to_world);
   const EmbreeScene& bvh() const { return *bvh_; }
   // The environment the render uses, in words, when it is not the file's own (glTF carries none, so
   // whenever it is not black), e.g. "a uniform white environment of radiance 1 (...)"; and for a
@@ -65,12 +71,15 @@ class PreparedScene {
   SceneMips::CacheCounts mip_cache_counts() const { return mips_->cache_counts(); }
 
  private:
+  void set_lens();  // SceneSetup's aperture and focus distance on camera_
   Scene scene_;
   EmbreeDevice device_;
   std::unique_ptr<TextureSet> textures_;
   std::unique_ptr<SceneMips> mips_;
   std::unique_ptr<EmbreeScene> bvh_;
   std::unique_ptr<Camera> camera_;
+  CameraDesc camera_desc_;
+  float aperture_ = 0.0f, focus_distance_ = 0.0f;  // SceneSetup's
   std::unique_ptr<Emitters> emitters_;
   RenderWorld world_;
   std::string environment_note_;
