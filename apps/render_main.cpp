@@ -47,7 +47,8 @@ int main(int argc, char** argv) {
   app.add_flag("--merge", merge,
                "assemble tiles (--tile, --crop) into the whole frame's EXR and PNG: svbrdf-render --merge -o OUT.exr "
                "TILE.exr... with the output options of the render (--png, --float, --exposure, --transparent, --ocio-config, "
-               "--display, --view)");
+               "--display, --view); with --frames A-B, each frame's tiles into that frame's "
+               "output, every name (the tiles, -o, --png) given as the render's --out was, for --frames to name per frame");
   svbrdf::SlurmOptions slurm;
   slurm.add_to(app);
   return svbrdf::run_program("svbrdf-render", app, argc, argv, [&] {

@@ -5,6 +5,7 @@
 #include <optional>
 #include <tuple>
 
+#include "apps/render_frames.h"
 #include "base/error.h"
 #include "textures/color.h"
 #include "textures/image.h"
@@ -78,19 +79,33 @@ RenderLayers merge_tiles(const std::vector<fs::path>& tiles) {
 
 void run_merge(const RenderCommand& c, const std::vector<fs::path>& tiles, const char* program) {
   if (c.out.empty()) throw input_error("--merge", "needs -o/--out: the EXR of the whole frame");
+  const ColorConfig color = ColorConfig::resolve(c.ocio.empty() ? std::nullopt : std::optional<fs::path>(c.ocio));
   OutputOptions oo = c.output_options();
   oo.tile = false;  // the merge of tiles is the frame
-  // The tiles are read before anything is written: a refused tile leaves the outputs as they were.
-  prepare_outputs(oo);
-  for (const fs::path& t : tiles)
-    if (fs::path(t).lexically_normal() == fs::path(c.out).lexically_normal())
-      throw input_error(c.out, "is both a tile and the output");
-  const ColorConfig color = ColorConfig::resolve(c.ocio.empty() ? std::nullopt : std::optional<fs::path>(c.ocio));
   std::tie(oo.display, oo.view) = color.display_view(c.display, c.view);
-  const RenderLayers frame = merge_tiles(tiles);
-  write_layers(frame, oo, color);
-  if (!c.quiet)
-    std::fprintf(stderr, "%s: merged %zu tiles into %s\n", program, tiles.size(), c.out.c_str());
+  // One frame's tiles into its outputs.
+  const auto merge = [&](const OutputOptions& out, const std::vector<fs::path>& parts) {
+    // The tiles are read before anything is written: a refused tile leaves the outputs as they were.
+    prepare_outputs(out);
+    for (const fs::path& t : parts)
+      if (t.lexically_normal() == out.exr.lexically_normal())
+        throw input_error(out.exr.string(), "is both a tile and the output");
+    write_layers(merge_tiles(parts), out, color);
+    if (!c.quiet)
+      std::fprintf(stderr, "%s: merged %zu tiles into %s\n", program, parts.size(), out.exr.string().c_str());
+  };
+  if (c.frames.empty()) return merge(oo, tiles);
+  // --frames: each frame's tiles and outputs are named as the render names them (apps/render_frames.h).
+  const FrameRange range = parse_frames(c.frames);
+  for (int f = range.first;; ++f) {
+    OutputOptions out = oo;
+    out.exr = frame_path(c.out, f, "--out");
+    if (!c.png.empty()) out.png = frame_path(c.png, f, "--png");
+    std::vector<fs::path> parts;
+    for (const fs::path& t : tiles) parts.emplace_back(frame_path(t.string(), f, "a tile"));
+    merge(out, parts);
+    if (f == range.last) break;
+  }
 }
 
 }  // namespace svbrdf

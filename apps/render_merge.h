@@ -20,7 +20,8 @@ namespace svbrdf {
 RenderLayers merge_tiles(const std::vector<std::filesystem::path>& tiles);
 
 // Merges `tiles` and writes command.out and its PNG as run_render would, printing on stderr under
-// the name `program` unless command.quiet.
+// the name `program` unless command.quiet. With command.frames, merges each frame of the range: the
+// tiles and the outputs named for the frame as --frames names a render's (apps/render_frames.h).
 void run_merge(const RenderCommand& command, const std::vector<std::filesystem::path>& tiles, const char* program);
 
 }  // namespace svbrdf

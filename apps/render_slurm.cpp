@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <system_error>
 
+#include "apps/render_frames.h"
 #include "base/cli_checks.h"
 #include "base/error.h"
 
@@ -21,9 +22,30 @@ std::string quoted(const std::string& text) {
   return out + "'";
 }
 
+// `text` as one argument of an #SBATCH line: in double quotes, each \ and " escaped by a backslash.
+// sbatch reads a directive's argument up to unquoted white space and takes single or double quotes
+// and backslash escapes (Slurm's sbatch, _get_argument); unquoted, a space would end the path and a #
+// begin a comment.
+std::string directive_quoted(const std::string& text) {
+  std::string out = "\"";
+  for (const char ch : text) {
+    if (ch == '\\' || ch == '"') out += '\\';
+    out += ch;
+  }
+  return out + "\"";
+}
+
+// A path as sbatch's --output takes it: its % doubled, for %A, %a and %j are the job's numbers there
+// (sbatch(1), filename pattern: "%%" is the character %).
+std::string output_pattern(const std::string& path) {
+  std::string out;
+  for (const char ch : path) out += ch == '%' ? std::string("%%") : std::string(1, ch);
+  return out;
+}
+
 // The #SBATCH lines both jobs share: where they run and log, and what the user passed on.
 std::string common_directives(const SlurmOptions& s, const fs::path& folder) {
-  std::string out = "#SBATCH --chdir=" + folder.string() + "\n";
+  std::string out = "#SBATCH --chdir=" + directive_quoted(folder.string()) + "\n";
   if (!s.partition.empty()) out += "#SBATCH --partition=" + s.partition + "\n";
   if (!s.account.empty()) out += "#SBATCH --account=" + s.account + "\n";
   if (!s.time.empty()) out += "#SBATCH --time=" + s.time + "\n";
@@ -44,7 +66,9 @@ void SlurmOptions::add_to(CLI::App& app) {
                  "render on a Slurm cluster instead of here: print (the submission as a shell script) | submit (run "
                  "sbatch: an array job of tiles, then a merge job after it; prints the job ids)")
       ->check(CLI::IsMember({"print", "submit"}));
-  app.add_option("--slurm-tiles", tiles, "with --slurm: the number of tiles, one array task each (default 4)")
+  app.add_option("--slurm-tiles", tiles,
+                 "with --slurm: the number of tiles of each frame, one array task each (default 4; with --frames 1: a "
+                 "task renders a frame whole)")
       ->check(cli::whole_in(1, INT_MAX));
   app.add_option("--slurm-partition", partition, "with --slurm: sbatch's --partition for both jobs");
   app.add_option("--slurm-account", account, "with --slurm: sbatch's --account for both jobs");
@@ -74,39 +98,61 @@ std::vector<std::string> without_options(const std::vector<std::string>& args, c
 std::string slurm_submission(const SlurmOptions& s, const RenderCommand& c, const fs::path& program,
                              const std::vector<std::string>& render_args, const fs::path& folder) {
   const fs::path out = fs::absolute(c.out).lexically_normal();
-  const std::string stem = (out.parent_path() / out.stem()).string(), n = std::to_string(s.tiles);
-  const auto tile_file = [&](const std::string& index) { return stem + ".tile-" + index + "-of-" + n + ".exr"; };
+  const bool range = !c.frames.empty();
+  const FrameRange frames_asked = range ? parse_frames(c.frames) : FrameRange{};
+  const int tiles = s.tile_count(range);
+  const std::string stem = (out.parent_path() / out.stem()).string(), n = std::to_string(tiles);
   const std::string prog = quoted(program.string());
+  const std::string png = c.png.empty() ? "" : fs::absolute(c.png).lexically_normal().string();
+  const long long frames = frames_asked.count(), tasks = frames * tiles;
 
-  std::string tiles = "#!/bin/bash\n#SBATCH --job-name=svbrdf-tiles\n#SBATCH --array=0-" + std::to_string(s.tiles - 1) +
-                      "\n#SBATCH --requeue\n#SBATCH --output=" + stem + ".slurm-%A_%a.log\n" + common_directives(s, folder);
-  tiles += "exec " + prog;
-  for (const std::string& a : render_args) tiles += " " + quoted(a);
-  // Double quotes: the task's index is the shell's to expand, in the batch script.
-  tiles += " --quiet --tile \"$SLURM_ARRAY_TASK_ID/" + n + "\" --out " + quoted(stem + ".tile-") +
-           "\"$SLURM_ARRAY_TASK_ID\"" + quoted("-of-" + n + ".exr") + "\n";
-
-  std::string merge = "#!/bin/bash\n#SBATCH --job-name=svbrdf-merge\n#SBATCH --output=" + stem + ".slurm-%j-merge.log\n" +
+  // The array: task K renders tile K mod N of frame A + K div N (of the frame alone without --frames).
+  std::string array = "#!/bin/bash\n#SBATCH --job-name=svbrdf-" + std::string(tiles > 1 ? "tiles" : "frames") +
+                      "\n#SBATCH --array=0-" + std::to_string(tasks - 1) + "\n#SBATCH --requeue\n#SBATCH --output=" +
+                      directive_quoted(output_pattern(stem + ".slurm-") + "%A_%a.log") + "\n" +
                       common_directives(s, folder);
+  if (range) array += "frame=$((" + std::to_string(frames_asked.first) + " + SLURM_ARRAY_TASK_ID / " + n + "))\n";
+  if (tiles > 1) array += "tile=$((SLURM_ARRAY_TASK_ID % " + n + "))\n";
+  array += "exec " + prog;
+  for (const std::string& a : render_args) array += " " + quoted(a);
+  // Double quotes: the frame and tile are the shell's to expand, in the batch script.
+  array += " --quiet";
+  if (range) array += " --frames \"$frame\"";
+  if (tiles > 1)
+    array += " --tile \"$tile/" + n + "\" --out " + quoted(stem + ".tile-") + "\"$tile\"" + quoted("-of-" + n + ".exr");
+  else  // frames whole: each task writes its frame's output itself
+    array += " --out " + quoted(out.string()) + (png.empty() ? "" : " --png " + quoted(png));
+  array += "\n";
+
+  const std::string head = "#!/bin/sh\n# svbrdf-render --slurm: " +
+                           std::string(range ? "frames " + c.frames + " of " : "") + out.string() + " as a Slurm array job" +
+                           (tiles > 1 ? " of tiles, then their merge" : "") + ".\nset -e\n";
+  const std::string submit_array = "array=$(sbatch --parsable <<'SVBRDF_ARRAY'\n" + array + "SVBRDF_ARRAY\n)\n"
+                                   "array=${array%%;*}\n";
+  const std::string what = range ? std::to_string(frames) + " frames" + (tiles > 1 ? " x " + n + " tiles" : "")
+                                 : n + " tiles";
+  if (tiles == 1 && range)
+    return head + submit_array + "echo \"frames: job $array (" + std::to_string(tasks) + " array tasks)\"\n";
+
+  std::string merge = "#!/bin/bash\n#SBATCH --job-name=svbrdf-merge\n#SBATCH --output=" +
+                      directive_quoted(output_pattern(stem + ".slurm-") + "%j-merge.log") + "\n" + common_directives(s, folder);
   merge += "exec " + prog + " --merge --quiet --out " + quoted(out.string());
-  if (!c.png.empty()) merge += " --png " + quoted(fs::absolute(c.png).lexically_normal().string());
+  if (range) merge += " --frames " + quoted(c.frames);  // every frame's tiles, named as each task named them
+  if (!png.empty()) merge += " --png " + quoted(png);
   if (c.use_float) merge += " --float";
   if (c.transparent) merge += " --transparent";
   if (c.exposure != 0.0f) merge += " --exposure " + number_text(c.exposure);
   if (!c.ocio.empty()) merge += " --ocio-config " + quoted(c.ocio);
   if (!c.display.empty()) merge += " --display " + quoted(c.display);
   if (!c.view.empty()) merge += " --view " + quoted(c.view);
-  for (int i = 0; i < s.tiles; ++i) merge += " " + quoted(tile_file(std::to_string(i)));
+  for (int i = 0; i < tiles; ++i) merge += " " + quoted(stem + ".tile-" + std::to_string(i) + "-of-" + n + ".exr");
   merge += "\n";
 
   // The batch scripts as here-documents with a quoted delimiter: sbatch gets them unexpanded.
-  return "#!/bin/sh\n# svbrdf-render --slurm: the tiles of " + out.string() + " as a Slurm array job, then their merge.\n"
-         "set -e\n"
-         "tiles=$(sbatch --parsable <<'SVBRDF_TILES'\n" + tiles + "SVBRDF_TILES\n)\n"
-         "tiles=${tiles%%;*}\n"
-         "merge=$(sbatch --parsable --dependency=afterok:$tiles <<'SVBRDF_MERGE'\n" + merge + "SVBRDF_MERGE\n)\n"
+  return head + submit_array +
+         "merge=$(sbatch --parsable --dependency=afterok:$array <<'SVBRDF_MERGE'\n" + merge + "SVBRDF_MERGE\n)\n"
          "merge=${merge%%;*}\n"
-         "echo \"tiles: job $tiles (" + n + " array tasks); merge: job $merge, after them\"\n";
+         "echo \"tiles: job $array (" + std::to_string(tasks) + " array tasks: " + what + "); merge: job $merge, after them\"\n";
 }
 
 int run_slurm(const SlurmOptions& s, const RenderCommand& c, int argc, char** argv) {
@@ -116,15 +162,29 @@ int run_slurm(const SlurmOptions& s, const RenderCommand& c, int argc, char** ar
     throw input_error("--slurm", "renders each tile whole, so that the merge is the single render; leave out --time-limit");
   if (!c.more_inputs.empty()) throw input_error(c.more_inputs.front(), "a second scene: --slurm renders one");
   if (c.out.empty()) throw input_error("--slurm", "needs -o/--out: the EXR the merge writes");
+  // A batch script names these paths in #SBATCH lines, which end at a line break.
+  for (const std::string& path : {c.out, c.png, fs::current_path().string()})
+    if (path.find_first_of("\n\r") != std::string::npos)
+      throw input_error("--slurm", "a path with a line break cannot be named in a batch script: " + path);
+  if (!c.frames.empty()) {
+    const long long tasks = (long long)(parse_frames(c.frames).count()) * s.tile_count(true);
+    if (tasks > INT_MAX)
+      throw input_error("--slurm-tiles " + std::to_string(s.tiles), "times the " + c.frames +
+                                                                          " frames is more array tasks than Slurm numbers");
+    // The frames' outputs, named as each task will name them, checked now (e.g. two runs of #).
+    (void)frame_path(c.out, 0, "--out");
+    if (!c.png.empty()) (void)frame_path(c.png, 0, "--png");
+  }
   std::error_code ec;
   if (!c.scene_file.empty() && !fs::is_regular_file(c.scene_file, ec)) throw input_error(c.scene_file, "no such scene file");
   prepare_outputs(c.output_options());  // the folder exists (the logs and tiles go there) and takes the files
+  if (c.fps != 0.0 && c.frames.empty()) throw input_error("--fps", "sets the rate of --frames; give --frames too");
   const fs::path self = fs::read_symlink("/proc/self/exe", ec);
   if (ec) throw environment_error("/proc/self/exe", "cannot find this program's path: " + ec.message());
   const std::vector<std::string> args = without_options(
       std::vector<std::string>(argv + 1, argv + argc),
       {"--slurm", "--slurm-tiles", "--slurm-partition", "--slurm-account", "--slurm-time", "--slurm-option", "-o", "--out",
-       "--png"});
+       "--png", "--frames"});
   const std::string script = slurm_submission(s, c, self, args, fs::current_path());
   if (s.mode == "print") {
     std::fputs(script.c_str(), stdout);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "apps/render_command.h"
+#include "apps/render_frames.h"
 #include "base/error.h"
 #include "python/arrays.h"
 #include "python/bindings.h"
@@ -75,6 +76,10 @@ py::object render_scene(const py::object& scene, const py::kwargs& kwargs) {
   } catch (const CLI::ParseError& e) {
     throw input_error("", e.what());
   }
+  // One call returns one image: a frame of an animation (frames="12"), not a range of them.
+  if (!command.frames.empty() && parse_frames(command.frames).count() > 1)
+    throw input_error("frames=" + command.frames, "svbrdf.render returns one frame; render a range with svbrdf-render "
+                                                  "--frames, or one frame a call");
   // A Ctrl-C stops the render as it stops the program's, and raises KeyboardInterrupt.
   RenderOutcome outcome;
   call_interruptibly([&](const std::atomic<bool>& cancel) {
