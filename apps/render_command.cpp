@@ -9,12 +9,12 @@
 #include <tuple>
 #include <utility>
 
+#include "apps/render_frames.h"
 #include "base/checked_number.h"
 #include "base/cli_checks.h"
 #include "base/error.h"
 #include "base/interrupt.h"
 #include "base/message_line.h"
-#include "apps/render_frames.h"
 #include "gltf/scene_reader.h"
 #include "mip/texture_filter.h"
 #include "render/crop.h"

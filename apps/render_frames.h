@@ -5,7 +5,6 @@
 // camera is its time's pose, and its random numbers depend on the seed and its number alone.
 #include <cstdint>
 #include <string>
-#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -25,8 +24,8 @@ struct FrameRange {
 // several ranges); every pose of a range is checked before its first frame renders.
 inline constexpr int kMaxFrameCount = 1'000'000;
 
-// "A-B" (A ≤ B, at most kMaxFrameCount frames) or "N", whole numbers from 0 to 2^31 − 2. Throws svbrdf::Error (bad input) naming
-// --frames and the text otherwise.
+// "A-B" (A ≤ B, at most kMaxFrameCount frames) or "N", whole numbers from 0 to 2^31 − 2. Throws
+// svbrdf::Error (bad input) naming --frames and the text otherwise.
 FrameRange parse_frames(const std::string& text);
 
 // The file frame `frame` writes for the output `path`: a run of # in the file's name (not its folder)
