@@ -73,6 +73,18 @@ class RenderAgainstProgram(unittest.TestCase):
                     svbrdf.render(SCENE, **kwargs)
                 self.assertEqual(line, str(caught.exception) + ('; see --help' if line.endswith('; see --help') else ''))
 
+    def test_a_range_of_frames_is_refused_one_call_returns_one_image(self):
+        with self.assertRaises(svbrdf.InputError) as caught:
+            svbrdf.render(SCENE, frames='0-2')
+        self.assertIn('frames=0-2: svbrdf.render returns one frame', str(caught.exception))
+        # One frame is a render: this camera is still, which the program refuses too, with its line.
+        with tempfile.TemporaryDirectory() as d:
+            line = refusal([program('svbrdf-render'), SCENE, '--quiet', '--frames', '3', '--out', os.path.join(d, 'x.exr')],
+                           'svbrdf-render')
+        with self.assertRaises(svbrdf.InputError) as caught:
+            svbrdf.render(SCENE, frames='3')
+        self.assertEqual(str(caught.exception), line)
+
     def test_a_missing_scene_raises_the_programs_line(self):
         missing = os.path.join(tempfile.gettempdir(), 'svbrdf-no-such-scene.gltf')
         with tempfile.TemporaryDirectory() as d:
