@@ -50,7 +50,6 @@ std::string mip_unsupported(const MaterialDesc& m) {
     return "KHR_materials_diffuse_roughness (the MIP lobes are Lambertian)";
   if (m.diffuse_transmission > 0.0f) return "KHR_materials_diffuse_transmission (the MIP lobes reflect only)";
   if (m.anisotropy_strength > 0.0f) return "KHR_materials_anisotropy (the MIP lobes are isotropic)";
-  if (max_channel(m.sheen_color) > 0.0f) return "KHR_materials_sheen (the MIP lobes have no sheen)";
   if (m.iridescence > 0.0f) return "KHR_materials_iridescence (the MIP lobes' Fresnel is Schlick's)";
   return {};
 }
@@ -93,6 +92,15 @@ MaterialImages material_images(const MaterialDesc& d, const std::function<SlotIm
     in.clearcoat_normal = image(d.clearcoat_normal_texture, false);
     in.clearcoat_normal_name = coat + "clearcoatNormalTexture";
     in.clearcoat_normal_scale = d.clearcoat_normal_texture.scale;
+  }
+  if (max_channel(d.sheen_color) > 0.0f) {
+    const std::string sheen = at + ".extensions.KHR_materials_sheen.";
+    in.sheen_color = image(d.sheen_color_texture, true, &in.sheen_color_is_linear);
+    in.sheen_color_name = sheen + "sheenColorTexture";
+    in.sheen_color_factor = d.sheen_color;
+    in.sheen_roughness = image(d.sheen_roughness_texture, false);
+    in.sheen_roughness_name = sheen + "sheenRoughnessTexture";
+    in.sheen_roughness_factor = d.sheen_roughness;
   }
   return in;
 }

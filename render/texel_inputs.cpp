@@ -1,5 +1,7 @@
 #include "render/texel_inputs.h"
 
+#include "appearance/shading.h"
+
 namespace svbrdf {
 
 bool same_transform(const TextureTransform& a, const TextureTransform& b) {
@@ -47,12 +49,22 @@ std::vector<TexelInput> texel_inputs(const MaterialDesc& m) {
     };
     in.insert(in.end(), coat.begin(), coat.end());
   }
+  // KHR_materials_sheen (MaterialTexels::sheen_layer): likewise only where its colour is not black.
+  if (max_channel(m.sheen_color) > 0.0f) {
+    const std::vector<TexelInput> sheen{
+        {"sheenColorFactor", nullptr, false, {m.sheen_color.r, m.sheen_color.g, m.sheen_color.b}},
+        {"sheenColorTexture", &m.sheen_color_texture, true, {}},
+        {"sheenRoughnessFactor", nullptr, false, {m.sheen_roughness}},
+        {"sheenRoughnessTexture", &m.sheen_roughness_texture, false, {}},
+    };
+    in.insert(in.end(), sheen.begin(), sheen.end());
+  }
   return in;
 }
 
 bool same_texels(const MaterialDesc& a, const MaterialDesc& b) {
   const std::vector<TexelInput> x = texel_inputs(a), y = texel_inputs(b);
-  if (x.size() != y.size()) return false;  // one has a coat, the other none
+  if (x.size() != y.size()) return false;  // one has a coat or a sheen, the other none
   for (std::size_t i = 0; i < x.size(); ++i) {
     if (x[i].texture && !same_ref(*x[i].texture, *y[i].texture)) return false;
     if (x[i].values != y[i].values) return false;

@@ -37,6 +37,8 @@ MaterialTexels decode_material_texels(const MaterialImages& in, const ColorConfi
   check_factor(in.clearcoat_factor, true, "clearcoat factor");
   check_factor(in.clearcoat_roughness_factor, true, "clearcoat roughness factor");
   if (!std::isfinite(in.clearcoat_normal_scale)) throw input_error("clearcoat normal scale", "must be finite");
+  for (int c = 0; c < 3; ++c) check_factor(in.sheen_color_factor[c], true, "sheen color factor");
+  check_factor(in.sheen_roughness_factor, true, "sheen roughness factor");
   if (!std::isfinite(in.ior) || in.ior < 0.0f) throw input_error("ior", "must be finite and ≥ 0, got " + std::to_string(in.ior));
 
   // The common size: the first present image sets it, every other must match it.
@@ -64,6 +66,12 @@ MaterialTexels decode_material_texels(const MaterialImages& in, const ColorConfi
     take(in.clearcoat, in.clearcoat_name);
     take(in.clearcoat_roughness, in.clearcoat_roughness_name);
     take(in.clearcoat_normal, in.clearcoat_normal_name);
+  }
+  // The sheen's likewise, only where its colour factor is not black (the extension's "no sheen").
+  const bool sheen = in.sheen_color_factor != glm::vec3(0.0f);
+  if (sheen) {
+    take(in.sheen_color, in.sheen_color_name);
+    take(in.sheen_roughness, in.sheen_roughness_name);
   }
   for (const auto& [img, name] : {std::pair{in.normal, &in.normal_name}, std::pair{coat ? in.clearcoat_normal : nullptr, &in.clearcoat_normal_name}})
     if (img && img->channels < 3)
@@ -122,6 +130,29 @@ MaterialTexels decode_material_texels(const MaterialImages& in, const ColorConfi
       for (int i = 0; i < out.width; ++i)
         out.specular_color[out.index(i, j)] = glm::vec3(texel(linear, i, j)) * in.specular_color_factor;
     });
+  }
+
+  // The sheen: per texel only where a texture makes it vary.
+  if (sheen) {
+    out.sheen_color_factor = in.sheen_color_factor;
+    out.sheen_roughness_factor = in.sheen_roughness_factor;
+    if (in.sheen_color) {
+      Image linear = *in.sheen_color;
+      if (!in.sheen_color_is_linear) color.srgb_texture_to_linear(linear);
+      out.sheen_color.resize(out.size());
+      for_rows(out.height, out.width, [&](int j) {
+        for (int i = 0; i < out.width; ++i)
+          out.sheen_color[out.index(i, j)] = glm::vec3(texel(linear, i, j)) * in.sheen_color_factor;
+      });
+    }
+    if (in.sheen_roughness) {
+      out.sheen_roughness.resize(out.size());
+      for_rows(out.height, out.width, [&](int j) {
+        for (int i = 0; i < out.width; ++i)
+          out.sheen_roughness[out.index(i, j)] =
+              std::clamp(texel(*in.sheen_roughness, i, j).a, 0.0f, 1.0f) * in.sheen_roughness_factor;
+      });
+    }
   }
 
   // The clear coat: per texel only where a texture makes it vary.

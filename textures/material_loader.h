@@ -5,8 +5,8 @@
 //   metallic   = metallicRoughnessTexture.b · metallicFactor       (glTF: metal in B)
 //   roughness  = metallicRoughnessTexture.g · roughnessFactor      (glTF: roughness in G)
 //   normal     = normalize((2·normalTexture.rgb − 1)·(s, s, 1)), s = normalTexture.scale
-// the specular layer of KHR_materials_specular and _ior and the clear coat of KHR_materials_clearcoat
-// (MaterialImages below).
+// the specular layer of KHR_materials_specular and _ior, the clear coat of KHR_materials_clearcoat and
+// the sheen of KHR_materials_sheen (MaterialImages below).
 // A missing texture contributes its factor alone (normal: (0, 0, 1)). All present textures must
 // have the same size, which is the result's size (1×1 when there is none). Texels are read at
 // their own (i, j): no filtering, no texture transform (the level-0 texel grid is the image's).
@@ -60,6 +60,16 @@ struct MaterialImages {
   const Image* clearcoat_normal = nullptr;
   std::string clearcoat_normal_name = "clearcoat normal texture";
   float clearcoat_normal_scale = 1.0f;
+  // KHR_materials_sheen (MaterialTexels::sheen_layer), read only where the colour factor is not black:
+  //   sheen colour     = sRGB→linear(sheenColorTexture.rgb) · sheenColorFactor
+  //   sheen roughness  = sheenRoughnessTexture.a · sheenRoughnessFactor, clamped to [0, 1]
+  const Image* sheen_color = nullptr;
+  std::string sheen_color_name = "sheen color texture";
+  bool sheen_color_is_linear = false;  // as base_color_is_linear
+  glm::vec3 sheen_color_factor{0.0f};
+  const Image* sheen_roughness = nullptr;
+  std::string sheen_roughness_name = "sheen roughness texture";
+  float sheen_roughness_factor = 0.0f;
 };
 
 // Throws svbrdf::Error naming the image for different sizes or a normal map with fewer than three
