@@ -95,7 +95,9 @@ SeedFigures measure_random_seed(std::uint64_t seed, int size, const BrdfBuildOpt
   std::vector<std::array<double, 3>> albedo0(m.size());
   tbb::parallel_for(std::size_t(0), m.size(), [&](std::size_t k) {
     const Lobe l = level0_lobe(m, k);
-    for (int a = 0; a < 3; ++a) albedo0[k][std::size_t(a)] = grey(directional_albedo(std::span<const Lobe>(&l, 1), incident(a), kAlbedoStrata));
+    const SheenLayer sheen = m.sheen_layer(k);  // colour 0 without a sheen: the lobe alone
+    for (int a = 0; a < 3; ++a)
+      albedo0[k][std::size_t(a)] = grey(directional_albedo(std::span<const Lobe>(&l, 1), sheen, incident(a), kAlbedoStrata));
   });
 
   const ExactReference exact(m);
@@ -149,13 +151,16 @@ SeedFigures measure_random_seed(std::uint64_t seed, int size, const BrdfBuildOpt
     }
     albedo_figures(e0, row.level, e, exact_albedo,
                    [&](int i, int j, int a) {
-                     const Lobe l = param_lobe(mip.param.texel(row.level, i, j), TextureFilter::param);
-                     return grey(directional_albedo(std::span<const Lobe>(&l, 1), incident(a), kAlbedoStrata));
+                     const ParamLobes l = param_lobes(mip.param.texel(row.level, i, j), TextureFilter::param,
+                                                      mip.param.specular(row.level, i, j), nullptr,
+                                                      mip.param.sheen(row.level, i, j));
+                     return grey(directional_albedo(std::span<const Lobe>(&l.base, 1), l.sheen, incident(a), kAlbedoStrata));
                    },
                    f.param);
     albedo_figures(e0, row.level, e, exact_albedo,
                    [&](int i, int j, int a) {
-                     return grey(directional_albedo(mip.brdf.texel(row.level, i, j), incident(a), kAlbedoStrata));
+                     const SheenLayer sheen = mip.brdf.has_sheen() ? mip.brdf.sheen(row.level, i, j) : SheenLayer{};
+                     return grey(directional_albedo(mip.brdf.texel(row.level, i, j), sheen, incident(a), kAlbedoStrata));
                    },
                    f.brdf);
     out.levels.push_back(std::move(f));

@@ -14,6 +14,8 @@
 #include "base/error.h"
 #include "mip/direction_grid.h"
 #include "mip/exact_reference.h"
+#include "mip/param_pyramid.h"
+#include "mip/sheen_layer.h"
 #include "mip/stored_lobe.h"
 #include "mip/stored_normal.h"
 
@@ -54,6 +56,7 @@ int gather_children(Extent level0, int level, int i, int j, const BrdfLevel& fin
         l = lobe_from_texel(m.base_color[t], m.metallic[t], m.roughness[t], m.normal[t], static_cast<float>(share),
                             m.specular_layer(t));
         if (m.has_coat()) l.coat = std::clamp(m.coat_layer(t).weight, 0.0f, 1.0f);
+        if (m.has_sheen()) l.sheen = sheen_share(m.sheen_layer(t));
         continue;
       }
       for (Lobe l : fine.texel_lobes(t)) {
@@ -246,6 +249,12 @@ BrdfPyramid BrdfPyramid::build(const MaterialTexels& m, const BrdfBuildOptions& 
     for (int level = 1; level < n; ++level)
       p.coat_.push_back(level_from_below(p.level0_, level, p.coat_.back(), m, options, nullptr, true));
   }
+  if (m.has_sheen()) {
+    // The sheen's means, as the parameter pyramid takes them; level 0's are the texels'.
+    p.sheen_.push_back(sheen_level0(m));
+    for (int level = 1; level < n; ++level) p.sheen_.push_back(sheen_from_below(p.level0_, level, p.sheen_.back()));
+    std::vector<SheenLayer>().swap(p.sheen_.front());
+  }
   return p;
 }
 
@@ -253,7 +262,12 @@ int BrdfPyramid::bytes_per_texel(int level) const {
   const BrdfLevel& l = this->level(level);
   return l.slots * (kBytesPerLobe + (l.specular_layer() ? kBytesPerSpecularLayer : 0) +
                     (l.tint_layer() ? kBytesPerTintLayer : 0)) +
-         (l.correction.empty() ? 0 : kBytesPerCorrection) + coat_bytes_per_texel(level);
+         (l.correction.empty() ? 0 : kBytesPerCorrection) + coat_bytes_per_texel(level) + sheen_bytes_per_texel(level);
+}
+
+int BrdfPyramid::sheen_bytes_per_texel(int level) const {
+  if (sheen_.empty() || level == 0) return 0;
+  return this->level(level).slots * kBytesPerSheenShare;
 }
 
 int BrdfPyramid::coat_bytes_per_texel(int level) const {
@@ -262,7 +276,8 @@ int BrdfPyramid::coat_bytes_per_texel(int level) const {
 }
 
 BrdfPyramid BrdfPyramid::from_levels(const MaterialTexels& m, int max_lobes, std::vector<BrdfLevel> coarse,
-                                     const RadialGrid& grid, bool tintable, std::vector<BrdfLevel> coat) {
+                                     const RadialGrid& grid, bool tintable, std::vector<BrdfLevel> coat,
+                                     std::vector<std::vector<SheenLayer>> sheen) {
   BrdfPyramid p;
   p.grid_ = grid;
   p.tintable_ = tintable;
@@ -284,6 +299,16 @@ BrdfPyramid BrdfPyramid::from_levels(const MaterialTexels& m, int max_lobes, std
                (c.counts[t] < 2 || (c.first[t] == next && next + c.counts[t] <= c.lobes.size()));
     return packed && (c.correction.empty() || (c.correction.size() == texels && grid.inner > 0));
   };
+  if (!sheen.empty()) {
+    if (sheen.size() != coarse.size() + 1) throw Error("BRDF pyramid: the sheen has the wrong number of levels");
+    for (std::size_t l = 1; l < sheen.size(); ++l) {
+      const Extent e = level_extent(p.level0_, static_cast<int>(l));
+      if (sheen[l].size() != static_cast<std::size_t>(e.width) * e.height)
+        throw Error("BRDF pyramid: the sheen's level " + std::to_string(l) + " has the wrong size");
+    }
+    std::vector<SheenLayer>().swap(sheen.front());
+    p.sheen_ = std::move(sheen);
+  }
   p.levels_.push_back(level_zero(p.level0_));
   if (!coat.empty()) p.coat_.push_back(level_zero(p.level0_));
   for (std::size_t l = 0; l < coarse.size(); ++l) {

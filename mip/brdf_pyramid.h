@@ -92,6 +92,11 @@ inline constexpr int kCoatLobes = kDefaultLobes;
 inline constexpr int kBytesPerCoatLobe = 4 + 5 * 2;
 inline constexpr int kBytesPerCoatShare = 2;
 
+// The sheen (sheen_layer.h), for a material with KHR_materials_sheen: per level ≥ 1 the texels' sheen
+// means (a SheenLayer each, which the MIP file stores once, as the parameter pyramid's) and each base
+// lobe's sheen share (Lobe::sheen), which the MIP file stores as a half a base slot.
+inline constexpr int kBytesPerSheenShare = 2;
+
 // What the build measured, per level: the mean and max lobe count, and the reduction error (e_rel of
 // the reduced mixture against the exact union of its children's lobes, on the metric's 4225 pairs)
 // over a sample of texels.
@@ -122,10 +127,12 @@ class BrdfPyramid {
   static BrdfPyramid build(const MaterialTexels& level0, const BrdfBuildOptions& options = {},
                            std::vector<BrdfLevelStats>* stats = nullptr);
   // From stored levels ≥ 1 (the MIP file), their radial corrections' grid (for levels whose
-  // `correction` is not empty), the level-0 texels' extent and, for a coated material, the coat lobes
-  // of levels ≥ 1; throws svbrdf::Error when the shapes do not form a pyramid.
+  // `correction` is not empty), the level-0 texels' extent, for a coated material the coat lobes
+  // of levels ≥ 1 and for a material with a sheen the sheen means of every level (level 0's are not
+  // kept); throws svbrdf::Error when the shapes do not form a pyramid.
   static BrdfPyramid from_levels(const MaterialTexels& level0, int max_lobes, std::vector<BrdfLevel> coarse,
-                                 const RadialGrid& grid = {}, bool tintable = false, std::vector<BrdfLevel> coat = {});
+                                 const RadialGrid& grid = {}, bool tintable = false, std::vector<BrdfLevel> coat = {},
+                                 std::vector<std::vector<SheenLayer>> sheen = {});
 
   int levels() const { return static_cast<int>(levels_.size()); }
   Extent level0() const { return level0_; }
@@ -154,6 +161,7 @@ class BrdfPyramid {
     const std::size_t t = static_cast<std::size_t>(j) * l.extent.width + i;
     __builtin_prefetch(l.counts.data() + t);
     prefetch_reads(l, t);
+    if (!sheen_.empty()) __builtin_prefetch(sheen_[static_cast<std::size_t>(level)].data() + t);
     if (coat_.empty()) return;
     const BrdfLevel& c = coat_[static_cast<std::size_t>(level)];
     __builtin_prefetch(c.counts.data() + t);
@@ -163,6 +171,8 @@ class BrdfPyramid {
   // included; and the coat's alone.
   int bytes_per_texel(int level) const;
   int coat_bytes_per_texel(int level) const;
+  // The sheen shares' bytes (the sheen means are the parameter pyramid's, ParamPyramid::kBytesPerSheenTexel).
+  int sheen_bytes_per_texel(int level) const;
   // The radial correction of texel (i, j) of `level` ≥ 0, or null (below kFirstCorrectedLevel, level 0
   // included, or none built).
   const RadialCorrection* correction(int level, int i, int j) const {
@@ -183,6 +193,15 @@ class BrdfPyramid {
   }
   const BrdfLevel& coat_level(int level) const { return coat_[static_cast<std::size_t>(level)]; }
 
+  // Whether the material has a sheen, and the sheen means of texel (i, j) of `level` ≥ 1 (sheen_layer.h).
+  bool has_sheen() const { return !sheen_.empty(); }
+  const SheenLayer& sheen(int level, int i, int j) const {
+    assert(level >= 1);
+    const std::vector<SheenLayer>& s = sheen_[static_cast<std::size_t>(level)];
+    return s[static_cast<std::size_t>(j) * levels_[static_cast<std::size_t>(level)].extent.width + i];
+  }
+  std::span<const SheenLayer> sheen_level(int level) const { return sheen_[static_cast<std::size_t>(level)]; }
+
  private:
   // Texel t's single slot, its index into the packed lobes and its radial correction.
   static void prefetch_reads(const BrdfLevel& l, std::size_t t) {
@@ -197,6 +216,7 @@ class BrdfPyramid {
   RadialGrid grid_{};
   std::vector<BrdfLevel> levels_;
   std::vector<BrdfLevel> coat_;  // the coat lobes per level (level 0's empty), or none without a coat
+  std::vector<std::vector<SheenLayer>> sheen_;  // the sheen means per level (level 0's empty), or none
 };
 
 }  // namespace svbrdf

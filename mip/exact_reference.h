@@ -11,6 +11,7 @@
 #include "mip/direction_grid.h"
 #include "mip/lobe.h"
 #include "mip/pyramid_shape.h"
+#include "mip/sheen_layer.h"
 #include "textures/material_texels.h"
 
 namespace svbrdf {
@@ -19,6 +20,7 @@ namespace svbrdf {
 inline Lobe level0_lobe(const MaterialTexels& m, std::size_t k) {
   Lobe l = lobe_from_texel(m.base_color[k], m.metallic[k], m.roughness[k], m.normal[k], 1.0f, m.specular_layer(k));
   if (m.has_coat()) l.coat = std::clamp(m.coat_layer(k).weight, 0.0f, 1.0f);
+  if (m.has_sheen()) l.sheen = sheen_share(m.sheen_layer(k));
   return l;
 }
 

@@ -73,6 +73,8 @@ struct Lobe {
   glm::vec3 f0_tint{0.0f};    // the part of F0 a tint of the base color scales (tinted below)
   float coat = 0.0f;          // the mean clear coat weight over its texels, which the coat's Fresnel
                               // takes from the lobe (coat_layer.h; 0 without a coat)
+  float sheen = 0.0f;         // the mean max(sheen colour) over its texels, which scales the lobe by the
+                              // sheen's albedo and weights the sheen about its normal (sheen_layer.h)
   glm::vec3 normal{0.0f, 0.0f, 1.0f};
   float alpha2 = 1e-6f;     // GGX α² (a roughness mixture's lower end)
   float ggx = 1.0f;         // μ, the GGX share of a spread core; β, the upper part's share of a roughness mixture

@@ -5,7 +5,9 @@
 
 #include "appearance/microfacet_distribution.h"
 #include "appearance/sampling.h"
+#include "appearance/sheen.h"
 #include "mip/coat_layer.h"
+#include "mip/sheen_layer.h"
 
 namespace svbrdf {
 
@@ -40,6 +42,7 @@ bool LobeMixtureBsdf::fill_slot(int at, const Lobe& l) {
 
 void LobeMixtureBsdf::assign(std::span<const Lobe> lobes, std::span<const Lobe> coat) {
   correction_ = nullptr;
+  sheen_on_ = false;
   count_ = 0;
   coat_count_ = 0;
   for (const Lobe& l : lobes)
@@ -48,11 +51,45 @@ void LobeMixtureBsdf::assign(std::span<const Lobe> lobes, std::span<const Lobe> 
     if (coat_count_ < kMaxLobes && l.weight > 0 && fill_slot(count_ + coat_count_, l)) ++coat_count_;
 }
 
+void LobeMixtureBsdf::set_sheen(const SheenLayer& sheen) {
+  sheen_on_ = false;
+  float shares = 0;
+  for (int k = 0; k < count_; ++k) shares += slot(k).lobe.weight * slot(k).lobe.sheen;
+  if (!(shares > 0) || !(std::max(sheen.color.r, std::max(sheen.color.g, sheen.color.b)) > 0)) return;
+  sheen_on_ = true;
+  sheen_roughness_ = sheen.roughness;
+  sheen_scale_ = sheen.color / shares;
+  sheen_albedo_ = mean3(sheen.color);
+}
+
 Rgb LobeMixtureBsdf::eval(const glm::vec3& wi, const glm::vec3& wo) const {
   const PairTerms<float> p = pair_terms<float>(wi, wo);
   if (!p.valid) return Rgb(0);
   Rgb f(0);
   const float scale = correction_ ? correction_at(*correction_, *grid_, p.h) : 1.0f;
+  if (sheen_on_) {
+    // Each base lobe under its sheen (sheen_layer.h), then the coat over the whole as below.
+    Rgb coated(0);
+    CoatCosine<float> cosine;
+    for (int k = 0; k < count_; ++k) {
+      float sides;
+      Rgb fk = lobe_eval(slot(k).lobe, slot(k).shape, p, scale, &sides);
+      const SheenLobeTerms t = sheen_lobe_terms(slot(k).lobe, slot(k).shape, p, sides, sheen_roughness_);
+      fk = t.scaling * fk + t.sheen * sheen_scale_;
+      f += fk;
+      coated += slot(k).lobe.coat * fk;
+      cosine.add_sides(slot(k).lobe, slot(k).shape, sides);
+    }
+    if (coat_count_ == 0) return f;
+    CoatFresnel<float> fresnel;
+    Rgb coat(0);
+    const float k_cos = cosine.value(p);
+    for (int k = count_; k < count_ + coat_count_; ++k) {
+      const float w = fresnel.add(slot(k).lobe, slot(k).shape, p.wo);
+      if (k_cos > 0) coat += coat_lobe_eval(slot(k).lobe, slot(k).shape, p, w);
+    }
+    return f - fresnel.value() * coated + k_cos * coat;
+  }
   if (coat_count_ == 0) {
     for (int k = 0; k < count_; ++k) f += lobe_eval(slot(k).lobe, slot(k).shape, p, scale);
     return f;
@@ -92,8 +129,13 @@ LobeMixtureBsdf::Choice LobeMixtureBsdf::choice(const glm::vec3& wo) const {
     c.diffuse[i] = d + s > 0 ? d / (d + s) : 1.0f;
     total += d + s;
   }
+  if (sheen_on_ && wo.z > 0) {
+    c.sheen = sheen_albedo_ * sheen_albedo(wo.z, sheen_roughness_);
+    total += c.sheen;
+  }
   const float scale = total > 0 ? (1.0f - kDefensive) / total : 0.0f;
   for (int k = 0; k < n; ++k) c.lobe[static_cast<std::size_t>(k)] *= scale;
+  c.sheen *= scale;
   return c;
 }
 
@@ -103,8 +145,10 @@ float LobeMixtureBsdf::pdf_with(const Choice& c, const glm::vec3& wi, const glm:
   float defensive = kDefensive;
   float used = 0;
   for (int k = 0; k < count_ + coat_count_; ++k) used += c.lobe[static_cast<std::size_t>(k)];
+  used += c.sheen;
   if (used == 0) defensive = 1.0f;  // no lobe to sample: all defensive
   pdf += defensive * cosine_hemisphere_pdf(wi.z);
+  pdf += c.sheen * sheen_pdf(wi, wo);
   // The half vector is every lobe's; each lobe's density needs only its cosines (no frame per lobe).
   const glm::vec3 hsum = wi + wo;
   const float hlen2 = glm::dot(hsum, hsum);
@@ -150,8 +194,11 @@ BsdfSample LobeMixtureBsdf::sample(const glm::vec3& wo, const SampleU& u) const 
     }
     acc += q;
   }
+  const bool sheen = picked < 0 && c.sheen > 0 && ux < acc + c.sheen;
   const glm::vec2 uv(u.y, u.z);
-  if (picked < 0) {
+  if (sheen) {
+    wi = sample_sheen(uv);
+  } else if (picked < 0) {
     wi = sample_cosine_hemisphere(uv);
   } else {
     const std::size_t i = static_cast<std::size_t>(picked);

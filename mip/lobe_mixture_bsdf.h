@@ -19,6 +19,11 @@
 // layered f_eff of coat_layer.h (the base lobes attenuated by 1 − coat_k·F̄(wo), the coat lobes under the
 // base's cosine factor K), exactly as texel_eval evaluates the texel; the sampler chooses among the base
 // and the coat lobes alike, a coat lobe by its specular part alone (F0 0.04, F90 1, no diffuse term).
+//
+// A texel with a sheen (KHR_materials_sheen, sheen_layer.h: set_sheen) scales each base lobe by its
+// albedo scaling and adds the sheen about the base lobes' normals, under the coat where there is one;
+// the sampler draws the sheen uniformly over the hemisphere (appearance/sheen.h sample_sheen) with a
+// probability in proportion to its albedo estimate mean(C̄)·E(wo.z).
 #include <array>
 #include <span>
 
@@ -27,6 +32,7 @@
 #include "mip/lobe.h"
 #include "mip/lobe_reduction.h"
 #include "mip/radial_correction.h"
+#include "textures/material_texels.h"
 
 namespace svbrdf {
 
@@ -48,6 +54,10 @@ class LobeMixtureBsdf final : public Bsdf {
     correction_ = correction;
     grid_ = grid;
   }
+  // The texel's sheen means (sheen_layer.h), over the base lobes assign() took with their sheen shares;
+  // colour 0 or no lobe with a share: none. assign() clears it.
+  void set_sheen(const SheenLayer& sheen);
+  bool has_sheen() const { return sheen_on_; }
 
   int size() const { return count_; }
   const Lobe& lobe(int k) const { return slot(k).lobe; }
@@ -72,6 +82,7 @@ class LobeMixtureBsdf final : public Bsdf {
   struct Choice {
     std::array<float, kSlots> lobe{};     // probability of lobe k (sums to 1 − kDefensive)
     std::array<float, kSlots> diffuse{};  // within lobe k, probability of its diffuse part
+    float sheen = 0;                      // probability of the sheen's uniform sampler
   };
   Choice choice(const glm::vec3& wo) const;
   float pdf_with(const Choice& c, const glm::vec3& wi, const glm::vec3& wo) const;
@@ -97,6 +108,10 @@ class LobeMixtureBsdf final : public Bsdf {
   int coat_count_ = 0;  // coat lobes, in the slots after them
   const RadialCorrection* correction_ = nullptr;
   const RadialGrid* grid_ = nullptr;
+  bool sheen_on_ = false;
+  float sheen_roughness_ = 0.0f;
+  Rgb sheen_scale_{0.0f};  // C̄ / Σ_k w_k·σ_k (sheen_layer.h)
+  float sheen_albedo_ = 0.0f;  // mean(C̄), the sampling choice's albedo estimate without E
 };
 
 }  // namespace svbrdf

@@ -37,7 +37,7 @@ MergeBase merge_base(std::span<const Member> u) {
   // Shares by one reciprocal: this runs for every candidate merge of every texel.
   const double inv_w = 1.0 / w;
   glm::dvec3 diffuse(0), f0(0), f0_tint(0), diffuse90(0), nbar(0);
-  double f90 = 0, coat = 0;
+  double f90 = 0, coat = 0, sheen = 0;
   bool plain = true;  // every member's F90 is 1: the mean is 1 exactly, not a rounding of it
   Summary& s = mb.summary;
   s.rho = s.f0 = 0;
@@ -49,6 +49,7 @@ MergeBase merge_base(std::span<const Member> u) {
     diffuse90 += t * glm::dvec3(x.lobe->diffuse90);
     f90 += t * x.lobe->f90;
     coat += t * x.lobe->coat;
+    sheen += t * x.lobe->sheen;
     plain = plain && x.lobe->f90 == 1.0f;
     nbar += t * glm::dvec3(x.lobe->normal);
     s.rho += t * x.sum->rho;
@@ -60,6 +61,7 @@ MergeBase merge_base(std::span<const Member> u) {
   m.f0_tint = glm::vec3(f0_tint);
   m.diffuse90 = glm::vec3(diffuse90);
   m.coat = static_cast<float>(coat);
+  m.sheen = static_cast<float>(sheen);
   if (plain) f90 = 1.0;
   m.f90 = static_cast<float>(f90);
   s.f90 = f90;

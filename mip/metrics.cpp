@@ -14,6 +14,7 @@
 #include "base/math.h"
 #include "base/error.h"
 #include "mip/exact_reference.h"
+#include "mip/sheen_layer.h"
 
 namespace svbrdf {
 
@@ -264,6 +265,26 @@ glm::dvec3 directional_albedo(std::span<const Lobe> base, const CoatTexel& coat,
       const LobeShape<double> s = lobe_shape<double>(l);
       total += lobe_albedo(l, wi, strata, [&](const PairTerms<double>& p) {
         return coat_cosine(base.first(n), shapes.data(), p) * coat_lobe_eval(l, s, p);
+      });
+    }
+  return total;
+}
+
+glm::dvec3 directional_albedo(std::span<const Lobe> base, const SheenLayer& sheen, const glm::dvec3& wi, int strata) {
+  float shares = 0;
+  for (const Lobe& l : base) shares += l.weight * l.sheen;
+  if (!(shares > 0)) return directional_albedo(base, wi, strata);
+  const glm::vec3 scale = sheen.color / shares;  // as LobeMixtureBsdf::set_sheen
+  glm::dvec3 total(0);
+  for (const Lobe& l : base)
+    if (l.weight > 0) {
+      const LobeShape<float> s = lobe_shape<float>(l);
+      total += lobe_albedo(l, wi, strata, [&](const PairTerms<double>& p) {
+        const PairTerms<float> q = pair_terms<float>(glm::vec3(p.wi), glm::vec3(p.wo));
+        float sides;
+        const glm::vec3 f = lobe_eval(l, s, q, 1.0f, &sides);
+        const SheenLobeTerms t = sheen_lobe_terms(l, s, q, sides, sheen.roughness);
+        return glm::dvec3(t.scaling * f + t.sheen * scale);
       });
     }
   return total;

@@ -62,5 +62,10 @@ glm::dvec3 directional_albedo(std::span<const Lobe> lobes, const glm::dvec3& wi,
 // The same of a coated texel (coat_layer.h): its base lobes under the coat's attenuation, and its coat
 // lobes, each sampled by its own shape.
 glm::dvec3 directional_albedo(std::span<const Lobe> base, const CoatTexel& coat, const glm::dvec3& wi, int strata = 32);
+// The same of a texel with a sheen (sheen_layer.h) and no coat: each base lobe under its albedo scaling
+// with its part of the sheen, evaluated in float as the renderer evaluates it, each sampled by its own
+// shape (whose cosine share covers the sheen's hemisphere). At level 0 (a texel's own lobe and sheen) it
+// is the texel's albedo to float precision.
+glm::dvec3 directional_albedo(std::span<const Lobe> base, const SheenLayer& sheen, const glm::dvec3& wi, int strata = 32);
 
 }  // namespace svbrdf

@@ -6,6 +6,7 @@
 #include "base/error.h"
 #include "mip/brdf_pyramid.h"
 #include "mip/coat_layer.h"
+#include "mip/sheen_layer.h"
 #include "mip/mip_file.h"
 #include "mip/mip_lookup.h"
 #include "mip/param_pyramid.h"
@@ -132,9 +133,10 @@ std::span<const Lobe> MipTexture::lobes(const Choice& c, Scratch& scratch) const
   if (c.level < 0) {
     SpecularLayer layer;
     ParamCoat coat;
-    ParamTexel t = filter_params(p.param, c.footprint, wrap(), kMaxProbes, &layer, &coat);
+    ParamTexel t = filter_params(p.param, c.footprint, wrap(), kMaxProbes, &layer, &coat, &scratch.sheen);
     t.base_color *= c.tint;
-    const ParamLobes l = param_lobes(t, c.filter, layer, p.param.has_coat() ? &coat : nullptr);
+    const ParamLobes l = param_lobes(t, c.filter, layer, p.param.has_coat() ? &coat : nullptr,
+                                     p.param.has_sheen() ? &scratch.sheen : nullptr);
     scratch.lobe[0] = l.base;
     if (l.coated) scratch.coat = l.coat;
     return {scratch.lobe, 1};
@@ -155,7 +157,16 @@ std::span<const Lobe> MipTexture::lobes(const Choice& c, Scratch& scratch) const
     scratch.lobe[0].coat = std::clamp(coat->clearcoat, 0.0f, 1.0f);
     scratch.coat = coat_lobe(CoatLayer{coat->clearcoat, coat->roughness, coat->normal});
   }
+  if (const SheenLayer* sheen = p.param.sheen(0, c.i, c.j)) scratch.lobe[0].sheen = sheen_share(*sheen);
   return {scratch.lobe, 1};
+}
+
+const SheenLayer* MipTexture::sheen(const Choice& c, const Scratch& scratch) const {
+  const Pyramids& p = *pyramids_;
+  if (!p.param.has_sheen()) return nullptr;
+  if (c.level < 0) return &scratch.sheen;
+  if (c.level >= 1) return &p.brdf.sheen(c.level, c.i, c.j);
+  return p.param.sheen(0, c.i, c.j);
 }
 
 std::span<const Lobe> MipTexture::coat(const Choice& c, Scratch& scratch) const {
@@ -172,6 +183,7 @@ void MipTexture::lookup(const Choice& c, LobeMixtureBsdf& out) const {
   out.assign(base, coat(c, scratch));
   const BrdfPyramid& brdf = pyramids_->brdf;
   out.set_correction(c.level >= 1 ? brdf.correction(c.level, c.i, c.j) : nullptr, &brdf.radial_grid());
+  if (const SheenLayer* s = sheen(c, scratch)) out.set_sheen(*s);
 }
 
 }  // namespace svbrdf

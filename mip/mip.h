@@ -103,6 +103,7 @@ class MipTexture {
     union {
       Lobe coat;  // a level-0 texel's or a parameter filter's coat lobe
     };
+    SheenLayer sheen;  // a parameter filter's mean sheen (sheen())
   };
   std::span<const Lobe> lobes(const Choice& choice, Scratch& scratch) const;
   std::span<const Lobe> lobes(TextureFilter filter, const Footprint& footprint, const Rgb& tint, float u,
@@ -113,6 +114,10 @@ class MipTexture {
   // the BRDF pyramid, or into `scratch` (level 0's texel coat, or a parameter filter's mean coat,
   // param_coat_lobe). Its base lobes from lobes() carry their coat shares.
   std::span<const Lobe> coat(const Choice& choice, Scratch& scratch) const;
+  // The chosen texel's sheen means (sheen_layer.h; null for a material without a sheen): the BRDF
+  // pyramid's, a level-0 texel's own, or a parameter filter's mean, which lobes() put into `scratch`.
+  // Its base lobes from lobes() carry their sheen shares.
+  const SheenLayer* sheen(const Choice& choice, const Scratch& scratch) const;
 
   // The base colour of the parameter pyramid at a footprint: level0's nearest texel, under every other
   // filter the parameter filters' trilinear taps (base colour is linear in the BRDF, so its average is

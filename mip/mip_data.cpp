@@ -1,11 +1,14 @@
 #include "mip/mip_data.h"
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <string>
 #include <vector>
 
 #include "base/error.h"
 #include "mip/direction_grid.h"
+#include "mip/lobe_mixture_bsdf.h"
 
 namespace svbrdf {
 
@@ -55,9 +58,20 @@ void accumulate_texel(std::span<const Lobe> lobes, const CoatTexel& coat, const 
   accumulate_coat<float>(lobes, coat, base, base_coated, weight, acc);
 }
 
+// acc += weight · a texel with a sheen over the direction grid's pairs: the renderer's mixture itself
+// (lobe_mixture_bsdf.h), whose eval is the one that carries the sheen (sheen_layer.h).
+void accumulate_mixture(const LobeMixtureBsdf& b, double weight, std::span<glm::dvec3> acc) {
+  const DirectionGrid& g = DirectionGrid::get();
+  for (int p = 0; p < DirectionGrid::kPairs; ++p) {
+    const PairTerms<float>& t = g.pair_f(p);
+    acc[static_cast<std::size_t>(p)] += weight * glm::dvec3(b.eval(t.wi, t.wo));
+  }
+}
+
 // The parameter filters' texel (param_pyramid.h param_lobes), the mean coat's lobe made into `out`.
 ParamLobes param_texel_lobes(const MipData& mip, TextureFilter filter, int level, int i, int j) {
-  return param_lobes(mip.param.texel(level, i, j), filter, mip.param.specular(level, i, j), mip.param.coat(level, i, j));
+  return param_lobes(mip.param.texel(level, i, j), filter, mip.param.specular(level, i, j), mip.param.coat(level, i, j),
+                     mip.param.sheen(level, i, j));
 }
 CoatTexel coat_of(const ParamLobes& l) {
   if (!l.coated || !(l.coat.weight > 0)) return {};
@@ -80,12 +94,32 @@ void accumulate_brdf_texel(const MipData& mip, int level, int i, int j, double w
   }
   Lobe scratch, coat_scratch;
   const CoatTexel coat = brdf_coat(mip, level, i, j, coat_scratch);
+  if (const SheenLayer* sheen = brdf_sheen(mip, level, i, j)) {
+    std::span<const Lobe> lobes = brdf_texel(mip, level, i, j, scratch);
+    std::array<Lobe, kMaxLobes> t;
+    if (tint != glm::vec3(1.0f)) {
+      const std::size_t n = std::min<std::size_t>(lobes.size(), kMaxLobes);
+      for (std::size_t k = 0; k < n; ++k) t[k] = tinted(lobes[k], tint);
+      lobes = {t.data(), n};
+    }
+    LobeMixtureBsdf b(lobes, coat.lobes);
+    b.set_correction(c, &mip.brdf.radial_grid());
+    b.set_sheen(*sheen);
+    accumulate_mixture(b, weight, acc);
+    return;
+  }
   accumulate_texel(brdf_texel(mip, level, i, j, scratch), coat, scales, weight, acc, tint);
 }
 
 void accumulate_param_texel(const MipData& mip, TextureFilter filter, int level, int i, int j, double weight,
                             std::span<glm::dvec3> acc) {
   const ParamLobes l = param_texel_lobes(mip, filter, level, i, j);
+  if (mip.param.has_sheen()) {
+    LobeMixtureBsdf b({&l.base, 1}, coat_of(l).lobes);
+    b.set_sheen(l.sheen);
+    accumulate_mixture(b, weight, acc);
+    return;
+  }
   accumulate_texel({&l.base, 1}, coat_of(l), nullptr, weight, acc, glm::vec3(1.0f));
 }
 
@@ -98,15 +132,26 @@ glm::dvec3 texel_eval(const MipData& mip, TextureFilter filter, int level, int i
   CoatTexel coat;
   float k = 1.0f;
   ParamLobes param;
+  const SheenLayer* sheen = nullptr;
+  const RadialCorrection* c = nullptr;
   if (filter == TextureFilter::brdf) {
-    const RadialCorrection* c = mip.brdf.correction(level, i, j);
+    c = mip.brdf.correction(level, i, j);
     k = c ? correction_at(*c, mip.brdf.radial_grid(), p.h) : 1.0f;
     lobes = brdf_texel(mip, level, i, j, scratch);
     coat = brdf_coat(mip, level, i, j, coat_scratch);
+    sheen = brdf_sheen(mip, level, i, j);
   } else {
     param = param_texel_lobes(mip, filter, level, i, j);
     lobes = {&param.base, 1};
     coat = coat_of(param);
+    if (mip.param.has_sheen()) sheen = &param.sheen;
+  }
+  if (sheen) {
+    // A texel with a sheen: the renderer's mixture (see accumulate_mixture).
+    LobeMixtureBsdf b(lobes, coat.lobes);
+    b.set_correction(c, &mip.brdf.radial_grid());
+    b.set_sheen(*sheen);
+    return glm::dvec3(b.eval(glm::vec3(wi), glm::vec3(wo)));
   }
   glm::vec3 base(0.0f), base_coated(0.0f);
   for (const Lobe& l : lobes) {
@@ -129,7 +174,8 @@ BrdfTable texel_table(const MipData& mip, TextureFilter filter, int level, int i
 int bytes_per_texel(const MipData& mip, TextureFilter filter, int level) {
   if (filter == TextureFilter::brdf && level > 0) return mip.brdf.bytes_per_texel(level);
   return ParamPyramid::kBytesPerTexel + (mip.param.specular_level(0).empty() ? 0 : ParamPyramid::kBytesPerSpecularTexel) +
-         (mip.param.has_coat() ? ParamPyramid::kBytesPerCoatTexel : 0);
+         (mip.param.has_coat() ? ParamPyramid::kBytesPerCoatTexel : 0) +
+         (mip.param.has_sheen() ? ParamPyramid::kBytesPerSheenTexel : 0);
 }
 
 }  // namespace svbrdf

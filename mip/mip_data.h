@@ -41,6 +41,14 @@ inline CoatTexel brdf_coat(const MipData& mip, int level, int i, int j, Lobe& sc
   return level0_coat(mip.level0, mip.level0.index(i, j), scratch);
 }
 
+// The same texel's sheen means (sheen_layer.h): the pyramid's for levels ≥ 1, at level 0 the texel's
+// own; null for a material without a sheen.
+inline const SheenLayer* brdf_sheen(const MipData& mip, int level, int i, int j) {
+  if (!mip.brdf.has_sheen()) return nullptr;
+  if (level >= 1) return &mip.brdf.sheen(level, i, j);
+  return mip.param.sheen(0, i, j);
+}
+
 // Builds both pyramids over `level0` (moved in); `brdf_seconds`, when given, receives the BRDF
 // pyramid's share of the time (the figure bench/results/mip.md sets against maketx).
 MipData build_mip(MaterialTexels level0, const BrdfBuildOptions& options = {},

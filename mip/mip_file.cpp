@@ -114,13 +114,13 @@ std::uint64_t least_exr_bytes(const OIIO::ImageSpec& spec) {
 namespace {
 
 // The channels a level's texel holds, in the order the spec lists them: the parameters (and the
-// specular layer's and coat's means), `slots` lobes of `lobe` channels each, the radial correction,
+// specular layer's, coat's and sheen's means), `slots` lobes of `lobe` channels each, the radial correction,
 // `coat_slots` coat lobes.
 struct LevelChannels {
-  bool specular = false, coat = false, radial = false;
+  bool specular = false, coat = false, sheen = false, radial = false;
   int slots = 0, coat_slots = 0;
   std::vector<LobeChannel> lobe;
-  std::size_t first_lobe() const { return 8 + (specular ? 4 : 0) + (coat ? 5 : 0); }
+  std::size_t first_lobe() const { return 8 + (specular ? 4 : 0) + (coat ? 5 : 0) + (sheen ? 4 : 0); }
   std::size_t first_radial() const { return first_lobe() + std::size_t(slots) * lobe.size(); }
   std::size_t first_coat_lobe() const { return first_radial() + (radial ? RadialGrid::kNodes : 0); }
 };
@@ -154,6 +154,7 @@ std::vector<std::byte> pack_level(const ParamPyramid& param, const BrdfPyramid& 
   const auto params = param.level(level);
   const auto specular = param.specular_level(level);
   const auto coat = param.coat_level(level);
+  const auto sheen = param.sheen_level(level);
   const std::vector<LobeChannel> coat_channels = coat_lobe_channels();
   for (std::size_t t = 0; t < texels; ++t) {
     std::byte* px = buf.data() + t * layout.stride;
@@ -169,6 +170,10 @@ std::vector<std::byte> pack_level(const ParamPyramid& param, const BrdfPyramid& 
     if (ch.coat) {
       const ParamCoat& c = coat[t];
       for (const float v : {c.clearcoat, c.roughness, c.normal.x, c.normal.y, c.normal.z}) put_float(px, layout, next++, v);
+    }
+    if (ch.sheen) {
+      const SheenLayer& c = sheen[t];
+      for (const float v : {c.color.r, c.color.g, c.color.b, c.roughness}) put_float(px, layout, next++, v);
     }
     if (level == 0) continue;
     const BrdfLevel& bl = brdf.level(level);
@@ -253,16 +258,19 @@ void write_mip_file(const fs::path& path, const ParamPyramid& param, const BrdfP
   // A coated material's file carries the coat in both pyramids (mip_file.h).
   if (levels > 1 && param.has_coat() != brdf.has_coat())
     throw Error(where(path) + ": the parameter and BRDF pyramids disagree about the clear coat", Error::Kind::internal);
+  if (levels > 1 && param.has_sheen() != brdf.has_sheen())
+    throw Error(where(path) + ": the parameter and BRDF pyramids disagree about the sheen", Error::Kind::internal);
   std::vector<LevelChannels> channels(static_cast<std::size_t>(levels));
   for (int level = 0; level < levels; ++level) {
     LevelChannels& c = channels[static_cast<std::size_t>(level)];
     c.specular = !param.specular_level(0).empty();
     c.coat = param.has_coat();
+    c.sheen = param.has_sheen();
     if (level == 0) continue;
     const BrdfLevel& bl = brdf.level(level);
     c.slots = bl.slots;
     c.radial = !bl.correction.empty();
-    c.lobe = lobe_channels(bl.specular_layer(), brdf.tintable() && bl.tint_layer(), c.coat);
+    c.lobe = lobe_channels(bl.specular_layer(), brdf.tintable() && bl.tint_layer(), c.coat, c.sheen);
     c.coat_slots = c.coat ? brdf.coat_level(level).slots : 0;
   }
   std::vector<OIIO::ImageSpec> specs(static_cast<std::size_t>(levels));
@@ -287,6 +295,8 @@ void write_mip_file(const fs::path& path, const ParamPyramid& param, const BrdfP
       for (const char* c : kParamSpecularChannels) add(c, OIIO::TypeDesc::FLOAT);
     if (ch.coat)
       for (const char* c : kParamCoatChannels) add(c, OIIO::TypeDesc::FLOAT);
+    if (ch.sheen)
+      for (const char* c : kParamSheenChannels) add(c, OIIO::TypeDesc::FLOAT);
     for (int k = 0; k < ch.slots; ++k)
       for (const LobeChannel& c : ch.lobe) add("lobe" + std::to_string(k) + "." + c.suffix, c.format);
     if (ch.radial)
@@ -415,6 +425,7 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
   std::vector<std::vector<ParamTexel>> param_levels;
   std::vector<std::vector<ParamSpecular>> specular_levels;
   std::vector<std::vector<ParamCoat>> coat_levels;
+  std::vector<std::vector<SheenLayer>> sheen_levels;
   std::vector<BrdfLevel> coarse, coarse_coat;
   for (int level = 0; level < levels; ++level) {
     const std::string at_level = "level " + std::to_string(level);
@@ -467,6 +478,13 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
                                          (coat ? " but level 0 has none" : " but level 0 has"));
     if (coat)
       for (const char* c : kParamCoatChannels) need(c);
+    // The sheen's: its means in every level or in none, its shares in every level ≥ 1.
+    const bool sheen = index.count(kParamSheenChannels[0]) > 0;
+    if (level > 0 && sheen != !sheen_levels.empty())
+      throw input_error(where(path), at_level + (sheen ? " has" : " has no") + " channel " + kParamSheenChannels[0] +
+                                         (sheen ? " but level 0 has none" : " but level 0 has"));
+    if (sheen)
+      for (const char* c : kParamSheenChannels) need(c);
     const int coat_slots = level > 0 && coat ? s.get_int_attribute(kCoatSlots, -1) : 0;
     if (coat_slots < 0 || coat_slots > kMaxLobes)
       throw input_error(where(path), at_level + " has " + std::to_string(coat_slots) + " coat lobe slots (" + kCoatSlots + ")");
@@ -475,7 +493,8 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
     const bool tint_channels = slots > 0 && index.count("lobe0.F0tint.R") > 0;
     if (tint_channels && s.get_int_attribute(kTint, 0) != 1)
       throw input_error(where(path), at_level + " has channel lobe0.F0tint.R but the file is not " + kTint + " 1");
-    const std::vector<LobeChannel> lobe_ch = lobe_channels(slots > 0 && index.count("lobe0.F90") > 0, tint_channels, coat);
+    const std::vector<LobeChannel> lobe_ch =
+        lobe_channels(slots > 0 && index.count("lobe0.F90") > 0, tint_channels, coat, sheen);
     const std::vector<LobeChannel> coat_ch = coat_lobe_channels();
     const auto need_lobes = [&](const char* prefix, int n, const std::vector<LobeChannel>& channels) {
       for (int k = 0; k < n; ++k)
@@ -514,6 +533,7 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
     }
     std::vector<ParamSpecular> specular(param_specular ? texels : 0);
     std::vector<ParamCoat> coat_means(coat ? texels : 0);
+    std::vector<SheenLayer> sheen_means(sheen ? texels : 0);
     for (std::size_t t = 0; t < texels; ++t) {
       const std::size_t row = t / std::size_t(e.width);
       if (t % (std::size_t(rows) * e.width) == 0) {  // the next band
@@ -535,7 +555,8 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
       p.normal = {value(5), value(6), value(7)};
       std::size_t next = 8;
       if (param_specular) specular[t] = {value(8), {value(9), value(10), value(11)}}, next = 12;
-      if (coat) coat_means[t] = {value(next), value(next + 1), {value(next + 2), value(next + 3), value(next + 4)}};
+      if (coat) coat_means[t] = {value(next), value(next + 1), {value(next + 2), value(next + 3), value(next + 4)}}, next += 5;
+      if (sheen) sheen_means[t] = {{value(next), value(next + 1), value(next + 2)}, value(next + 3)};
       if (level == 0) continue;
       // Texel t's lobes into `into`, from `n` slots of `channels` from `first` on.
       const auto read_lobes = [&](BrdfLevel& into, std::size_t first, int n, const std::vector<LobeChannel>& channels,
@@ -576,17 +597,20 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
     param_levels.push_back(std::move(params));
     if (param_specular) specular_levels.push_back(std::move(specular));
     if (coat) coat_levels.push_back(std::move(coat_means));
+    if (sheen) sheen_levels.push_back(std::move(sheen_means));
   }
   if (in->seek_subimage(levels, 0))
     throw input_error(where(path), "has more subimages than the " + std::to_string(levels) + " levels of its level 0");
   if (corrupt) throw *corrupt;
+  // The BRDF pyramid reads the sheen means the parameter pyramid stores (brdf_pyramid.h).
+  std::vector<std::vector<SheenLayer>> brdf_sheen = sheen_levels;
   mip.param = ParamPyramid::from_levels(level0, std::move(param_levels), std::move(specular_levels), ior,
-                                        std::move(coat_levels));
+                                        std::move(coat_levels), std::move(sheen_levels));
   // Level 0's texels are the parameter pyramid's (the same floats).
   mip.level0 = mip.param.level0_texels();
   mip.brdf = BrdfPyramid::from_levels(mip.level0, max_lobes, std::move(coarse),
                                       radial_inner > 0.0f ? RadialGrid::with_inner(radial_inner, radial_outer) : RadialGrid{},
-                                      tint == 1, std::move(coarse_coat));
+                                      tint == 1, std::move(coarse_coat), std::move(brdf_sheen));
   return mip;
 }
 

@@ -19,6 +19,10 @@
 //   param.coat.roughness        mean clearcoat perceptual roughness                      float
 //   param.coat.N.X/Y/Z          mean of the unit coat normals, unnormalized (level 0: the
 //                               texel's coat normal)                                     float
+// and, in every level of a material with a sheen (KHR_materials_sheen), 16 bytes, which the BRDF
+// pyramid's texels read too (sheen_layer.h):
+//   param.sheen.R/G/B           mean linear sheen colour                                 float
+//   param.sheen.roughness       mean sheen perceptual roughness                          float
 // and, for L ≥ 1, for each lobe slot k = 0 .. S_L − 1 (lobe.h for the meaning), 26 bytes:
 //   lobeK.weight                fraction of the texel's area, times the lobe's specular-flux
 //                               factor (0: empty slot; slots are packed from 0)          half
@@ -45,6 +49,9 @@
 //                               metallic·base color (lobe.h, tinted)                     half
 // and, in a level of a material with a clear coat, 2 bytes more a slot (coat_layer.h):
 //   lobeK.coat                  the mean clearcoat weight of the lobe's texels            half
+// and, in a level of a material with a sheen, 2 bytes more a slot (sheen_layer.h):
+//   lobeK.sheen                 the mean max(sheen colour) of the lobe's texels, its sheen
+//                               share                                                     half
 // and, for L ≥ kFirstCorrectedLevel (4), 24 bytes (radial_correction.h):
 //   radial.R0 .. radial.R11     the texel's radial correction: the ratio of its true radial
 //                               profile of reflected light to its lobes' (gated beyond 10°)
@@ -80,7 +87,7 @@
 
 namespace svbrdf {
 
-inline constexpr int kMipFileVersion = 12;
+inline constexpr int kMipFileVersion = 13;
 
 // Throws svbrdf::Error naming the file when it cannot be written. A non-empty `cache_key` is stored as
 // svbrdf:cache_key.

@@ -1,6 +1,6 @@
 #pragma once
 // Private to mip/ (mip_file.cpp): the channels of the MIP file as mip_file.h lists them — the
-// parameters', the lobes' by role, the specular, tint and coat layers' — and a lobe packed into them and
+// parameters', the lobes' by role, the specular, tint and coat layers' and the sheen's — and a lobe packed into them and
 // unpacked; and a pixel's layout in a level's bytes.
 #include <Imath/half.h>
 #include <OpenImageIO/typedesc.h>
@@ -31,6 +31,9 @@ inline constexpr const char* kIor = "svbrdf:ior";
 // The clear coat's means, in every level of a material with a coat (mip_file.h).
 inline constexpr const char* kParamCoatChannels[5] = {"param.coat", "param.coat.roughness", "param.coat.N.X",
                                                       "param.coat.N.Y", "param.coat.N.Z"};
+// The sheen's means, in every level of a material with a sheen (mip_file.h).
+inline constexpr const char* kParamSheenChannels[4] = {"param.sheen.R", "param.sheen.G", "param.sheen.B",
+                                                       "param.sheen.roughness"};
 // The attribute (int, on every subimage ≥ 1 of a coated material's file) of a level's coat lobe slots.
 inline constexpr const char* kCoatSlots = "svbrdf:coat_slots";
 
@@ -42,6 +45,7 @@ enum class Role {
   diffuse90_r, diffuse90_g, diffuse90_b, f90,  // the specular layer's (kSpecularLobeChannels)
   f0_tint_r, f0_tint_g, f0_tint_b,             // the tint layer's (kTintLobeChannels)
   coat,                                         // the coat layer's (kCoatShareChannels)
+  sheen,                                        // the sheen's (kSheenShareChannels)
   count
 };
 struct LobeChannel {
@@ -85,6 +89,10 @@ constexpr LobeChannel kTintLobeChannels[] = {
 constexpr LobeChannel kCoatShareChannels[] = {
     {"coat", Role::coat, kHalf},
 };
+// A base lobe's channel of the sheen, 2 bytes (kBytesPerSheenShare), in levels of a material with a sheen.
+constexpr LobeChannel kSheenShareChannels[] = {
+    {"sheen", Role::sheen, kHalf},
+};
 // A coat lobe's channels, 14 bytes (kBytesPerCoatLobe), named "coatK.<suffix>": a lobe's without its
 // colours, which the extension fixes (stored_lobe.h set_coat_colours).
 constexpr LobeChannel kCoatLobeChannels[] = {
@@ -98,11 +106,12 @@ constexpr LobeChannel kCoatLobeChannels[] = {
 // The attribute (int 1, on every subimage) of a tintable pyramid's file (brdf_pyramid.h tintable).
 inline constexpr const char* kTint = "svbrdf:tint";
 // The channels of a level's lobe slots, with the layers' it has.
-inline std::vector<LobeChannel> lobe_channels(bool specular, bool tint, bool coat) {
+inline std::vector<LobeChannel> lobe_channels(bool specular, bool tint, bool coat, bool sheen) {
   std::vector<LobeChannel> c(std::begin(kLobeChannels), std::end(kLobeChannels));
   if (specular) c.insert(c.end(), std::begin(kSpecularLobeChannels), std::end(kSpecularLobeChannels));
   if (tint) c.insert(c.end(), std::begin(kTintLobeChannels), std::end(kTintLobeChannels));
   if (coat) c.insert(c.end(), std::begin(kCoatShareChannels), std::end(kCoatShareChannels));
+  if (sheen) c.insert(c.end(), std::begin(kSheenShareChannels), std::end(kSheenShareChannels));
   return c;
 }
 inline std::vector<LobeChannel> coat_lobe_channels() {
@@ -128,6 +137,7 @@ inline LobeValues pack_lobe(const Lobe& l) {
   out[Role::f90] = l.f90;
   out[Role::f0_tint_r] = l.f0_tint.r, out[Role::f0_tint_g] = l.f0_tint.g, out[Role::f0_tint_b] = l.f0_tint.b;
   out[Role::coat] = l.coat;
+  out[Role::sheen] = l.sheen;
   const StoredNormal n = store_normal(l.normal);  // exact: the pyramid's normals are decoded codes
   out.direction = n.direction;
   out[Role::normal_deficit] = n.deficit;
@@ -145,6 +155,7 @@ inline Lobe unpack_lobe(const LobeValues& in) {
   l.f90 = in[Role::f90];
   l.f0_tint = {in[Role::f0_tint_r], in[Role::f0_tint_g], in[Role::f0_tint_b]};
   l.coat = in[Role::coat];
+  l.sheen = in[Role::sheen];
   l.normal = load_normal(StoredNormal{in.direction, in[Role::normal_deficit]});
   l.alpha2 = in[Role::alpha] * in[Role::alpha];
   set_lobe_shape_code(l, in[Role::shape]);

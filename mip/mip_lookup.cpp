@@ -171,21 +171,24 @@ LobeMixtureBsdf lookup_brdf(const MipData& mip, const Footprint& footprint, floa
   Lobe scratch, coat_scratch;
   b.assign(brdf_texel(mip, t.level, t.i, t.j, scratch), brdf_coat(mip, t.level, t.i, t.j, coat_scratch).lobes);
   b.set_correction(mip.brdf.correction(t.level, t.i, t.j), &mip.brdf.radial_grid());
+  if (const SheenLayer* sheen = brdf_sheen(mip, t.level, t.i, t.j)) b.set_sheen(*sheen);
   return b;
 }
 
 ParamTexel filter_params(const ParamPyramid& pyramid, const Footprint& footprint, WrapModes wrap, int max_probes,
-                         SpecularLayer* specular, ParamCoat* coat) {
+                         SpecularLayer* specular, ParamCoat* coat, SheenLayer* sheen) {
   ParamTexel sum;
   sum.normal = glm::vec3(0.0f);
   if (specular) *specular = {1.0f, glm::vec3(1.0f), pyramid.ior()};
   if (coat) *coat = {};
+  if (sheen) *sheen = {};
   if (pyramid.levels() == 0) return sum;
   const FilterTaps taps = filter_taps(pyramid.level0(), pyramid.levels(), footprint, wrap, max_probes);
   const bool layer = specular && !pyramid.specular_level(0).empty();
   if (layer) specular->specular = 0.0f, specular->color = glm::vec3(0.0f);
   const bool coated = coat && pyramid.has_coat();
   if (coated) coat->normal = glm::vec3(0.0f);
+  const bool sheened = sheen && pyramid.has_sheen();
   for (int k = 0; k < taps.count; ++k) {
     const FilterTap& t = taps.taps[static_cast<std::size_t>(k)];
     const ParamTexel& p = pyramid.texel(t.level, t.i, t.j);
@@ -203,6 +206,11 @@ ParamTexel filter_params(const ParamPyramid& pyramid, const Footprint& footprint
       coat->clearcoat += t.weight * c.clearcoat;
       coat->roughness += t.weight * c.roughness;
       coat->normal += t.weight * c.normal;
+    }
+    if (sheened) {
+      const SheenLayer& c = *pyramid.sheen(t.level, t.i, t.j);
+      sheen->color += t.weight * c.color;
+      sheen->roughness += t.weight * c.roughness;
     }
   }
   return sum;

@@ -67,9 +67,11 @@ LobeMixtureBsdf lookup_brdf(const MipData& mip, const Footprint& footprint, floa
 
 // (2) The trilinear-filtered parameters as one lobe (wrap it in LobeMixtureBsdf to shade).
 // With `specular`, also the same filter's mean of the specular layer (the material's when it is plain);
-// with `coat`, of the clear coat (ParamCoat{} for a material without one).
+// with `coat`, of the clear coat (ParamCoat{} for a material without one); with `sheen`, of the sheen
+// (SheenLayer{}, colour 0, for a material without one).
 ParamTexel filter_params(const ParamPyramid& pyramid, const Footprint& footprint, WrapModes wrap = {},
-                         int max_probes = kMaxProbes, SpecularLayer* specular = nullptr, ParamCoat* coat = nullptr);
+                         int max_probes = kMaxProbes, SpecularLayer* specular = nullptr, ParamCoat* coat = nullptr,
+                         SheenLayer* sheen = nullptr);
 Lobe lookup_param(const ParamPyramid& pyramid, const Footprint& footprint,
                   TextureFilter filter = TextureFilter::param, WrapModes wrap = {}, int max_probes = kMaxProbes);
 

@@ -9,6 +9,7 @@
 
 #include "base/error.h"
 #include "mip/coat_layer.h"
+#include "mip/sheen_layer.h"
 
 namespace svbrdf {
 
@@ -49,9 +50,14 @@ Lobe param_coat_lobe(const ParamCoat& c, TextureFilter filter) {
   return l;
 }
 
-ParamLobes param_lobes(const ParamTexel& t, TextureFilter filter, const SpecularLayer& layer, const ParamCoat* coat) {
+ParamLobes param_lobes(const ParamTexel& t, TextureFilter filter, const SpecularLayer& layer, const ParamCoat* coat,
+                       const SheenLayer* sheen) {
   ParamLobes out;
   out.base = param_lobe(t, filter, layer);
+  if (sheen) {
+    out.sheen = *sheen;
+    out.base.sheen = sheen_share(*sheen);
+  }
   if (coat) {
     out.base.coat = std::clamp(coat->clearcoat, 0.0f, 1.0f);
     out.coat = param_coat_lobe(*coat, filter);
@@ -132,6 +138,19 @@ std::vector<ParamCoat> coat_from_below(Extent level0, int level, const std::vect
 
 }  // namespace
 
+std::vector<SheenLayer> sheen_from_below(Extent level0, int level, const std::vector<SheenLayer>& fine) {
+  return level_from_below(level0, level, fine, [](const auto& children) {
+    double total = 0, rough = 0;
+    glm::dvec3 c(0);
+    children([&](double w, const SheenLayer& t) {
+      total += w;
+      c += w * glm::dvec3(t.color);
+      rough += w * t.roughness;
+    });
+    return SheenLayer{glm::vec3(c / total), static_cast<float>(rough / total)};
+  });
+}
+
 ParamPyramid ParamPyramid::build(const MaterialTexels& m) {
   ParamPyramid p = level0_only(m);
   p.build_coarse_levels();
@@ -164,6 +183,7 @@ ParamPyramid ParamPyramid::level0_only(const MaterialTexels& m) {
     }
     p.coat_.push_back(std::move(coat));
   }
+  if (m.has_sheen()) p.sheen_.push_back(sheen_level0(m));
   return p;
 }
 
@@ -172,6 +192,7 @@ void ParamPyramid::build_coarse_levels() {
     levels_.push_back(params_from_below(level0_, level, levels_.back()));
     if (!specular_.empty()) specular_.push_back(specular_from_below(level0_, level, specular_.back()));
     if (!coat_.empty()) coat_.push_back(coat_from_below(level0_, level, coat_.back()));
+    if (!sheen_.empty()) sheen_.push_back(sheen_from_below(level0_, level, sheen_.back()));
   }
 }
 
@@ -203,12 +224,23 @@ MaterialTexels ParamPyramid::level0_texels() const {
       m.clearcoat[k] = c.clearcoat, m.clearcoat_roughness[k] = c.roughness, m.clearcoat_normal[k] = c.normal;
     }
   }
+  if (!sheen_.empty()) {
+    // Every texel's own sheen; the factor only says that the material has one (sheen_layer reads the
+    // texels').
+    m.sheen_color_factor = glm::vec3(1.0f);
+    m.sheen_roughness_factor = 1.0f;
+    m.sheen_color.resize(base.size());
+    m.sheen_roughness.resize(base.size());
+    for (std::size_t k = 0; k < base.size(); ++k)
+      m.sheen_color[k] = sheen_.front()[k].color, m.sheen_roughness[k] = sheen_.front()[k].roughness;
+  }
   return m;
 }
 
 ParamPyramid ParamPyramid::from_levels(Extent level0, std::vector<std::vector<ParamTexel>> levels,
                                        std::vector<std::vector<ParamSpecular>> specular, float ior,
-                                       std::vector<std::vector<ParamCoat>> coat) {
+                                       std::vector<std::vector<ParamCoat>> coat,
+                                       std::vector<std::vector<SheenLayer>> sheen) {
   if (static_cast<int>(levels.size()) != level_count(level0))
     throw Error("parameter pyramid: " + std::to_string(levels.size()) + " levels for a " +
                 std::to_string(level0.width) + "x" + std::to_string(level0.height) + " level 0 (expected " +
@@ -221,12 +253,15 @@ ParamPyramid ParamPyramid::from_levels(Extent level0, std::vector<std::vector<Pa
       throw Error("parameter pyramid: the specular layer's level " + std::to_string(l) + " has the wrong size");
     if (!coat.empty() && (coat.size() != levels.size() || coat[l].size() != levels[l].size()))
       throw Error("parameter pyramid: the coat's level " + std::to_string(l) + " has the wrong size");
+    if (!sheen.empty() && (sheen.size() != levels.size() || sheen[l].size() != levels[l].size()))
+      throw Error("parameter pyramid: the sheen's level " + std::to_string(l) + " has the wrong size");
   }
   ParamPyramid p;
   p.level0_ = level0;
   p.levels_ = std::move(levels);
   p.specular_ = std::move(specular);
   p.coat_ = std::move(coat);
+  p.sheen_ = std::move(sheen);
   p.ior_ = ior;
   return p;
 }

@@ -62,12 +62,20 @@ Lobe param_coat_lobe(const ParamCoat& c, TextureFilter filter);
 // and specular layer and, for a material with a coat (`coat` not null), under the coated material of its
 // mean coat — the coat lobe param_coat_lobe makes, the base lobe's coat share the mean clearcoat. At
 // level 0 these are the texel's own lobes, level0_lobe's and level0_coat's (exact_reference.h).
+// A material with a sheen (`sheen` not null) shades the mean sheen over the base lobe, whose sheen share
+// (Lobe::sheen) is max of the mean colour (sheen_layer.h).
 struct ParamLobes {
   Lobe base;
   Lobe coat;             // valid where `coated`
   bool coated = false;
+  SheenLayer sheen;      // the mean sheen (colour 0: none)
 };
-ParamLobes param_lobes(const ParamTexel& t, TextureFilter filter, const SpecularLayer& layer, const ParamCoat* coat);
+ParamLobes param_lobes(const ParamTexel& t, TextureFilter filter, const SpecularLayer& layer, const ParamCoat* coat,
+                       const SheenLayer* sheen = nullptr);
+
+// The sheen means of level `level` ≥ 1 from those of level − 1: each the mean of its children's colours
+// and perceptual roughnesses weighted by the level-0 texels they cover, in double, as the parameters'.
+std::vector<SheenLayer> sheen_from_below(Extent level0, int level, const std::vector<SheenLayer>& fine);
 
 class ParamPyramid {
  public:
@@ -84,7 +92,8 @@ class ParamPyramid {
   // throws svbrdf::Error when the shapes do not form a pyramid.
   static ParamPyramid from_levels(Extent level0, std::vector<std::vector<ParamTexel>> levels,
                                   std::vector<std::vector<ParamSpecular>> specular = {}, float ior = 1.5f,
-                                  std::vector<std::vector<ParamCoat>> coat = {});
+                                  std::vector<std::vector<ParamCoat>> coat = {},
+                                  std::vector<std::vector<SheenLayer>> sheen = {});
 
   int levels() const { return static_cast<int>(levels_.size()); }
   Extent level0() const { return level0_; }
@@ -122,11 +131,25 @@ class ParamPyramid {
   }
   static constexpr int kBytesPerCoatTexel = 5 * 4;  // 5 floats, for a material with a coat
 
+  // The sheen (KHR_materials_sheen), a pyramid of its means beside the parameters' for a material with
+  // one (empty otherwise): the mean linear colour and perceptual roughness (sheen_from_below). The BRDF
+  // pyramid's texels read the same means (sheen_layer.h).
+  bool has_sheen() const { return !sheen_.empty(); }
+  std::span<const SheenLayer> sheen_level(int level) const {
+    return sheen_.empty() ? std::span<const SheenLayer>() : sheen_[static_cast<std::size_t>(level)];
+  }
+  const SheenLayer* sheen(int level, int i, int j) const {
+    if (sheen_.empty()) return nullptr;
+    return &sheen_[static_cast<std::size_t>(level)][static_cast<std::size_t>(j) * extent(level).width + i];
+  }
+  static constexpr int kBytesPerSheenTexel = 4 * 4;  // 4 floats, for a material with a sheen
+
  private:
   Extent level0_{};
   std::vector<std::vector<ParamTexel>> levels_;
   std::vector<std::vector<ParamSpecular>> specular_;  // empty: a plain layer (factors 1)
   std::vector<std::vector<ParamCoat>> coat_;          // empty: no coat
+  std::vector<std::vector<SheenLayer>> sheen_;        // empty: no sheen
   float ior_ = 1.5f;
 };
 

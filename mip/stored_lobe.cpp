@@ -83,6 +83,7 @@ void round_to_stored(Lobe& lobe) {
   }
   lobe.f90 = to_half(lobe.f90);
   lobe.coat = to_half(lobe.coat);
+  lobe.sheen = to_half(lobe.sheen);
   lobe.normal = round_normal(lobe.normal);
   const float skirt_code = lobe_skirt_code(lobe);
   set_lobe_shape_code(lobe, lobe_shape_code(lobe));
@@ -101,6 +102,7 @@ void set_coat_colours(Lobe& lobe) {
   lobe.f0_tint = glm::vec3(0.0f);
   lobe.f90 = 1.0f;
   lobe.coat = 0.0f;
+  lobe.sheen = 0.0f;
 }
 
 }  // namespace svbrdf

@@ -6,10 +6,11 @@
 //
 // Which materials take part ("active"): those whose BRDF the lobes model — the glTF metallic-
 // roughness BRDF with its KHR_materials_specular and KHR_materials_ior layer (lobe.h) and its
-// KHR_materials_clearcoat coat (coat_layer.h), with KHR_materials_transmission/diffuse_roughness at
-// their defaults and not unlit — and that have at least one of the textures their texels read
-// (render/texel_inputs.h: base color, metallic-roughness, normal, specular, specular color, and with a
-// coat its weight, roughness and normal). Every other material is shaded by
+// KHR_materials_clearcoat coat (coat_layer.h) and KHR_materials_sheen sheen (sheen_layer.h), with
+// KHR_materials_transmission/diffuse_roughness at their defaults and not unlit — and that have at least
+// one of the textures their texels read (render/texel_inputs.h: base color, metallic-roughness, normal,
+// specular, specular color, with a coat its weight, roughness and normal, with a sheen its colour and
+// roughness). Every other material is shaded by
 // SurfaceBsdf with level0 lookups under every filter (an untextured one has nothing to filter); a
 // textured one that is left out gets one warning saying why.
 //
