@@ -22,6 +22,7 @@ enum Stream : std::uint64_t {
   kMetalStream = 3,
   kColorStream = 4,
   kSpecularStream = 5,  // reserved: KHR_materials_specular / ior
+  kSheenStream = 6,
 };
 
 constexpr float kMinRoughness = 0.02f, kMaxRoughness = 1.0f;
@@ -188,6 +189,20 @@ RandomMaterialDraw draw_random_material(std::uint64_t seed) {
     d.color_variation = s.uniform(0.0f, 0.3f);
     d.color_feature = log_uniform(s, 2.0f, 32.0f);
   }
+  {
+    noise::Sequence s(seed, kSheenStream);
+    const bool sheen = s.uniform() < 1.0f / 3.0f;
+    const float h = s.uniform(), sat = s.uniform(0.0f, 0.6f), v = s.uniform(0.2f, 1.0f);
+    const float roughness = s.uniform(0.1f, 1.0f);
+    const bool textured = s.uniform() < 0.5f;
+    const float share = s.uniform(0.2f, 0.8f), feature = log_uniform(s, 3.0f, 24.0f), variation = s.uniform(0.0f, 0.3f);
+    if (sheen) {
+      d.sheen_color = hsv(h, sat, v);
+      d.sheen_roughness = roughness;
+      d.sheen_textured = textured;
+      if (textured) d.sheen_share = share, d.sheen_feature = feature, d.sheen_roughness_variation = variation;
+    }
+  }
   // KHR_materials_specular / ior: noise::Sequence(seed, kSpecularStream) draws them here (specular
   // weight, specular colour, ior) once MaterialTexels has the fields.
   return d;
@@ -230,6 +245,23 @@ MaterialTexels random_material_texels(const RandomMaterialDraw& d, int size) {
     const float f = 1.0f + d.color_variation * shade[k];
     t.metallic[k] = m;
     t.base_color[k] = glm::clamp(f * glm::mix(d.dielectric_color, d.metal_color, m), glm::vec3(0.0f), glm::vec3(1.0f));
+  }
+
+  // Sheen: its factors, and for a textured one its patches and its roughness's variation per texel.
+  if (d.sheen_color != glm::vec3(0.0f)) {
+    t.sheen_color_factor = d.sheen_color;
+    t.sheen_roughness_factor = d.sheen_roughness;
+    if (d.sheen_textured) {
+      const std::vector<float> cover =
+          mask(field(noise::hash(d.seed, kSheenStream, 1), size, d.sheen_feature), d.sheen_share, kSharpEdge);
+      const std::vector<float> vary = field(noise::hash(d.seed, kSheenStream, 2), size, float(kRoughnessVariationFeature));
+      t.sheen_color.resize(t.size());
+      t.sheen_roughness.resize(t.size());
+      for (std::size_t k = 0; k < t.size(); ++k) {
+        t.sheen_color[k] = cover[k] * d.sheen_color;
+        t.sheen_roughness[k] = std::clamp(d.sheen_roughness * (1.0f + d.sheen_roughness_variation * vary[k]), 0.0f, 1.0f);
+      }
+    }
   }
   return t;
 }
@@ -275,6 +307,16 @@ std::string RandomMaterialDraw::summary() const {
   s += buf;
   std::snprintf(buf, sizeof buf, "; colour ±%.0f%% on %.0f texels", 100.0 * color_variation, color_feature);
   s += buf;
+  if (sheen_color != glm::vec3(0.0f)) {
+    std::snprintf(buf, sizeof buf, "; sheen (%.2f,%.2f,%.2f) r %.2f", sheen_color.r, sheen_color.g, sheen_color.b,
+                  sheen_roughness);
+    s += buf;
+    if (sheen_textured) {
+      std::snprintf(buf, sizeof buf, " on %.0f%% (%.0f-texel patches) ±%.0f%%", 100.0 * sheen_share, sheen_feature,
+                    100.0 * sheen_roughness_variation);
+      s += buf;
+    }
+  }
   return s;
 }
 

@@ -19,7 +19,12 @@
 //                texture in patches U_log[4, 32] texels across, paint on metal);
 //   colour     — a metal's F0 colour (any hue, saturation U[0, 0.4], value U[0.5, 0.98]) and a
 //                dielectric's albedo (any hue, saturation U[0, 0.8], value U[0.03, 0.85]), each
-//                varied by noise of relative amplitude U[0, 0.3] on features U_log[2, 32] texels.
+//                varied by noise of relative amplitude U[0, 0.3] on features U_log[2, 32] texels;
+//   sheen      — with probability 1/3 a KHR_materials_sheen: colour of any hue, saturation U[0, 0.6],
+//                value U[0.2, 1], perceptual roughness U[0.1, 1]; with probability 1/2 textured: the
+//                sheen covers U[0.2, 0.8] of the texture in patches U_log[3, 24] texels across (sharp
+//                edges; none elsewhere) and its roughness varies by noise of relative amplitude
+//                U[0, 0.3] on 16-texel features; otherwise its factors hold everywhere.
 // Every ingredient has its own random stream, so an ingredient added later (a stream of its own)
 // leaves every existing seed's texels unchanged.
 //
@@ -65,6 +70,14 @@ struct RandomMaterialDraw {
   glm::vec3 dielectric_color{0.5f};
   float color_variation = 0.0f;
   float color_feature = 0.0f;
+  // KHR_materials_sheen (colour 0: none): colour, roughness, and for a textured sheen its covered
+  // share, patch size (texels) and relative roughness variation.
+  glm::vec3 sheen_color{0.0f};
+  float sheen_roughness = 0.0f;
+  bool sheen_textured = false;
+  float sheen_share = 1.0f;
+  float sheen_feature = 0.0f;
+  float sheen_roughness_variation = 0.0f;
   // KHR_materials_specular / KHR_materials_ior (specular weight, specular colour, ior) are drawn in
   // draw_random_material's stream kSpecularStream once MaterialTexels carries them.
 
