@@ -13,7 +13,11 @@
 #include "appearance/sheen.h"
 #include "exact_mean_check.h"
 #include "gltf_transcription.h"
+#include "base/error.h"
 #include "mip/exact_reference.h"
+#include "mip/gltf_material.h"
+#include "textures/color.h"
+#include "textures/material_loader.h"
 #include "random_directions.h"
 
 namespace svbrdf {
@@ -185,6 +189,57 @@ TEST(SheenLayer, ExactTableIsItsEvaluation) {
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(t[static_cast<std::size_t>(p)][c], want[c], 1e-12 + 1e-9 * want[c]) << "pair " << p;
       }
     }
+  }
+}
+
+// The sheen's images decode as the renderer reads them (render/surface.cpp): colour from RGB
+// (sRGB-encoded unless the image is linear) times its factor, roughness from A times its factor within
+// [0, 1]; absent maps give the factors, and a black colour factor no sheen at all. material_images names
+// the slots by their glTF paths, which a refusal repeats.
+TEST(SheenLayer, DecodedFromTheMaterialsImages) {
+  Image color(2, 1, 4), rough(2, 1, 4);
+  const float rgb[2][3] = {{0.5f, 0.25f, 1.0f}, {1.0f, 1.0f, 1.0f}};
+  for (int i = 0; i < 2; ++i) {
+    for (int c = 0; c < 3; ++c) color.at(i, 0, c) = rgb[i][c], rough.at(i, 0, c) = 0.0f;
+    color.at(i, 0, 3) = 1.0f;
+  }
+  rough.at(0, 0, 3) = 0.5f, rough.at(1, 0, 3) = 1.0f;
+  MaterialImages in;
+  in.sheen_color = &color, in.sheen_color_is_linear = true, in.sheen_color_factor = glm::vec3(0.8f, 0.6f, 0.4f);
+  in.sheen_roughness = &rough, in.sheen_roughness_factor = 0.5f;
+  MaterialTexels m = decode_material_texels(in);
+  ASSERT_TRUE(m.has_sheen());
+  EXPECT_EQ(m.sheen_layer(0).color, glm::vec3(0.4f, 0.15f, 0.4f));
+  EXPECT_FLOAT_EQ(m.sheen_layer(0).roughness, 0.25f);
+  EXPECT_EQ(m.sheen_layer(1).color, glm::vec3(0.8f, 0.6f, 0.4f));
+  EXPECT_FLOAT_EQ(m.sheen_layer(1).roughness, 0.5f);
+  in.sheen_color_is_linear = false;
+  m = decode_material_texels(in);
+  EXPECT_FLOAT_EQ(m.sheen_layer(0).color.r, 0.8f * ColorConfig::builtin().srgb_texture_to_linear(0.5f));
+  MaterialImages plain;
+  plain.sheen_color_factor = glm::vec3(0.3f, 0.2f, 0.1f), plain.sheen_roughness_factor = 0.6f;
+  const MaterialTexels p = decode_material_texels(plain);
+  EXPECT_EQ(p.sheen_layer(0).color, glm::vec3(0.3f, 0.2f, 0.1f));
+  EXPECT_FLOAT_EQ(p.sheen_layer(0).roughness, 0.6f);
+  in.sheen_color_factor = glm::vec3(0.0f);
+  EXPECT_FALSE(decode_material_texels(in).has_sheen());
+
+  MaterialDesc d;
+  d.where = "materials[3]";
+  d.sheen_color = Rgb(1.0f);
+  d.sheen_color_texture.texture = 0;
+  d.sheen_roughness = 1.0f;
+  d.sheen_roughness_texture.texture = 1;
+  const Image wider(3, 1, 4);
+  const MaterialImages named = material_images(
+      d, [&](const TextureRef& r, bool) { return SlotImage{r.texture == 0 ? &color : &wider, true}; }, "scene.gltf: ");
+  try {
+    decode_material_texels(named);
+    ADD_FAILURE() << "textures of different sizes were decoded";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("scene.gltf: materials[3].extensions.KHR_materials_sheen.sheenRoughnessTexture"),
+              std::string::npos)
+        << e.what();
   }
 }
 
