@@ -67,45 +67,28 @@ Rgb LobeMixtureBsdf::eval(const glm::vec3& wi, const glm::vec3& wo) const {
   if (!p.valid) return Rgb(0);
   Rgb f(0);
   const float scale = correction_ ? correction_at(*correction_, *grid_, p.h) : 1.0f;
-  if (sheen_on_) {
-    // Each base lobe under its sheen (sheen_layer.h), then the coat over the whole as below.
-    Rgb coated(0);
-    CoatCosine<float> cosine;
-    for (int k = 0; k < count_; ++k) {
-      float sides;
-      Rgb fk = lobe_eval(slot(k).lobe, slot(k).shape, p, scale, &sides);
-      const SheenLobeTerms t = sheen_lobe_terms(slot(k).lobe, slot(k).shape, p, sides, sheen_roughness_);
-      fk = t.scaling * fk + t.sheen * sheen_scale_;
-      f += fk;
-      coated += slot(k).lobe.coat * fk;
-      cosine.add_sides(slot(k).lobe, slot(k).shape, sides);
-    }
-    if (coat_count_ == 0) return f;
-    CoatFresnel<float> fresnel;
-    Rgb coat(0);
-    const float k_cos = cosine.value(p);
-    for (int k = count_; k < count_ + coat_count_; ++k) {
-      const float w = fresnel.add(slot(k).lobe, slot(k).shape, p.wo);
-      if (k_cos > 0) coat += coat_lobe_eval(slot(k).lobe, slot(k).shape, p, w);
-    }
-    return f - fresnel.value() * coated + k_cos * coat;
-  }
-  if (coat_count_ == 0) {
+  if (coat_count_ == 0 && !sheen_on_) {
     for (int k = 0; k < count_; ++k) f += lobe_eval(slot(k).lobe, slot(k).shape, p, scale);
     return f;
   }
   // The layered f_eff of coat_layer.h, as coated_eval writes it: the base lobes (the radial correction
-  // is theirs) less what the coat reflects of them, plus the coat lobes under the base's cosine factor.
-  // Each lobe's horizons and each coat lobe's Schlick weight are evaluated once, for both their uses.
+  // is theirs), each under its sheen where there is one (sheen_layer.h), less what the coat reflects of
+  // them, plus the coat lobes under the base's cosine factor. Each lobe's horizons and each coat lobe's
+  // Schlick weight are evaluated once, for all their uses.
   Rgb coated(0);
   CoatCosine<float> cosine;
   for (int k = 0; k < count_; ++k) {
     float sides;
-    const Rgb fk = lobe_eval(slot(k).lobe, slot(k).shape, p, scale, &sides);
+    Rgb fk = lobe_eval(slot(k).lobe, slot(k).shape, p, scale, &sides);
+    if (sheen_on_) {
+      const SheenLobeTerms t = sheen_lobe_terms(slot(k).lobe, slot(k).shape, p, sides, sheen_roughness_);
+      fk = t.scaling * fk + t.sheen * sheen_scale_;
+    }
     f += fk;
     coated += slot(k).lobe.coat * fk;
     cosine.add_sides(slot(k).lobe, slot(k).shape, sides);
   }
+  if (coat_count_ == 0) return f;
   CoatFresnel<float> fresnel;
   Rgb coat(0);
   const float k_cos = cosine.value(p);

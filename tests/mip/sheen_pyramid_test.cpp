@@ -17,6 +17,7 @@
 #include "mip/mip_data.h"
 #include "mip/sheen_layer.h"
 #include "tests/mip/random_directions.h"
+#include "tests/mip/sampling_check.h"
 #include "textures/random_material.h"
 
 namespace svbrdf {
@@ -186,9 +187,8 @@ TEST(SheenPyramid, UniformSheenKeepsItsMeans) {
   EXPECT_EQ(none.brdf.sheen_bytes_per_texel(1), 0);
 }
 
-// The mixture's sampler with a sheen: pdf() is the density sample() draws from (χ² over 64 bins of the
-// hemisphere), the weights are f·cosθ/pdf, and their mean is ∫ f·cosθ dωi by dense quadrature, for a
-// level-0 texel and coarse texels of a textured sheen. The base is rough (perceptual roughness ≥ 0.2
+// The mixture's sampler with a sheen (sampling_check.h: χ² of sample() against pdf(), the weights, their
+// mean against the quadrature of f·cosθ), for a level-0 texel and coarse texels of a textured sheen. The base is rough (perceptual roughness ≥ 0.2
 // everywhere): a glossy spread core's own sampler misses this test's bounds without any sheen (seed 1's
 // level-2 texel: 4 % of the density's mass), which is the base's to answer for, not the sheen's.
 TEST(SheenPyramid, SamplingWithASheenMatchesItsPdfAndIntegral) {
@@ -217,50 +217,8 @@ TEST(SheenPyramid, SamplingWithASheenMatchesItsPdfAndIntegral) {
     }
   }
   ASSERT_EQ(mixtures.size(), 3u);
-  for (const LobeMixtureBsdf& bsdf : mixtures) {
-    const glm::vec3 wo = glm::normalize(glm::vec3(0.4f, -0.2f, 0.5f));
-    constexpr int nb = 8, sub = 48;
-    std::array<double, nb * nb> expected{};
-    double integral = 0;
-    for (int a = 0; a < nb * sub; ++a)
-      for (int b = 0; b < nb * sub; ++b) {
-        const double u = (a + 0.5) / (nb * sub), v = (b + 0.5) / (nb * sub);
-        const double ct = std::sqrt(1 - u), st = std::sqrt(u), phi = 2 * kPi * v;
-        const glm::vec3 wi(float(st * std::cos(phi)), float(st * std::sin(phi)), float(ct));
-        const double dw = kPi / ((nb * sub) * (nb * sub)) / ct;
-        expected[static_cast<std::size_t>((a / sub) * nb + b / sub)] += bsdf.pdf(wi, wo) * dw;
-        integral += double(bsdf.eval(wi, wo).g) * ct * dw;
-      }
-    Rng rng(23, 5);
-    constexpr int n = 200000;
-    std::array<double, nb * nb> observed{};
-    double weight_sum = 0;
-    int absorbed = 0;
-    for (int s = 0; s < n; ++s) {
-      const BsdfSample smp = bsdf.sample(wo, {rng.next_float(), rng.next_float(), rng.next_float()});
-      if (smp.kind != SampleKind::finite) {
-        ++absorbed;
-        continue;
-      }
-      ASSERT_GT(smp.wi.z, 0.0f);
-      EXPECT_NEAR(smp.pdf, bsdf.pdf(smp.wi, wo), 1e-4f * smp.pdf);
-      weight_sum += smp.weight.g;
-      const double u = 1 - double(smp.wi.z) * smp.wi.z;
-      const double v = std::fmod(std::atan2(double(smp.wi.y), double(smp.wi.x)) / (2 * kPi) + 1.0, 1.0);
-      const int a = std::min(nb - 1, static_cast<int>(u * nb)), b = std::min(nb - 1, static_cast<int>(v * nb));
-      observed[static_cast<std::size_t>(a * nb + b)] += 1;
-    }
-    double chi2 = 0, mass = 0;
-    for (int k = 0; k < nb * nb; ++k) {
-      const double e = expected[static_cast<std::size_t>(k)] * n;
-      mass += expected[static_cast<std::size_t>(k)];
-      if (e > 5) chi2 += std::pow(observed[static_cast<std::size_t>(k)] - e, 2) / e;
-    }
-    EXPECT_LT(chi2, 120.0);  // 63 degrees of freedom: p ≈ 1e-5
-    EXPECT_NEAR(mass + double(absorbed) / n, 1.0, 0.01);
-    EXPECT_NEAR(weight_sum / n, integral, 0.02 * integral);
-    EXPECT_LE(integral, 1.0);
-  }
+  for (const LobeMixtureBsdf& bsdf : mixtures)
+    testing_sampling::expect_sampling_matches_pdf_and_integral(bsdf, glm::normalize(glm::vec3(0.4f, -0.2f, 0.5f)));
 }
 
 }  // namespace
