@@ -1,6 +1,7 @@
 // The random material family (textures/random_material.h) against the distributions its header
 // states: determinism per seed, the roughness range over seeds, the tilt bounds, one-axis
-// corrugations, and that a two-population texture holds two populations and nothing much between.
+// corrugations, that a two-population texture holds two populations and nothing much between, and the
+// sheen's share of the seeds, ranges and coverage.
 #include "textures/random_material.h"
 
 #include <gtest/gtest.h>
@@ -160,6 +161,41 @@ TEST(RandomMaterial, MetalAndColour) {
     }
   }
   EXPECT_NEAR(both / double(kSeeds), 0.3, 0.1);
+}
+
+// A third of the seeds draw a sheen, within the stated ranges (colour value 0.2–1, saturation ≤ 0.6,
+// roughness 0.1–1); half of those are textured, covering their stated share of the texels (the mask's
+// sharp edge: ±0.06 at 32²) with no sheen elsewhere, the rest hold their factors everywhere.
+TEST(RandomMaterial, SheenOnAThirdOfTheSeeds) {
+  int sheened = 0, textured = 0;
+  for (std::uint64_t seed = 1; seed <= kSeeds; ++seed) {
+    const RandomMaterialDraw d = draw_random_material(seed);
+    const MaterialTexels t = random_material_texels(d, 32);
+    if (d.sheen_color == glm::vec3(0.0f)) {
+      EXPECT_FALSE(t.has_sheen()) << d.summary();
+      continue;
+    }
+    ++sheened;
+    ASSERT_TRUE(t.has_sheen()) << d.summary();
+    const float hi = std::max(d.sheen_color.r, std::max(d.sheen_color.g, d.sheen_color.b));
+    const float lo = std::min(d.sheen_color.r, std::min(d.sheen_color.g, d.sheen_color.b));
+    EXPECT_GE(hi, 0.2f - 1e-6f) << d.summary();
+    EXPECT_LE(hi, 1.0f) << d.summary();
+    EXPECT_GE(lo, hi * (1.0f - 0.6f) - 1e-6f) << d.summary();
+    EXPECT_GE(d.sheen_roughness, 0.1f);
+    EXPECT_LE(d.sheen_roughness, 1.0f);
+    if (!d.sheen_textured) {
+      EXPECT_TRUE(t.sheen_color.empty() && t.sheen_roughness.empty()) << d.summary();
+      continue;
+    }
+    ++textured;
+    const double covered = fraction(t, [&](std::size_t k) { return t.sheen_color[k].r + t.sheen_color[k].g + t.sheen_color[k].b > 0.5f * (d.sheen_color.r + d.sheen_color.g + d.sheen_color.b); });
+    EXPECT_NEAR(covered, d.sheen_share, 0.06) << d.summary();
+    for (std::size_t k = 0; k < t.size(); ++k)
+      ASSERT_NEAR(t.sheen_roughness[k], d.sheen_roughness, 1.5f * d.sheen_roughness_variation * d.sheen_roughness + 1e-6f) << d.summary();  // noise of range about ±1
+  }
+  EXPECT_NEAR(sheened / double(kSeeds), 1.0 / 3.0, 0.1);
+  EXPECT_NEAR(textured / double(std::max(1, sheened)), 0.5, 0.15);
 }
 
 }  // namespace
