@@ -6,10 +6,10 @@
 #include "base/error.h"
 #include "mip/brdf_pyramid.h"
 #include "mip/coat_layer.h"
-#include "mip/sheen_layer.h"
 #include "mip/mip_file.h"
 #include "mip/mip_lookup.h"
 #include "mip/param_pyramid.h"
+#include "mip/sheen_layer.h"
 
 namespace svbrdf {
 
