@@ -14,45 +14,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// `text` as one word of a POSIX shell command: in single quotes, each ' as '\'' (POSIX.1-2017, Shell
-// Command Language §2.2.2: nothing inside single quotes is special but the quote itself).
-std::string quoted(const std::string& text) {
-  std::string out = "'";
-  for (const char ch : text) out += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
-  return out + "'";
-}
-
-// `text` as one argument of an #SBATCH line: in double quotes, each \ and " escaped by a backslash.
-// sbatch reads a directive's argument up to unquoted white space and takes single or double quotes
-// and backslash escapes (Slurm's sbatch, _get_argument); unquoted, a space would end the path and a #
-// begin a comment.
-std::string directive_quoted(const std::string& text) {
-  std::string out = "\"";
-  for (const char ch : text) {
-    if (ch == '\\' || ch == '"') out += '\\';
-    out += ch;
-  }
-  return out + "\"";
-}
-
-// A path as sbatch's --output takes it: its % doubled, for %A, %a and %j are the job's numbers there
-// (sbatch(1), filename pattern: "%%" is the character %).
-std::string output_pattern(const std::string& path) {
-  std::string out;
-  for (const char ch : path) out += ch == '%' ? std::string("%%") : std::string(1, ch);
-  return out;
-}
-
-// The #SBATCH lines both jobs share: where they run and log, and what the user passed on.
-std::string common_directives(const SlurmOptions& s, const fs::path& folder) {
-  std::string out = "#SBATCH --chdir=" + directive_quoted(folder.string()) + "\n";
-  if (!s.partition.empty()) out += "#SBATCH --partition=" + s.partition + "\n";
-  if (!s.account.empty()) out += "#SBATCH --account=" + s.account + "\n";
-  if (!s.time.empty()) out += "#SBATCH --time=" + s.time + "\n";
-  for (const std::string& o : s.sbatch_options) out += "#SBATCH " + o + "\n";
-  return out;
-}
-
 std::string number_text(float v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.9g", double(v));  // 9 digits: the same float read back
@@ -70,29 +31,7 @@ void SlurmOptions::add_to(CLI::App& app) {
                  "with --slurm: the number of tiles of each frame, one array task each (default 4; with --frames 1: a "
                  "task renders a frame whole)")
       ->check(cli::whole_in(1, INT_MAX));
-  app.add_option("--slurm-partition", partition, "with --slurm: sbatch's --partition for both jobs");
-  app.add_option("--slurm-account", account, "with --slurm: sbatch's --account for both jobs");
-  app.add_option("--slurm-time", time, "with --slurm: sbatch's --time limit of each task and of the merge");
-  app.add_option("--slurm-option", sbatch_options,
-                 "with --slurm: another sbatch option for both jobs, e.g. --slurm-option=--mem=4G (repeatable)");
-}
-
-std::vector<std::string> without_options(const std::vector<std::string>& args, const std::vector<std::string>& drop) {
-  std::vector<std::string> out;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    bool dropped = false;
-    for (const std::string& name : drop) {
-      if (args[i] == name) {
-        ++i;  // its value
-      } else if (!(args[i].rfind(name + "=", 0) == 0 || (name.size() == 2 && args[i].rfind(name, 0) == 0))) {
-        continue;
-      }
-      dropped = true;
-      break;
-    }
-    if (!dropped) out.push_back(args[i]);
-  }
-  return out;
+  SlurmJobOptions::add_to(app, "each task and of the merge");
 }
 
 std::string slurm_submission(const SlurmOptions& s, const RenderCommand& c, const fs::path& program,
@@ -102,7 +41,7 @@ std::string slurm_submission(const SlurmOptions& s, const RenderCommand& c, cons
   const FrameRange frames_asked = range ? parse_frames(c.frames) : FrameRange{};
   const int tiles = s.tile_count(range);
   const std::string stem = (out.parent_path() / out.stem()).string(), n = std::to_string(tiles);
-  const std::string prog = quoted(program.string());
+  const std::string prog = shell_quoted(program.string());
   const std::string png = c.png.empty() ? "" : fs::absolute(c.png).lexically_normal().string();
   const long long frames = frames_asked.count(), tasks = frames * tiles;
 
@@ -114,14 +53,14 @@ std::string slurm_submission(const SlurmOptions& s, const RenderCommand& c, cons
   if (range) array += "frame=$((" + std::to_string(frames_asked.first) + " + SLURM_ARRAY_TASK_ID / " + n + "))\n";
   if (tiles > 1) array += "tile=$((SLURM_ARRAY_TASK_ID % " + n + "))\n";
   array += "exec " + prog;
-  for (const std::string& a : render_args) array += " " + quoted(a);
+  for (const std::string& a : render_args) array += " " + shell_quoted(a);
   // Double quotes: the frame and tile are the shell's to expand, in the batch script.
   array += " --quiet";
   if (range) array += " --frames \"$frame\"";
   if (tiles > 1)
-    array += " --tile \"$tile/" + n + "\" --out " + quoted(stem + ".tile-") + "\"$tile\"" + quoted("-of-" + n + ".exr");
+    array += " --tile \"$tile/" + n + "\" --out " + shell_quoted(stem + ".tile-") + "\"$tile\"" + shell_quoted("-of-" + n + ".exr");
   else  // frames whole: each task writes its frame's output itself
-    array += " --out " + quoted(out.string()) + (png.empty() ? "" : " --png " + quoted(png));
+    array += " --out " + shell_quoted(out.string()) + (png.empty() ? "" : " --png " + shell_quoted(png));
   array += "\n";
 
   const std::string head = "#!/bin/sh\n# svbrdf-render --slurm: " +
@@ -136,16 +75,16 @@ std::string slurm_submission(const SlurmOptions& s, const RenderCommand& c, cons
 
   std::string merge = "#!/bin/bash\n#SBATCH --job-name=svbrdf-merge\n#SBATCH --output=" +
                       directive_quoted(output_pattern(stem + ".slurm-") + "%j-merge.log") + "\n" + common_directives(s, folder);
-  merge += "exec " + prog + " --merge --quiet --out " + quoted(out.string());
-  if (range) merge += " --frames " + quoted(c.frames);  // every frame's tiles, named as each task named them
-  if (!png.empty()) merge += " --png " + quoted(png);
+  merge += "exec " + prog + " --merge --quiet --out " + shell_quoted(out.string());
+  if (range) merge += " --frames " + shell_quoted(c.frames);  // every frame's tiles, named as each task named them
+  if (!png.empty()) merge += " --png " + shell_quoted(png);
   if (c.use_float) merge += " --float";
   if (c.transparent) merge += " --transparent";
   if (c.exposure != 0.0f) merge += " --exposure " + number_text(c.exposure);
-  if (!c.ocio.empty()) merge += " --ocio-config " + quoted(c.ocio);
-  if (!c.display.empty()) merge += " --display " + quoted(c.display);
-  if (!c.view.empty()) merge += " --view " + quoted(c.view);
-  for (int i = 0; i < tiles; ++i) merge += " " + quoted(stem + ".tile-" + std::to_string(i) + "-of-" + n + ".exr");
+  if (!c.ocio.empty()) merge += " --ocio-config " + shell_quoted(c.ocio);
+  if (!c.display.empty()) merge += " --display " + shell_quoted(c.display);
+  if (!c.view.empty()) merge += " --view " + shell_quoted(c.view);
+  for (int i = 0; i < tiles; ++i) merge += " " + shell_quoted(stem + ".tile-" + std::to_string(i) + "-of-" + n + ".exr");
   merge += "\n";
 
   // The batch scripts as here-documents with a quoted delimiter: sbatch gets them unexpanded.
@@ -163,9 +102,7 @@ int run_slurm(const SlurmOptions& s, const RenderCommand& c, int argc, char** ar
   if (!c.more_inputs.empty()) throw input_error(c.more_inputs.front(), "a second scene: --slurm renders one");
   if (c.out.empty()) throw input_error("--slurm", "needs -o/--out: the EXR the merge writes");
   // A batch script names these paths in #SBATCH lines, which end at a line break.
-  for (const std::string& path : {c.out, c.png, fs::current_path().string()})
-    if (path.find_first_of("\n\r") != std::string::npos)
-      throw input_error("--slurm", "a path with a line break cannot be named in a batch script: " + path);
+  for (const std::string& path : {c.out, c.png, fs::current_path().string()}) check_batch_path(path, "--slurm");
   if (!c.frames.empty()) {
     const long long tasks = (long long)(parse_frames(c.frames).count()) * s.tile_count(true);
     if (tasks > INT_MAX)
@@ -179,25 +116,11 @@ int run_slurm(const SlurmOptions& s, const RenderCommand& c, int argc, char** ar
   if (!c.scene_file.empty() && !fs::is_regular_file(c.scene_file, ec)) throw input_error(c.scene_file, "no such scene file");
   prepare_outputs(c.output_options());  // the folder exists (the logs and tiles go there) and takes the files
   if (c.fps != 0.0 && c.frames.empty()) throw input_error("--fps", "sets the rate of --frames; give --frames too");
-  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-  if (ec) throw environment_error("/proc/self/exe", "cannot find this program's path: " + ec.message());
   const std::vector<std::string> args = without_options(
       std::vector<std::string>(argv + 1, argv + argc),
       {"--slurm", "--slurm-tiles", "--slurm-partition", "--slurm-account", "--slurm-time", "--slurm-option", "-o", "--out",
        "--png", "--frames"});
-  const std::string script = slurm_submission(s, c, self, args, fs::current_path());
-  if (s.mode == "print") {
-    std::fputs(script.c_str(), stdout);
-    return 0;
-  }
-  std::fflush(stdout);
-  FILE* sh = ::popen("/bin/sh -s", "w");
-  if (!sh) throw environment_error("/bin/sh", "cannot start the submission");
-  const bool written = std::fputs(script.c_str(), sh) >= 0;
-  const int status = ::pclose(sh);
-  if (!written || status != 0)
-    throw environment_error("sbatch", "the submission failed (is Slurm's sbatch on PATH, and SLURM_CONF the cluster's?); "
-                                      "svbrdf-render --slurm print shows what was run");
+  run_submission(s.mode, slurm_submission(s, c, this_program(), args, fs::current_path()), "svbrdf-render");
   return 0;
 }
 

@@ -16,14 +16,13 @@
 #include <vector>
 
 #include "apps/render_command.h"
+#include "apps/slurm_script.h"
 
 namespace svbrdf {
 
-struct SlurmOptions {
+struct SlurmOptions : SlurmJobOptions {
   std::string mode;  // "print" or "submit"; empty: render here
   int tiles = 0;  // 0: not given (tile_count)
-  std::string partition, account, time;
-  std::vector<std::string> sbatch_options;  // more #SBATCH lines, e.g. --mem=4G, for both jobs
 
   void add_to(CLI::App& app);
   // The tiles of each frame: --slurm-tiles, else 4 for one frame and 1 for --frames (a frame is a task).
@@ -35,10 +34,6 @@ struct SlurmOptions {
 // --tile and its output), run in `folder`.
 std::string slurm_submission(const SlurmOptions& slurm, const RenderCommand& command, const std::filesystem::path& program,
                              const std::vector<std::string>& render_args, const std::filesystem::path& folder);
-
-// The command line's arguments (argv[1..]) without the options `drop` names, each with its value
-// ("--out x", "--out=x", "-ox").
-std::vector<std::string> without_options(const std::vector<std::string>& args, const std::vector<std::string>& drop);
 
 // Prints the submission (print), or runs it through /bin/sh (submit), whose lines name the job ids.
 // Returns the exit status; throws svbrdf::Error when sbatch fails.
