@@ -127,6 +127,8 @@ LodResults run_lod_comparison(const LodManifest& m, const LodOptions& o, const C
     check_names(o.views, views, "view");
   }
   if (o.spp < 1) throw input_error("spp", "must be at least 1");
+  if (o.parts < 1 || o.part < 0 || o.part >= o.parts)
+    throw input_error("part " + std::to_string(o.part) + "/" + std::to_string(o.parts), "must be I/N with 0 <= I < N");
   LodResults results;
   results.options = o;
   results.image_size = m.image_size;
@@ -178,8 +180,14 @@ LodResults run_lod_comparison(const LodManifest& m, const LodOptions& o, const C
       if (!selected(o.views, v.name)) continue;
       for (const std::string& light_name : v.lights) {
         if (!selected(o.lights, light_name)) continue;
-        const bool any = std::any_of(m.distances.begin(), m.distances.end(), wanted);
-        if (!any) continue;
+        // This part's shots of the view and light: their indices k, k mod parts == part.
+        std::vector<std::pair<std::size_t, int>> mine;
+        for (std::size_t i = 0; i < v.cameras.size(); ++i) {
+          if (!wanted(m.distances[i])) continue;
+          const int k = results.total_shots++;
+          if (k % o.parts == o.part) mine.push_back({i, k});
+        }
+        if (mine.empty()) continue;
         if (!subject_owner) {
           subject_owner = std::make_unique<ShotRenderer>(c.gltf, m.image_size, o.footprint_scale, color);
           if (c.reference != c.gltf) reference_owner = std::make_unique<ShotRenderer>(c.reference, m.image_size, o.footprint_scale, color);
@@ -189,10 +197,10 @@ LodResults run_lod_comparison(const LodManifest& m, const LodOptions& o, const C
         const LodLightSpec& light = m.light(light_name);
         const RenderWorld subject_world = subject.world(light);
         const RenderWorld reference_world = reference_owner ? reference.world(light) : subject_world;
-        for (std::size_t i = 0; i < v.cameras.size(); ++i) {
+        for (const auto& [i, index] : mine) {
           const double k = m.distances[i];
-          if (!wanted(k)) continue;
           LodShot shot;
+          shot.index = index;
           shot.case_name = c.name;
           shot.kind = c.kind;
           shot.view = v.name;

@@ -49,11 +49,17 @@ struct LodOptions {
   // sample filter the whole pixel footprint.
   float footprint_scale = 0.0f;
   bool keep_images = true;          // keep the images (the report needs them; the tests do not)
+  // A part of the comparison, for a farm (lod/parts.h): of the selected shots, numbered k = 0, 1, ...
+  // in the comparison's order (case, view, light, distance, as the manifest lists them), render only
+  // those with k mod parts == part. A shot's renders depend on the shot alone (its seeds are the
+  // options' and its camera its own), so the parts' shots are the single run's, bit for bit.
+  int part = 0, parts = 1;
   std::function<void(const std::string&)> progress;  // one line per shot
 };
 
 // One (case, view, light, distance): the ground truth's noise floor and each filter's metrics.
 struct LodShot {
+  int index = 0;  // k: the shot's place among every selected shot of the comparison (all parts)
   std::string case_name, kind, view, light, camera;
   double multiple = 1.0;
   LodMetrics floor;         // second ground truth against the first
@@ -75,7 +81,8 @@ struct LodResults {
   int image_size = 0;
   std::vector<std::string> filters;      // the available ones, in options order
   std::vector<std::string> unavailable;  // asked for but not offered by the renderer
-  std::vector<LodShot> shots;
+  std::vector<LodShot> shots;   // this part's (all of them for one part), by index
+  int total_shots = 0;          // the selected shots of the whole comparison, over all parts
   double seconds = 0.0;
 };
 

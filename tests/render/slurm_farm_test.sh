@@ -3,13 +3,16 @@
 # with a configuration written for the test (loopback only, free ports, every file in a temporary
 # folder), a 4-tile render submitted through `svbrdf-render --slurm submit`, and the merged EXR and PNG
 # compared value for value with one render of the whole frame; and two frames of an animated camera,
-# as tiles merged and as frames whole, compared with the frames rendered on one machine. Skips (exit 77) without Slurm and munge
+# as tiles merged and as frames whole, compared with the frames rendered on one machine; and a small
+# LOD comparison in 2 parts through `svbrdf-lod-report --slurm submit`, its assembled report's images
+# and numbers compared byte for byte with the report of one process. Skips (exit 77) without Slurm and munge
 # (Debian: slurm-wlm, munge) or without root (slurmd starts the tasks as their user). Every daemon is
 # stopped on the way out, whatever happened.
-#   slurm_farm_test.sh SVBRDF_RENDER SCENE.gltf
+#   slurm_farm_test.sh SVBRDF_RENDER SCENE.gltf SVBRDF_LOD_REPORT
 set -u
 render=$(realpath "$1")
 scene=$(realpath "$2")
+lod_report=$(realpath "$3")
 
 for tool in munged mungekey slurmctld slurmd sbatch squeue sinfo idiff python3; do
   if ! command -v "$tool" >/dev/null 2>&1; then
@@ -129,6 +132,9 @@ args=("$scene" --res 48x32 --spp 6 --seed 11 --aov --quiet)
 # Frames 6 and 7 (t = 0.25 and 0.29 s), on one machine: single-frames.0006.exr and .0007.exr.
 frame_args=("$dir/anim scene/animated.gltf" --res 40x30 --spp 4 --seed 5 --frames 6-7 --quiet)
 "$render" "${frame_args[@]}" -o "$dir/single-frames.exr" || fail "the single-machine render of frames 6-7 failed"
+# The LOD comparison's two farthest shots of one case and light, in one process.
+lod_args=(--spp 4 --case printed-paper-text --light sun-0 --view head-on --min-distance 4096 -q)
+"$lod_report" "${lod_args[@]}" -o "$dir/lod single" || fail "the single-process LOD report failed"
 
 # Three submissions at once: the frame in 4 tiles; frames 6-7 in 2 tiles each, merged (the output's
 # name with a # run, in a folder whose name has a space, as the batch scripts must quote them); and
@@ -147,7 +153,11 @@ submit() {  # FOLDER ARGS...: submits from FOLDER, prints the id of the job that
 tiles_job=$(submit "$farm" "${args[@]}" -o out.exr --slurm-tiles 4) || exit 1
 seq_tiles_job=$(submit "$farm/seq tiles" "${frame_args[@]}" -o 'seq ##.exr' --slurm-tiles 2) || exit 1
 seq_whole_job=$(submit "$farm/seq whole" "${frame_args[@]}" -o seq.exr) || exit 1
-jobs=("$tiles_job" "$seq_tiles_job" "$seq_whole_job")
+lod_out=$(cd "$farm" && "$lod_report" "${lod_args[@]}" -o "lod report" --slurm-parts 2 --slurm submit) ||
+  fail "the LOD submission failed"
+echo "$lod_out" >&2
+[[ $lod_out =~ assemble:\ job\ ([0-9]+) ]] || fail "no job id in: $lod_out"
+jobs=("$tiles_job" "$seq_tiles_job" "$seq_whole_job" "${BASH_REMATCH[1]}")
 # Done when the last jobs have left the queue (a generous limit: tasks start within seconds).
 for _ in $(seq 240); do
   [[ -z $(squeue -h -j "$(IFS=,; echo "${jobs[*]}")" 2>/dev/null) ]] && break
@@ -171,4 +181,14 @@ for frame in 0006 0007; do
 done
 idiff -q -a "$dir/single-frames.0006.exr" "$dir/single-frames.0007.exr" >/dev/null &&
   fail "frames 6 and 7 are the same image: the camera did not move"
-echo "slurm test: 4 tiles, and frames 6-7 as 2 tiles each and whole, rendered by Slurm: identical to the single renders"
+# The LOD report assembled from 2 parts: every PNG and results.json the bytes of the single run's.
+[[ -f "lod report/index.html" ]] || fail "the LOD report was not assembled: $(cat "lod report.parts"/*.log 2>/dev/null | tail -n 5)"
+[[ -f "lod report.parts/lod-part-1-of-2.json" ]] || fail "the LOD report's part 1 of 2 is missing"
+n=0
+for png in "$dir/lod single/img/"*.png; do
+  cmp -s "$png" "lod report/img/${png##*/}" || fail "the assembled LOD report's ${png##*/} differs from the single run's"
+  n=$((n + 1))
+done
+[[ $n -gt 0 && $(ls "lod report/img" | wc -l) -eq $n ]] || fail "the assembled LOD report has other images than the single run's"
+cmp -s "$dir/lod single/results.json" "lod report/results.json" || fail "the assembled LOD report's numbers differ"
+echo "slurm test: 4 tiles, and frames 6-7 as 2 tiles each and whole, rendered by Slurm, and a LOD report in 2 parts: identical to the single runs"
