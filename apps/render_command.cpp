@@ -78,7 +78,8 @@ std::string samples_text(const RenderStats& stats, int spp) {
 // Renders one frame (or a tile of it) of `world` and writes it to `oo` when command.out is set: the
 // render's progress, its stop on a signal, and what it says of how it ended.
 RenderOutcome render_and_write(const RenderCommand& c, const RenderWorld& world, RenderOptions options,
-                               const OutputOptions& oo, const ColorConfig& color, const char* program) {
+                               const OutputOptions& oo, const ColorConfig& color, const TextureTiles* tiles,
+                               const char* program) {
   const bool write = !c.out.empty(), tile = oo.tile;
   const std::uint64_t pixels = std::uint64_t(options.crop.width()) * std::uint64_t(options.crop.height());
   ProgressPrinter printer(c.quiet);
@@ -89,6 +90,9 @@ RenderOutcome render_and_write(const RenderCommand& c, const RenderWorld& world,
   RenderOutcome outcome;
   outcome.film = render(world, options, &outcome.stats);
   const RenderStats& stats = outcome.stats;
+  // A tile the texture cache could not read was shaded as zeros: nothing is written.
+  if (tiles)
+    if (const std::string failure = tiles->failure(); !failure.empty()) throw environment_error("--texture-cache", failure);
   // Writing the EXR and the PNG is short and must not be cut between the two: signals now only
   // change the exit status.
   set_interrupt_mode(InterruptMode::record);
@@ -196,12 +200,35 @@ void RenderCommand::add_options(CLI::App& app) {
                  "the OCIO view of that display the PNG shows, e.g. Standard or Filmic in Blender's config (default: "
                  "the display's default view; the EXR is always scene-linear)");
   mip_cache.add_to(&app);
+  app.add_option("--texture-cache", texture_cache,
+                 "read the textures out of core: written once as tiled files in the MIP cache's folder and read "
+                 "through a cache of at most MB megabytes (10^6 bytes), at least " +
+                     std::to_string(int(TextureTiles::kMinMegabytes)) + " (MB left out: " +
+                     std::to_string(int(TextureTiles::kDefaultMegabytes)) + "; default: the images held in memory whole)")
+      ->expected(0, 1);
   app.add_flag("--float", use_float, "write 32-bit float EXR (default half)");
   app.add_flag("--transparent", transparent,
                "a transparent background: the camera does not see the environment (which still lights the scene), "
                "so the EXR's alpha is what the scene covers of each pixel, and the PNG has alpha too");
   app.add_flag("--aov", aovs, "also write the albedo, normal, depth and MIP level, as layers of the EXR (albedo.R/G/B, N.X/Y/Z, Z, mip_level.X)");
   app.add_flag("-q,--quiet", quiet, "no progress output or notes (warnings and errors are still printed)");
+}
+
+std::optional<double> texture_cache_megabytes(const std::optional<std::string>& text) {
+  if (!text) return std::nullopt;
+  if (text->empty()) return TextureTiles::kDefaultMegabytes;
+  double mb = 0.0;
+  std::size_t used = 0;
+  try {
+    mb = std::stod(*text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text->size() || !(mb >= TextureTiles::kMinMegabytes && mb <= 1e9))
+    throw input_error("--texture-cache " + *text, "expected megabytes, a number in [" +
+                                                      std::to_string(int(TextureTiles::kMinMegabytes)) +
+                                                      ", 1e9] (OpenImageIO's image cache keeps at least 10 MB)");
+  return mb;
 }
 
 OutputOptions RenderCommand::output_options() const {
@@ -278,6 +305,18 @@ RenderOutcome run_render(RenderCommand& c, const fs::path& scene_path, const cha
   // The brdf filter's builds are the ones worth keeping (render/mip_cache.h).
   const std::unique_ptr<MipCache> mip_cache = texture_filter == TextureFilter::brdf ? c.mip_cache.open(program) : nullptr;
   setup.mip_cache = mip_cache.get();
+  // Out of core: each image goes to the texture cache's files as it is decoded (render/texture_tiles.h).
+  std::unique_ptr<TextureTiles> tiles;
+  if (const std::optional<double> mb = texture_cache_megabytes(c.texture_cache)) {
+    const std::unique_ptr<MipCache> folder = c.mip_cache.open(program);
+    if (!folder)
+      throw input_error("--texture-cache", "its files live in the MIP cache's folder, and there is none (--mip-cache DIR names one)");
+    tiles = std::make_unique<TextureTiles>(folder->folder(), *mb);
+    load.take_image = [&](std::size_t index, ImageDesc& image, bool is_color) {
+      TextureSet::store(index, image, is_color, color, *tiles);
+    };
+    setup.texture_tiles = tiles.get();
+  }
   setup_progress.begin("reading " + scene_path.filename().string() + " and decoding its images");
   Scene scene = load_gltf(scene_path, load);
   setup_progress.end();
@@ -292,6 +331,10 @@ RenderOutcome run_render(RenderCommand& c, const fs::path& scene_path, const cha
   if (const auto counts = prepared.mip_cache_counts(); !c.quiet && counts.read + counts.built > 0)
     std::fprintf(stderr, "%s: MIP maps: %d read from the MIP cache %s, %d built\n", program, counts.read,
                  message_line(mip_cache->folder().string()).c_str(), counts.built);
+  if (tiles && !c.quiet)
+    std::fprintf(stderr, "%s: texture cache: %d files in %s, %.1f MB of texels, at most %.1f MB of them in memory\n", program,
+                 tiles->file_count(), message_line(tiles->folder().string()).c_str(), double(tiles->texel_bytes()) / 1e6,
+                 *texture_cache_megabytes(c.texture_cache));
   // glTF carries no environment: whichever one lights the render is said, once (a note, not a
   // warning: --quiet silences it with the progress).
   if (!c.quiet && !prepared.environment_note().empty())
@@ -332,7 +375,7 @@ RenderOutcome run_render(RenderCommand& c, const fs::path& scene_path, const cha
                                                                    : LightSampling::mis;
   options.cancel = &cancel;
   setup_progress.end();
-  if (!range) return render_and_write(c, prepared.world(), options, oo, color, program);
+  if (!range) return render_and_write(c, prepared.world(), options, oo, color, tiles.get(), program);
   RenderOutcome outcome;
   for (int f = range->first;; ++f) {
     // A signal between two frames: the frames before are whole, and the next is not begun.
@@ -351,7 +394,7 @@ RenderOutcome run_render(RenderCommand& c, const fs::path& scene_path, const cha
     if (!c.quiet)
       std::fprintf(stderr, "%s: frame %d (t = %g s), %d of %d\n", program, f, frame_time(f, fps), f - range->first + 1,
                    range->count());
-    outcome = render_and_write(c, prepared.world(), options, frame_oo, color, program);
+    outcome = render_and_write(c, prepared.world(), options, frame_oo, color, tiles.get(), program);
     if (outcome.status != 0 || f == range->last) break;
   }
   return outcome;

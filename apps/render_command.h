@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,9 @@ struct RenderCommand {
   float exposure = 0.0f, footprint_scale = 0.0f, clamp = 0.0f, aperture = 0.0f, focus_distance = 0.0f;
   bool use_float = false, quiet = false, aovs = false, transparent = false;
   MipCacheOptions mip_cache;
+  // --texture-cache [MB]: the level-0 textures out of core (render/texture_tiles.h), with at most MB
+  // megabytes of their tiles in memory; absent: the images are held in memory whole.
+  std::optional<std::string> texture_cache;
   // Positionals after the scene: the rest of the tiles for svbrdf-render --merge (apps/render_merge.h);
   // a render refuses them. Defined here, so that the program and the module parse alike.
   std::vector<std::string> more_inputs;
@@ -38,6 +42,11 @@ struct RenderCommand {
   // for an --out that is not an .exr file.
   OutputOptions output_options() const;
 };
+
+// --texture-cache's megabytes (TextureTiles::kDefaultMegabytes when given without a number), or
+// nullopt when it is absent. Throws bad input naming the option for a value that is not a number in
+// [TextureTiles::kMinMegabytes, 1e9].
+std::optional<double> texture_cache_megabytes(const std::optional<std::string>& text);
 
 struct RenderOutcome {
   Film film{0, 0};

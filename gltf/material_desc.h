@@ -163,6 +163,13 @@ struct MaterialDesc {
 
   // Does any texture slot that changes the surface's shape (alpha) need sampling at intersection time?
   bool alpha_tested() const { return alpha_mode != AlphaMode::opaque; }
+
+  // Whether a slot that holds sRGB-encoded color (base color, emissive, specular color) shows
+  // texture `texture`: its image is then read through a scene-linear copy.
+  bool shows_as_color(int texture) const {
+    return base_color_texture.texture == texture || emissive_texture.texture == texture ||
+           specular_color_texture.texture == texture;
+  }
 };
 
 }  // namespace svbrdf

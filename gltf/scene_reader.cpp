@@ -79,8 +79,15 @@ class Loader {
     std::vector<char> shown(m.images.size(), 0);
     for (const TextureDesc& t : m.textures)
       if (t.image >= 0) shown[std::size_t(t.image)] = 1;
-    for (std::size_t i = 0; i < m.images.size(); ++i)
-      if (shown[i]) gltf::decode_image(doc_, m, i);
+    std::vector<char> color(m.images.size(), 0);
+    for (std::size_t t = 0; t < m.textures.size(); ++t)
+      for (const MaterialDesc& d : m.materials)
+        if (m.textures[t].image >= 0 && d.shows_as_color(int(t))) color[std::size_t(m.textures[t].image)] = 1;
+    for (std::size_t i = 0; i < m.images.size(); ++i) {
+      if (!shown[i]) continue;
+      gltf::decode_image(doc_, m, i);
+      if (options_.take_image) options_.take_image(i, m.images[i], color[i] != 0);
+    }
     doc_.images.clear();
     scene_.images = std::move(m.images);
     scene_.textures = std::move(m.textures);

@@ -17,6 +17,7 @@
 // (meshes drawn in their bind pose, with a warning); occlusion textures are kept in the
 // MaterialDesc but a path tracer computes occlusion itself.
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,11 @@ struct LoadOptions {
   // Read the animation channels that move each camera (CameraDesc::motion), checking them; a file's
   // other animations are not read. Off, animations are not read at all (a still render).
   bool camera_animation = false;
+  // Called for each image a texture shows as soon as it is decoded, one at a time, before the next
+  // is decoded; `color`: a color slot shows it (MaterialDesc::shows_as_color). The callee may take
+  // the pixels away (out-of-core textures, render/texture_tiles.h), leaving the size and channels:
+  // then the decoded images are never all in memory at once.
+  std::function<void(std::size_t index, ImageDesc& image, bool color)> take_image;
 };
 
 Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options = {});

@@ -17,17 +17,20 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// An entry's file name: the key's 64 hexadecimal digits and ".exr".
+// An entry's file name: the key's 64 hexadecimal digits and ".exr", or ".tx" for a texture cache's
+// file (render/texture_tiles.h), which the folder's size counts too.
 bool is_entry_name(const std::string& name) {
-  return name.size() == 68 && name.compare(64, 4, ".exr") == 0 &&
-         name.find_first_not_of("0123456789abcdef") == 64;
+  const bool exr = name.size() == 68 && name.compare(64, 4, ".exr") == 0;
+  const bool tx = name.size() == 67 && name.compare(64, 3, ".tx") == 0;
+  return (exr || tx) && name.find_first_not_of("0123456789abcdef") == 64;
 }
 
-// A temporary left by a writer that was killed (".KEY.tmpPID.exr" whose process is gone).
+// A temporary left by a writer that was killed (".KEY.tmpPID.exr" or ".tx" whose process is gone).
 bool is_stale_temporary(const fs::path& folder, const std::string& name) {
   const std::size_t tmp = name.find(".tmp");
   if (name.empty() || name[0] != '.' || tmp == std::string::npos) return false;
-  return is_stale_temp_of(name, folder / (name.substr(1, tmp - 1) + ".exr"));
+  const std::string key = name.substr(1, tmp - 1);
+  return is_stale_temp_of(name, folder / (key + ".exr")) || is_stale_temp_of(name, folder / (key + ".tx"));
 }
 
 std::string megabytes(std::uint64_t bytes) {

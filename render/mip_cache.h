@@ -13,7 +13,9 @@
 // replaced.
 //
 // Size: at most max_bytes of entries, the least recently used (by modification time, which a hit
-// renews) removed first after each store.
+// renews) removed first after each store. The texture cache's files in the folder
+// (render/texture_tiles.h) count and go the same way; a render holds its own open, so removing them
+// under it takes nothing from it.
 //
 // Concurrent renders may share a folder: an entry is written to a temporary beside it (the process
 // id in its name, base/atomic_file.h) and renamed into place, so a reader sees a whole entry or none;

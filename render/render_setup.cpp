@@ -60,7 +60,7 @@ std::optional<Rgb> parse_color(const std::string& text) {
 PreparedScene::PreparedScene(Scene scene, const SceneSetup& setup, const ColorConfig& color) : scene_(std::move(scene)) {
   {
     const SetupProgress::Stage stage(setup.progress, "preparing " + std::to_string(scene_.textures.size()) + " textures");
-    textures_ = std::make_unique<TextureSet>(scene_, color);
+    textures_ = std::make_unique<TextureSet>(scene_, color, setup.texture_tiles);
     mips_ = std::make_unique<SceneMips>(scene_, *textures_);
   }
   if (setup.mip_cache) mips_->use_cache(setup.mip_cache, color.identity());

@@ -2,17 +2,16 @@
 
 #include <algorithm>
 #include <bit>
+#include <mutex>
+#include <span>
+
+#include "base/sha256.h"
 
 #include <tbb/parallel_for.h>
 
 namespace svbrdf {
 
 namespace {
-
-bool color_slot_uses(const MaterialDesc& m, int texture) {
-  return m.base_color_texture.texture == texture || m.emissive_texture.texture == texture ||
-         m.specular_color_texture.texture == texture;
-}
 
 int repeat_mask(WrapMode mode, int n) {
   return mode == WrapMode::repeat && std::has_single_bit(static_cast<unsigned>(n)) ? n - 1 : -1;
@@ -84,24 +83,31 @@ std::unique_ptr<TextureSet::Packed> TextureSet::pack(const Image& raw, const Ima
   return k;
 }
 
-TextureSet::TextureSet(const Scene& scene, const ColorConfig& color) {
+TextureSet::TextureSet(const Scene& scene, const ColorConfig& color, const TextureTiles* tiles) : tiles_(tiles) {
+  // The images store() wrote out of core: their pixels are gone, the cache's files hold them.
+  std::vector<const TiledImage*> tiled(scene.images.size(), nullptr);
+  if (tiles)
+    for (std::size_t i = 0; i < scene.images.size(); ++i) tiled[i] = tiles->image(i);
   std::vector<char> needs_linear(scene.images.size(), 0);
   for (std::size_t t = 0; t < scene.textures.size(); ++t) {
     const int image = scene.textures[t].image;
     if (image < 0) continue;
     for (const MaterialDesc& m : scene.materials)
-      if (color_slot_uses(m, int(t))) needs_linear[std::size_t(image)] = 1;
+      if (m.shows_as_color(int(t))) needs_linear[std::size_t(image)] = 1;
   }
   linear_images_.resize(scene.images.size());
   for (std::size_t i = 0; i < scene.images.size(); ++i) {
-    if (!needs_linear[i]) continue;
+    if (!needs_linear[i] || tiled[i]) continue;
     linear_images_[i] = scene.images[i].pixels;
     color.srgb_texture_to_linear(linear_images_[i]);
   }
   packed_images_.resize(scene.images.size());
   tbb::parallel_for(std::size_t(0), scene.images.size(), [&](std::size_t i) {
-    packed_images_[i] = pack(scene.images[i].pixels, needs_linear[i] ? &linear_images_[i] : nullptr);
+    if (!tiled[i]) packed_images_[i] = pack(scene.images[i].pixels, needs_linear[i] ? &linear_images_[i] : nullptr);
   });
+  read_back_.resize(scene.images.size());
+  for (std::size_t i = 0; i < scene.images.size(); ++i)
+    if (tiled[i]) read_back_[i] = std::make_unique<ReadBack>();
   textures_.resize(scene.textures.size());
   for (std::size_t t = 0; t < scene.textures.size(); ++t) {
     const TextureDesc& d = scene.textures[t];
@@ -109,13 +115,97 @@ TextureSet::TextureSet(const Scene& scene, const ColorConfig& color) {
     const auto image = static_cast<std::size_t>(d.image);
     Prepared& p = textures_[t];
     p.raw = &scene.images[image].pixels;
-    if (needs_linear[image]) p.linear = &linear_images_[image];
+    if (needs_linear[image] && !tiled[image]) p.linear = &linear_images_[image];
     p.packed = packed_images_[image].get();
+    p.tiled = tiled[image];
+    p.image = image;
     p.sampler = d.sampler;
     p.sampler.filter = FilterMode::nearest;  // level0: the nearest texel at the exact uv
     p.mask_s = repeat_mask(p.sampler.wrap_s, p.raw->width);
     p.mask_t = repeat_mask(p.sampler.wrap_t, p.raw->height);
   }
+}
+
+TextureSet::~TextureSet() = default;
+
+namespace {
+
+// The name of a texture cache file: what the texels are (the image's content, its size and which
+// form) and, for a linearized copy, the color config that made it.
+std::string tile_key(const Sha256Digest& content, const Image& image, const std::string& form) {
+  return to_hex(sha256("svbrdf texture tiles 1|" + to_hex(content) + "|" + std::to_string(image.width) + "x" +
+                       std::to_string(image.height) + "x" + std::to_string(image.channels) + "|" + form));
+}
+
+// The image's texels as RGBA floats (texel()'s expansion: what a nearest lookup returns).
+std::vector<float> rgba_floats(const Image& image) {
+  std::vector<float> out(4 * std::size_t(image.width) * std::size_t(image.height));
+  tbb::parallel_for(0, image.height, [&](int j) {
+    for (int i = 0; i < image.width; ++i) {
+      const glm::vec4 v = texel(image, i, j);
+      float* o = &out[4 * (std::size_t(j) * std::size_t(image.width) + std::size_t(i))];
+      o[0] = v.r, o[1] = v.g, o[2] = v.b, o[3] = v.a;
+    }
+  });
+  return out;
+}
+
+}  // namespace
+
+void TextureSet::store(std::size_t index, ImageDesc& desc, bool color, const ColorConfig& config, TextureTiles& tiles) {
+  Image& raw = desc.pixels;
+  if (raw.width <= 0 || raw.height <= 0 || raw.channels < 1) return;
+  // An image made in memory has no encoded bytes: its floats are its content (as for the MIP cache's key).
+  if (!desc.encoded_digest) desc.encoded_digest = sha256(std::as_bytes(std::span(raw.pixels)));
+  const Sha256Digest& content = *desc.encoded_digest;
+  TiledImage t;
+  t.width = raw.width, t.height = raw.height, t.channels = raw.channels;
+  t.linear = color;
+  Image linear;
+  if (color) {
+    linear = raw;
+    config.srgb_texture_to_linear(linear);
+  }
+  if (const std::unique_ptr<Packed> k = pack(raw, color ? &linear : nullptr)) {
+    t.codes = true;
+    t.raw_table = k->raw, t.linear_table = k->linear;
+    t.raw_file = t.linear_file = tiles.add(tile_key(content, raw, "codes"), raw.width, raw.height, PixelFormat::uint8, k->codes.data());
+  } else {
+    t.raw_file = tiles.add(tile_key(content, raw, "raw"), raw.width, raw.height, PixelFormat::float32, rgba_floats(raw).data());
+    if (color)
+      t.linear_file = tiles.add(tile_key(content, raw, "linear|" + config.identity()), raw.width, raw.height,
+                                PixelFormat::float32, rgba_floats(linear).data());
+  }
+  tiles.set_image(index, t);
+  std::vector<float>().swap(raw.pixels);  // the size and channels stay: TextureSet::size, the MIP key
+}
+
+struct TextureSet::ReadBack {
+  std::once_flag once[2];
+  Image image[2];  // raw, linear
+};
+
+const Image& TextureSet::read_back(const Prepared& p, bool color) const {
+  const TiledImage& t = *p.tiled;
+  const bool linear = color && t.linear;
+  ReadBack& r = *read_back_[p.image];
+  Image& out = r.image[linear];
+  std::call_once(r.once[linear], [&] {
+    const std::vector<std::byte> bytes = tiles_->read_all(linear && !t.codes ? t.linear_file : t.raw_file);
+    // The decoded image's channels from texel()'s RGBA: gray is R, gray+alpha is (R, A).
+    const int channels = std::min(t.channels, 4);
+    const int from[4][4] = {{0}, {0, 3}, {0, 1, 2}, {0, 1, 2, 3}};
+    out = Image(t.width, t.height, channels);
+    const Table& table = linear ? t.linear_table : t.raw_table;
+    for (std::size_t k = 0; k < std::size_t(t.width) * std::size_t(t.height); ++k)
+      for (int c = 0; c < channels; ++c) {
+        const int s = from[channels - 1][c];
+        out.pixels[k * std::size_t(channels) + std::size_t(c)] =
+            t.codes ? table[std::size_t(s)][std::to_integer<std::size_t>(bytes[4 * k + std::size_t(s)])]
+                    : reinterpret_cast<const float*>(bytes.data())[4 * k + std::size_t(s)];
+      }
+  });
+  return out;
 }
 
 }  // namespace svbrdf

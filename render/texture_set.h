@@ -11,6 +11,11 @@
 // checked texel by texel while the table is made, so lookups return exactly what textures/sampler.h's
 // nearest lookup of the float images returns, from a quarter of the memory traffic: both read their
 // texel through the sampler's nearest_texel_index. Wrap repeat on a power-of-two side is a mask.
+//
+// Out of core (`--texture-cache`, render/texture_tiles.h): store() writes each image as the loader
+// decodes it — the same 8-bit codes and tables, or the same floats (RGBA) of the image and of its
+// linearized copy — to the texture cache's files and drops its pixels; lookups then read the texel
+// of the same index from the cache's tiles, so they return the same values bit for bit.
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -22,12 +27,20 @@
 #include "gltf/scene.h"
 #include "textures/color.h"
 #include "textures/sampler.h"
+#include "render/texture_tiles.h"
 
 namespace svbrdf {
 
 class TextureSet {
  public:
-  TextureSet(const Scene& scene, const ColorConfig& color = ColorConfig::builtin());
+  // `tiles`: where store() put the images whose pixels the scene no longer holds (null: none did).
+  TextureSet(const Scene& scene, const ColorConfig& color = ColorConfig::builtin(), const TextureTiles* tiles = nullptr);
+  ~TextureSet();
+
+  // Writes image `index` of a scene being loaded (LoadOptions::take_image) to `tiles`: its 8-bit form
+  // or its floats, and with `color` those of its copy linearized by `config`; then frees its pixels.
+  // Throws svbrdf::Error (environment) when the files cannot be written.
+  static void store(std::size_t index, ImageDesc& image, bool color, const ColorConfig& config, TextureTiles& tiles);
 
   // The slot's texture at `uv` (the primitive's TEXCOORD_n, before the slot's transform); RGBA with
   // gray expanded and a missing alpha read as 1. `color` selects the linearized copy.
@@ -40,6 +53,18 @@ class TextureSet {
       const std::uint8_t* c = &k->codes[4 * (static_cast<std::size_t>(j) * k->width + i)];
       const Table& tab = color && p.linear ? k->linear : k->raw;
       return {tab[0][c[0]], tab[1][c[1]], tab[2][c[2]], tab[3][c[3]]};
+    }
+    if (const TiledImage* k = p.tiled) {
+      const int i = nearest_texel_index(t.x, k->width, p.sampler.wrap_s, p.mask_s);
+      const int j = nearest_texel_index(t.y, k->height, p.sampler.wrap_t, p.mask_t);
+      const bool linear = color && k->linear;
+      if (k->codes) {
+        const auto* c = reinterpret_cast<const std::uint8_t*>(tiles_->texel(k->raw_file, i, j));
+        const Table& tab = linear ? k->linear_table : k->raw_table;
+        return {tab[0][c[0]], tab[1][c[1]], tab[2][c[2]], tab[3][c[3]]};
+      }
+      const auto* v = reinterpret_cast<const float*>(tiles_->texel(linear ? k->linear_file : k->raw_file, i, j));
+      return {v[0], v[1], v[2], v[3]};
     }
     const Image& image = color && p.linear ? *p.linear : *p.raw;
     return sample(image, p.sampler, t);
@@ -57,13 +82,19 @@ class TextureSet {
     }
   }
 
-  // The image a slot reads: the linearized copy when `color` and one exists, else as stored.
+  // The image a slot reads: the linearized copy when `color` and one exists, else as stored. Out of
+  // core, read back from the texture cache's files on first use and kept (the MIP builds read every
+  // texel; a level0 render never asks).
   const Image& image(const TextureRef& ref, bool color) const {
     const Prepared& p = textures_[static_cast<std::size_t>(ref.texture)];
+    if (p.tiled) return read_back(p, color);
     return color && p.linear ? *p.linear : *p.raw;
   }
   // Whether image(ref, true) is a linearized copy (color slots have one).
-  bool linearized(const TextureRef& ref) const { return textures_[static_cast<std::size_t>(ref.texture)].linear != nullptr; }
+  bool linearized(const TextureRef& ref) const {
+    const Prepared& p = textures_[static_cast<std::size_t>(ref.texture)];
+    return p.linear != nullptr || (p.tiled && p.tiled->linear);
+  }
   // The texture's sampler (its wrap modes; the filter is nearest).
   const Sampler& sampler(const TextureRef& ref) const { return textures_[static_cast<std::size_t>(ref.texture)].sampler; }
   // Whether lookups of the slot's texture take the 8-bit path.
@@ -80,7 +111,7 @@ class TextureSet {
   }
 
  private:
-  using Table = std::array<std::array<float, 256>, 4>;  // per channel: code → value
+  using Table = CodeTable;  // per channel: code → value
   struct Packed {
     int width = 0, height = 0;
     std::vector<std::uint8_t> codes;  // RGBA per texel, rows from the top
@@ -90,10 +121,18 @@ class TextureSet {
     const Image* raw = nullptr;
     const Image* linear = nullptr;  // null unless a color slot uses the image
     const Packed* packed = nullptr;  // the 8-bit path, when the image allows it
+    const TiledImage* tiled = nullptr;  // out of core: the texture cache holds the texels
+    std::size_t image = 0;           // Scene::images index
     Sampler sampler;                // nearest, with the texture's wrap modes
     int mask_s = -1, mask_t = -1;   // width − 1, height − 1 where the wrap is repeat on a power of two
   };
   static std::unique_ptr<Packed> pack(const Image& raw, const Image* linear);
+  // An out-of-core image read back whole (image()).
+  struct ReadBack;
+  const Image& read_back(const Prepared& p, bool color) const;
+
+  const TextureTiles* tiles_ = nullptr;
+  std::vector<std::unique_ptr<ReadBack>> read_back_;  // per scene image, out of core
 
   std::vector<Image> linear_images_;  // per scene image; empty when no color slot uses it
   std::vector<std::unique_ptr<Packed>> packed_images_;  // per scene image; null when not 8-bit

@@ -1,0 +1,150 @@
+#pragma once
+// Out-of-core textures: images kept as tiled files on disk and read through an OpenImageIO
+// ImageCache whose memory is capped, so the texels resident at once are bounded by the cap whatever
+// the scene holds (`svbrdf-render --texture-cache MB`). TextureSet (render/texture_set.h) writes
+// each decoded image here once and looks its texels up through texel().
+//
+// Files: TIFF, 4 channels (RGBA), 64 × 64 tiles, one level (the level-0 texels; the coarser levels a
+// filter reads are the MIP pyramids', render/material_mips.h), 8-bit or 32-bit float, named by a
+// key that TextureSet makes from the image's content, in the MIP cache's folder (render/mip_cache.h),
+// which counts them in its size and evicts them as it does its entries. A file is written to a
+// temporary beside it and renamed into place (base/atomic_file.h), so concurrent renders that share
+// the folder see a whole file or none; one that is there with the expected size and layout is
+// reused, not written again. Each file is opened when added and stays open (the cache's limit on
+// open files is raised to hold them all), so an eviction by another render cannot pull it from
+// under this one.
+//
+// Lookups: a per-thread table of pinned tiles (ImageCache::get_tile), direct-mapped by tile, so
+// that a lookup whose tile a recent lookup of the same thread read costs a hash and a compare, not a
+// call into the cache (bench/results/render.md). A thread pins at most kPinnedTiles tiles; the
+// cache's own bookkeeping counts them, so they are inside the cap.
+//
+// A tile that cannot be read (the disk failed) reads as zeros and is recorded: failure() says so
+// after the render, which then fails (exit 1) rather than pass an image with holes.
+#include <array>
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <tbb/enumerable_thread_specific.h>
+
+#include <OpenImageIO/oiioversion.h>
+
+#include "textures/image.h"
+
+OIIO_NAMESPACE_BEGIN
+class ImageCache;
+namespace pvt {
+class ImageCacheFile;
+class ImageCachePerThreadInfo;
+class ImageCacheTile;
+}  // namespace pvt
+OIIO_NAMESPACE_END
+
+namespace svbrdf {
+
+// Per channel: an 8-bit code → the value it stands for (render/texture_set.h's 8-bit form).
+using CodeTable = std::array<std::array<float, 256>, 4>;
+
+// A scene image whose texels the texture cache holds, as TextureSet::store wrote it: its 8-bit codes
+// and their tables, or its floats and those of its scene-linear copy (both RGBA).
+struct TiledImage {
+  int width = 0, height = 0, channels = 0;  // as decoded
+  bool codes = false;   // 8-bit codes: raw_file holds them, for both tables
+  bool linear = false;  // a color slot shows it: linear_file / linear_table hold its scene-linear copy
+  int raw_file = -1, linear_file = -1;  // TextureTiles::add's indices
+  CodeTable raw_table{}, linear_table{};
+};
+
+class TextureTiles {
+ public:
+  static constexpr int kTileSide = 64;  // texels; a power of two (lookups shift and mask)
+  static constexpr int kTileShift = 6;
+  static constexpr int kPinnedTiles = 64;  // per thread; a power of two
+  // The smallest cap OpenImageIO's ImageCache honours (its max_memory_MB is raised to 10 MB below).
+  static constexpr double kMinMegabytes = 10.0;
+  static constexpr double kDefaultMegabytes = 1024.0;
+
+  // Files in `folder` (created when missing), at most `megabytes` (10^6 bytes) of tiles in memory.
+  TextureTiles(std::filesystem::path folder, double megabytes);
+  ~TextureTiles();
+  TextureTiles(const TextureTiles&) = delete;
+  TextureTiles& operator=(const TextureTiles&) = delete;
+
+  const std::filesystem::path& folder() const { return folder_; }
+
+  // The file of `key` (64 hexadecimal digits) holding `rgba` (width · height · 4 values, rows from
+  // the top, uint8 or float32 as `format` says), written unless a whole one is there; its index for
+  // texel(). Throws svbrdf::Error (environment) when it can be neither found nor written.
+  int add(const std::string& key, int width, int height, PixelFormat format, const void* rgba);
+
+  // The first byte of texel (i, j) of file `file` (inside the image): 4 bytes or 4 floats.
+  // Thread-safe; the pointer holds until this thread's next texel() call.
+  const std::byte* texel(int file, int i, int j) const {
+    const std::uint64_t key = (std::uint64_t(file) << 42) | (std::uint64_t(j >> kTileShift) << 21) | std::uint64_t(i >> kTileShift);
+    Pins& pins = pins_.local();
+    Pin& pin = pins.slots[(key * 0x9E3779B97F4A7C15ull) >> (64 - kPinBits)];
+    if (pin.key != key) refill(pins, pin, file, key);
+    const File& f = files_[std::size_t(file)];
+    return pin.pixels + f.texel_bytes * std::size_t(((j & (kTileSide - 1)) << kTileShift) + (i & (kTileSide - 1)));
+  }
+
+  // The whole level-0 image of `file`, as stored (for the MIP builds, which read every texel).
+  std::vector<std::byte> read_all(int file) const;
+
+  // The scene's images as stored here, by Scene::images index (null: not stored here).
+  void set_image(std::size_t index, const TiledImage& image) {
+    if (images_.size() <= index) images_.resize(index + 1);
+    images_[index] = std::make_unique<TiledImage>(image);
+  }
+  const TiledImage* image(std::size_t index) const { return index < images_.size() ? images_[index].get() : nullptr; }
+
+  // The files added, and their texels' bytes in memory were all of them resident (the scene's
+  // texture memory at the cache's formats: what a cap is a fraction of).
+  int file_count() const { return int(files_.size()); }
+  std::uint64_t texel_bytes() const {
+    std::uint64_t n = 0;
+    for (const File& f : files_) n += f.texel_bytes * std::uint64_t(f.width) * std::uint64_t(f.height);
+    return n;
+  }
+
+  // What went wrong reading tiles, or empty: the first file that failed.
+  std::string failure() const;
+
+ private:
+  static constexpr int kPinBits = 6;
+  static_assert(1 << kPinBits == kPinnedTiles);
+  struct File {
+    std::filesystem::path path;
+    OIIO::pvt::ImageCacheFile* handle = nullptr;
+    int width = 0, height = 0;
+    std::size_t texel_bytes = 0;  // 4 (uint8) or 16 (float)
+  };
+  struct Pin {
+    std::uint64_t key = ~std::uint64_t(0);
+    OIIO::pvt::ImageCacheTile* tile = nullptr;
+    const std::byte* pixels = nullptr;
+  };
+  struct Pins {
+    OIIO::pvt::ImageCachePerThreadInfo* info = nullptr;
+    std::array<Pin, kPinnedTiles> slots{};
+  };
+  void refill(Pins& pins, Pin& pin, int file, std::uint64_t key) const;
+  bool usable(const std::filesystem::path& path, int width, int height, PixelFormat format) const;
+
+  std::filesystem::path folder_;
+  OIIO::ImageCache* cache_ = nullptr;
+  std::vector<File> files_;  // complete before the first lookup
+  std::vector<std::unique_ptr<TiledImage>> images_;
+  mutable tbb::enumerable_thread_specific<Pins, tbb::cache_aligned_allocator<Pins>, tbb::ets_key_per_instance> pins_;
+  mutable std::mutex mutex_;  // guards failure_
+  mutable std::string failure_;
+  mutable std::atomic<bool> failed_{false};
+};
+
+}  // namespace svbrdf

@@ -1,0 +1,212 @@
+// Out-of-core textures (svbrdf-render --texture-cache, render/texture_tiles.h) end to end: the image
+// equals the in-memory render's bit for bit (the cache stores the same codes and floats); the
+// resident set of a render whose textures are 4× the cap stays under the cap plus the stated
+// overhead; bad values are refused in one line.
+#include <gtest/gtest.h>
+
+#include <sys/resource.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "base/json.h"
+#include "gltf/writer.h"
+#include "scenes/texture_set.h"
+#include "tests/common/run_command.h"
+#include "tests/common/spawn.h"
+#include "tests/common/temp_dir.h"
+#include "tests/common/test_paths.h"
+#include "textures/image.h"
+
+namespace svbrdf {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kRender = std::string(SVBRDF_BINARY_DIR) + "/svbrdf-render";
+
+struct Child {
+  int status = -1;
+  std::string err;
+  long peak_kb = 0;  // the child's peak resident set (getrusage's ru_maxrss)
+};
+
+// svbrdf-render with `args`, its peak resident set read from wait4's rusage.
+Child render(const std::vector<std::string>& args, const fs::path& dir) {
+  std::vector<std::string> all = {kRender};
+  all.insert(all.end(), args.begin(), args.end());
+  const fs::path err = dir / "stderr.txt";
+  const pid_t pid = testing::spawn_program(all, err);
+  Child r;
+  if (pid < 0) return r;
+  int status = 0;
+  struct rusage usage {};
+  if (::wait4(pid, &status, 0, &usage) != pid) return r;
+  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.peak_kb = usage.ru_maxrss;
+  r.err = testing::slurp(err);
+  return r;
+}
+
+void expect_same_pixels(const fs::path& a, const fs::path& b) {
+  const Image x = read_image(a), y = read_image(b);
+  ASSERT_EQ(x.width, y.width);
+  ASSERT_EQ(x.height, y.height);
+  ASSERT_EQ(x.channels, y.channels);
+  std::size_t differ = 0;
+  for (std::size_t k = 0; k < x.pixels.size(); ++k) differ += x.pixels[k] != y.pixels[k];
+  EXPECT_EQ(differ, 0u) << a << " and " << b << " differ in " << differ << " of " << x.pixels.size() << " values";
+}
+
+// A baked material on a quad: metal-tray's textures are 16-bit (the float files), sandstone's base
+// colour is 8-bit (the codes and their tables).
+fs::path baked(const fs::path& dir, const std::string& preset) {
+  MaterialRecipe r;
+  r.preset = preset;
+  r.size = 64;
+  r.seed = 3;
+  return bake_material(r, dir / preset).gltf;
+}
+
+TEST(TextureCache, RendersEqualTheInMemoryRenderBitForBit) {
+  const testing::TempDir dir;
+  for (const std::string preset : {"metal-tray", "sandstone"}) {
+    const fs::path scene = baked(dir.path(), preset);
+    for (const std::string filter : {"level0", "param", "brdf"}) {
+      const std::vector<std::string> common = {scene.string(), "--res", "40x32", "--spp", "4", "--filter", filter,
+                                               "--float", "--aov", "-q", "--mip-cache", (dir.path() / "cache").string()};
+      const fs::path a = dir.path() / (preset + filter + "-memory.exr"), b = dir.path() / (preset + filter + "-tiles.exr");
+      std::vector<std::string> memory = common, tiles = common;
+      memory.insert(memory.end(), {"-o", a.string()});
+      tiles.insert(tiles.end(), {"--texture-cache", "10", "-o", b.string()});
+      const Child m = render(memory, dir.path());
+      ASSERT_EQ(m.status, 0) << m.err;
+      const Child t = render(tiles, dir.path());
+      ASSERT_EQ(t.status, 0) << t.err;
+      SCOPED_TRACE(preset + " " + filter);
+      expect_same_pixels(a, b);
+    }
+  }
+  // The files are there, each named by its content, and a second render reads them as they are.
+  int files = 0;
+  for (const auto& e : fs::directory_iterator(dir.path() / "cache")) files += e.path().extension() == ".tx";
+  EXPECT_GE(files, 4);
+}
+
+// The texture cache's files live in the MIP cache's folder and count in its size: a limit smaller
+// than any file removes them all after the brdf build is stored, while the render that wrote them
+// keeps reading the ones it holds open, and its image is still the in-memory render's.
+TEST(TextureCache, TheMipCacheLimitEvictsTheFilesWithoutTakingThemFromTheRender) {
+  const testing::TempDir dir;
+  const fs::path scene = baked(dir.path(), "sandstone");
+  const std::vector<std::string> common = {scene.string(), "--res", "40x32", "--spp", "4", "--float", "-q"};
+  std::vector<std::string> memory = common, tiles = common;
+  memory.insert(memory.end(), {"--mip-cache", (dir.path() / "memory").string(), "-o", (dir.path() / "a.exr").string()});
+  tiles.insert(tiles.end(), {"--mip-cache", (dir.path() / "tiles").string(), "--mip-cache-size", "0.001", "--texture-cache",
+                             "10", "-o", (dir.path() / "b.exr").string()});
+  const Child m = render(memory, dir.path());
+  ASSERT_EQ(m.status, 0) << m.err;
+  const Child t = render(tiles, dir.path());
+  ASSERT_EQ(t.status, 0) << t.err;
+  expect_same_pixels(dir.path() / "a.exr", dir.path() / "b.exr");
+  for (const auto& e : fs::directory_iterator(dir.path() / "tiles")) EXPECT_NE(e.path().extension(), ".tx") << e.path();
+}
+
+// `count` quads side by side, each with its own unlit base colour texture of side² texels (8-bit
+// RGBA PNG, smooth so that the files are small: the encoded bytes the reader holds stay out of the
+// measure), or none (`textured` false: the baseline).
+fs::path quads(const fs::path& dir, int count, int side, bool textured) {
+  GltfWriter w("svbrdf texture cache test");
+  TriangleMesh quad;
+  quad.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  quad.normals.assign(4, glm::vec3(0, 0, 1));
+  quad.uvs = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
+  quad.indices = {0, 1, 2, 0, 2, 3};
+  for (int k = 0; k < count; ++k) {
+    Json material = {{"extensions", {{"KHR_materials_unlit", Json::object()}}}};
+    if (textured) {
+      Image im(side, side, 4);
+      for (int j = 0; j < side; ++j)
+        for (int i = 0; i < side; ++i) {
+          im.at(i, j, 0) = float((i + k) % 256) / 255.0f;
+          im.at(i, j, 1) = float((j + 3 * k) % 256) / 255.0f;
+          im.at(i, j, 2) = float((i + j) % 256) / 255.0f;
+          im.at(i, j, 3) = 1.0f;
+        }
+      // Appended piece by piece: GCC 12 warns falsely (-Wrestrict, PR 105651) on "t" + std::string.
+      std::string name = "t";
+      name += std::to_string(k);
+      name += ".png";
+      write_image(dir / name, im, PixelFormat::uint8);
+      material["pbrMetallicRoughness"] = {{"baseColorTexture", {{"index", w.add_texture(name)}}}};
+    }
+    const int mesh = w.add_mesh("quad" + std::to_string(k), quad, w.add_material(material));
+    Placement at;
+    at.translation = {double(k % 8), double(k / 8), 0.0};
+    w.add_mesh_node("quad" + std::to_string(k), mesh, at);
+  }
+  const fs::path path = dir / (textured ? "textured.gltf" : "plain.gltf");
+  w.write(path);
+  return path;
+}
+
+// The cap's bound: what the render may hold beyond the cap and beyond a render of the same quads
+// without textures is 20 MB — OpenImageIO's bookkeeping beyond the tile bytes it counts against the
+// cap, the buffers of the 64 files it keeps open, the threads' pinned tiles (TextureTiles), and the
+// loader's one image in flight (its floats, their linearized copy and its codes: 36 bytes a texel,
+// 9.4 MB at 512², a transient below the baseline's own peak). Measured 21–25 MB in all, against 72
+// MB with the cap ignored (2 threads, EPYC).
+TEST(TextureCache, ResidentSetStaysUnderTheCapPlusTheStatedOverhead) {
+  const testing::TempDir dir;
+  constexpr int kCount = 64, kSide = 512;
+  constexpr double kCapMb = 10.0;
+  // Textures at 4 bytes a texel in the cache: 67 MB, more than 4× the cap.
+  static_assert(double(kCount) * kSide * kSide * 4 >= 4 * kCapMb * 1e6);
+  const fs::path textured = quads(dir.path(), kCount, kSide, true), plain = quads(dir.path(), kCount, kSide, false);
+  // 1 spp on 384×240 pixels: each quad is seen by a few thousand samples, which read every one of
+  // its 64 tiles.
+  const std::vector<std::string> common = {"--res", "384x240", "--spp", "1", "--filter", "level0", "-q", "--threads", "2",
+                                           "--mip-cache", (dir.path() / "cache").string()};
+  auto with = [&](const fs::path& scene, std::vector<std::string> extra) {
+    std::vector<std::string> a = {scene.string()};
+    a.insert(a.end(), common.begin(), common.end());
+    a.insert(a.end(), extra.begin(), extra.end());
+    return a;
+  };
+  const Child base = render(with(plain, {"-o", (dir.path() / "plain.exr").string()}), dir.path());
+  ASSERT_EQ(base.status, 0) << base.err;
+  // The first run writes the files; the second reads them (the measure of a render, not of a bake).
+  const std::vector<std::string> cached = {"--texture-cache", "10", "-o", (dir.path() / "textured.exr").string()};
+  ASSERT_EQ(render(with(textured, cached), dir.path()).status, 0);
+  const Child run = render(with(textured, cached), dir.path());
+  ASSERT_EQ(run.status, 0) << run.err;
+  const double overhead_mb = 20.0;
+  const double above_mb = double(run.peak_kb - base.peak_kb) * 1024 / 1e6;
+  std::printf("resident above the untextured render: %.1f MB (cap %.0f MB + %.0f MB)\n", above_mb, kCapMb, overhead_mb);
+  EXPECT_LT(above_mb, kCapMb + overhead_mb) << "peak " << run.peak_kb << " kB against " << base.peak_kb
+                                            << " kB without textures";
+  // The textures were read: the render is not the untextured one.
+  const Image a = read_image(dir.path() / "plain.exr"), b = read_image(dir.path() / "textured.exr");
+  EXPECT_NE(a.pixels, b.pixels);
+}
+
+TEST(TextureCache, BadValuesAreRefusedInOneLine) {
+  const testing::TempDir dir;
+  const fs::path scene = baked(dir.path(), "sandstone");
+  for (const std::string bad : {"x", "5", "0", "-20", "nan", "inf", "1e10", "20MB"}) {
+    const Child r = render({scene.string(), "--texture-cache", bad, "-q", "-o", (dir.path() / "x.exr").string()}, dir.path());
+    SCOPED_TRACE(bad);
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_EQ(r.err.rfind("svbrdf-render: --texture-cache " + bad + ":", 0), 0u) << r.err;
+    EXPECT_FALSE(fs::exists(dir.path() / "x.exr"));
+  }
+}
+
+}  // namespace
+}  // namespace svbrdf
