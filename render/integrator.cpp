@@ -144,7 +144,10 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
       // material without MIP data shades it (below: the normal turned toward the viewer, or the
       // microsurface), not by its lone lobe, whose f_eff vanishes wherever the mapped normal turns from
       // the viewer.
-      if (choice.level == 0 && (sp.material->normal_texture.present() || sp.material->clearcoat_normal_texture.present()))
+      // So is one of a grid that is not exact at level 0 (material_mips.h level0_exact): its textures
+      // are read as level0 reads them.
+      if (choice.level == 0 &&
+          (sp.material->normal_texture.present() || sp.material->clearcoat_normal_texture.present() || !mip->level0_exact()))
         mip = nullptr;
     }
 

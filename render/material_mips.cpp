@@ -7,6 +7,7 @@
 
 #include "render/mip_cache_key.h"
 #include "mip/gltf_material.h"
+#include "render/texel_grid.h"
 #include "render/texel_inputs.h"
 #include "textures/material_loader.h"
 
@@ -14,50 +15,22 @@ namespace svbrdf {
 
 namespace {
 
-// An image replicated by integer factors onto a larger grid (nearest upsampling).
-Image replicate(const Image& im, Extent e) {
-  Image out(e.width, e.height, im.channels);
-  const int fx = e.width / im.width, fy = e.height / im.height;
-  const std::size_t c = static_cast<std::size_t>(im.channels);
-  tbb::parallel_for(0, e.height, [&](int j) {
-    for (int i = 0; i < e.width; ++i) {
-      const float* src = &im.pixels[(static_cast<std::size_t>(j / fy) * im.width + i / fx) * c];
-      std::copy(src, src + c, &out.pixels[(static_cast<std::size_t>(j) * e.width + i) * c]);
-    }
-  });
+// The maps from the grid's texture space to its textures' (render/texel_grid.h), for the MIP cache's
+// key: empty when every texture is on the grid's own mapping (the key is then what it always was).
+std::vector<double> grid_mappings(const MaterialDesc& m, const TextureTransform& grid) {
+  std::vector<double> out;
+  bool any = false;
+  for (const TexelInput& in : texel_inputs(m)) {
+    if (!in.texture || !in.texture->present()) continue;
+    const TextureAffine a = grid_to_texture(grid, in.texture->transform);
+    any = any || !a.identity();
+    out.insert(out.end(), {a.linear[0][0], a.linear[0][1], a.linear[1][0], a.linear[1][1], a.offset.x, a.offset.y});
+  }
+  if (!any) out.clear();
   return out;
 }
 
 std::string label(const MaterialDesc& m) { return m.where + (m.name.empty() ? "" : " '" + m.name + "'"); }
-
-// Whether the texture slots can share one texel grid (see the header): empty, with the grid's size in
-// `e`, or why not.
-std::string grid_of(const MaterialDesc& m, const std::vector<const TexelInput*>& slots, const TextureSet& textures,
-                    Extent& e) {
-  const TexelInput& first = *slots.front();
-  const TextureRef& g = *first.texture;
-  const Sampler& gs = textures.sampler(g);
-  e = {0, 0};
-  for (const TexelInput* in : slots) {
-    const TextureRef& r = *in->texture;
-    const Sampler& rs = textures.sampler(r);
-    const std::string pair = in->name + " and " + first.name;
-    if (r.uv_set() != g.uv_set()) return pair + " read different TEXCOORD sets";
-    if (!same_transform(r.transform, g.transform)) return pair + " have different KHR_texture_transforms";
-    if (rs.wrap_s != gs.wrap_s || rs.wrap_t != gs.wrap_t) return pair + " have different wrap modes";
-    if ((&r == &m.normal_texture || &r == &m.clearcoat_normal_texture) && textures.image(r, false).channels < 3)
-      return in->name + " has fewer than three channels";
-    const glm::ivec2 size = textures.size(r);
-    e.width = std::max(e.width, size.x), e.height = std::max(e.height, size.y);
-  }
-  for (const TexelInput* in : slots) {
-    const glm::ivec2 size = textures.size(*in->texture);
-    if (e.width % size.x != 0 || e.height % size.y != 0)
-      return in->name + " (" + std::to_string(size.x) + "x" + std::to_string(size.y) +
-             ") does not divide the largest texture (" + std::to_string(e.width) + "x" + std::to_string(e.height) + ")";
-  }
-  return {};
-}
 
 }  // namespace
 
@@ -84,36 +57,50 @@ SceneMips::SceneMips(const Scene& scene, const TextureSet& textures)
       if (in.texture && in.texture->present()) slots.push_back(&in);
     if (slots.empty()) continue;  // untextured: nothing to filter
     std::string why = mip_unsupported(m);
-    Extent e{0, 0};
-    if (why.empty()) why = grid_of(m, slots, textures, e);
-    // A base colour texture looked up otherwise than the rest is held apart, as a tint (see the header).
+    const bool modelled = why.empty();
+    // The grid the textures are resampled onto (render/texel_grid.h), in the uv range the material's
+    // primitives reach on the grid's uv set.
+    auto choose = [&](const std::vector<const TexelInput*>& s, TexelGrid& g) {
+      return choose_texel_grid(m, s, textures, material_uv_range(scene, static_cast<int>(i), s.front()->texture->uv_set()), g);
+    };
+    TexelGrid grid;
+    if (modelled) why = choose(slots, grid);
+    // A base colour texture that cannot join the grid is held apart, as a tint (see the header); then
+    // what keeps the other textures off one grid, if anything, is the reason.
     bool separate_base = false;
-    if (!why.empty() && mip_unsupported(m).empty() && m.base_color_texture.present() && slots.size() > 1) {
+    if (!why.empty() && modelled && m.base_color_texture.present() && slots.size() > 1) {
       std::vector<const TexelInput*> rest;
       for (const TexelInput* in : slots)
         if (in->texture != &m.base_color_texture) rest.push_back(in);
-      Extent rest_extent{0, 0};
-      if (grid_of(m, rest, textures, rest_extent).empty()) {
-        why.clear();
+      TexelGrid rest_grid;
+      why = choose(rest, rest_grid);
+      if (why.empty()) {
         separate_base = true;
         slots = std::move(rest);
-        e = rest_extent;
+        grid = rest_grid;
       }
     }
-    const TextureRef& g = *slots.front()->texture;
-    const Sampler& gs = textures.sampler(g);
     if (!why.empty()) {
       warnings_.push_back(label(m) + ": " + why + "; it is shaded with level0 lookups under every filter");
       continue;
     }
+    const TextureRef& g = *grid.follows->texture;
+    const Sampler& gs = textures.sampler(g);
     // Share the data of an earlier material whose texels and lookups would be the same.
-    for (std::size_t k = 0; k < mips_.size() && slot_[i] < 0; ++k)
-      if (same_texels(scene.materials[source_[k]], m)) slot_[i] = static_cast<int>(k);
+    // Their uv ranges may choose different grids for the same textures: the grids must agree too.
+    for (std::size_t k = 0; k < mips_.size() && slot_[i] < 0; ++k) {
+      const MaterialMip& o = mips_[k];
+      if (same_texels(scene.materials[source_[k]], m) && o.grid_.texture == g.texture &&
+          same_transform(o.grid_.transform, g.transform) && o.extent_ == grid.extent &&
+          o.base_color_.has_value() == separate_base)
+        slot_[i] = static_cast<int>(k);
+    }
     if (slot_[i] >= 0) continue;
     MaterialMip& mip = mips_.emplace_back();
     mip.grid_ = g;
     mip.sampler_ = gs;
-    mip.extent_ = e;
+    mip.extent_ = grid.extent;
+    mip.level0_exact_ = grid.exact;
     mip.grid_material_ = m;
     if (separate_base) {
       mip.grid_material_.base_color_texture = TextureRef{};  // the texels take the factor alone
@@ -202,7 +189,8 @@ void SceneMips::read_cached(std::vector<std::size_t>& todo, std::vector<std::str
     const SetupProgress::Stage stage(progress, "reading the materials' MIP maps from the MIP cache", todo.size());
     tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t t) {
       MaterialMip& mip = mips_[todo[t]];
-      all[t] = mip_cache_key(scene_, textures_, mip.grid_material_, mip.extent_, color_identity_, mip.tint_);
+      all[t] = mip_cache_key(scene_, textures_, mip.grid_material_, mip.extent_, color_identity_, mip.tint_,
+                             grid_mappings(mip.grid_material_, mip.grid_.transform));
       if (std::optional<MipData> data = cache_->load(all[t])) {
         mip.texture_.emplace(std::move(*data), mip.sampler_.wrap_s, mip.sampler_.wrap_t);
         read[t] = 1;
@@ -229,17 +217,18 @@ void SceneMips::build(std::size_t i, TextureFilter filter) {
     return;
   }
   const MaterialDesc& m = mip.grid_material_;
-  // The images as TextureSet holds them (base color already scene-linear: decoded once), smaller
-  // ones replicated onto the grid.
-  // Room for every slot's replica up front: image_for hands out pointers into it.
-  std::vector<Image> replicas;
-  replicas.reserve(texel_inputs(m).size());
+  // The images as TextureSet holds them (base color already scene-linear: decoded once), each one
+  // that is not on the grid already resampled onto it (render/texel_grid.h).
+  // Room for every slot's copy up front: image_for hands out pointers into it.
+  std::vector<Image> resampled;
+  resampled.reserve(texel_inputs(m).size());
   auto image_for = [&](const TextureRef& r, bool color) -> SlotImage {
     const Image& im = textures_.image(r, color);
     const bool linear = color && textures_.linearized(r);
-    if (im.width == mip.extent_.width && im.height == mip.extent_.height) return {&im, linear};
-    replicas.push_back(replicate(im, mip.extent_));
-    return {&replicas.back(), linear};
+    const TextureAffine to = grid_to_texture(mip.grid_.transform, r.transform);
+    if (to.identity() && im.width == mip.extent_.width && im.height == mip.extent_.height) return {&im, linear};
+    resampled.push_back(resample(im, textures_.sampler(r).wrap(), to, mip.extent_));
+    return {&resampled.back(), linear};
   };
   // decode_material_texels' arguments: what render/texel_inputs.h lists.
   const MaterialImages in = material_images(m, image_for);

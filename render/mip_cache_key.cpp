@@ -52,7 +52,7 @@ Sha256Digest image_content(const ImageDesc& image) {
 }  // namespace
 
 std::string mip_cache_key(const Scene& scene, const TextureSet& textures, const MaterialDesc& material, Extent grid,
-                          const std::string& color_identity, bool tint) {
+                          const std::string& color_identity, bool tint, std::span<const double> grid_mappings) {
   KeyWriter key;
   key.field("key", "svbrdf MIP cache key 1");
   key.field("code", mip_code_identity());
@@ -61,6 +61,7 @@ std::string mip_cache_key(const Scene& scene, const TextureSet& textures, const 
   key.field("color", color_identity);
   key.number("grid.width", grid.width);
   key.number("grid.height", grid.height);
+  if (!grid_mappings.empty()) key.field("grid.mappings", std::as_bytes(grid_mappings));
   for (const TexelInput& in : texel_inputs(material)) {
     if (!in.texture) {
       key.field(in.name, std::as_bytes(std::span(in.values)));

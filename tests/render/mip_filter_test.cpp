@@ -252,8 +252,9 @@ TEST(MipFilters, SpecularLayerIsFiltered) {
 }
 
 // One texel grid per material: a smaller texture whose size divides the largest is replicated
-// (the nearest texel at any uv is unchanged); other mismatches and unmodelled extensions leave the
-// material to level0 with one warning naming why.
+// (the nearest texel at any uv is unchanged); mappings that do not wrap with the grid where the
+// surface reaches past it, and unmodelled extensions, leave the material to level0 with one warning
+// naming why (mip_mapping_test.cpp: the mappings the grid serves).
 TEST(MipFilters, TextureGridRules) {
   {
     Scene s = periodic_quad(8);
@@ -286,9 +287,14 @@ TEST(MipFilters, TextureGridRules) {
     EXPECT_TRUE(p.mips->warnings(TextureFilter::level0).empty()) << "level0 filters nothing: nothing to say";
   };
   {
+    // Sizes whose ratio is not whole take a grid of their common multiple (render/texel_grid.h).
     Scene s = periodic_quad(8);
     s.images[1].pixels = Image(3, 8, 3);
-    warned(std::move(s), "does not divide");
+    Prepared p(std::move(s));
+    EXPECT_TRUE(p.mips->warnings(TextureFilter::brdf).empty());
+    p.mips->prepare(TextureFilter::level0);
+    ASSERT_NE(p.mips->find(0), nullptr);
+    EXPECT_EQ(p.mips->find(0)->texture().extent(), (Extent{24, 8}));
   }
   {
     Scene s = periodic_quad(8);
@@ -297,13 +303,13 @@ TEST(MipFilters, TextureGridRules) {
   }
   {
     Scene s = periodic_quad(8);
-    s.materials[0].metallic_roughness_texture.transform = TextureTransform::make({0.5f, 0}, 0, {1, 1});
+    s.materials[0].metallic_roughness_texture.transform = TextureTransform::make({0.5f, 0}, 0.3f, {1, 1});
     warned(std::move(s), "KHR_texture_transform");
   }
   {
     Scene s = periodic_quad(8);
     s.textures[2].sampler.wrap_s = WrapMode::clamp_to_edge;
-    warned(std::move(s), "wrap modes");
+    warned(std::move(s), "wrap mode");
   }
   {
     Scene s = periodic_quad(8);

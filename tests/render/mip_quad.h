@@ -139,9 +139,9 @@ constexpr float kE0 = 2.0f;            // its irradiance
 
 // The quad under the sun from kWi, seen by an orthographic camera from `view` (a unit direction
 // toward the camera) with half height 1 at 32×32 pixels: head-on, a pixel spans 1/16 of the square,
-// 256·4/8/16 = 8 texels of a 256² texture: level 3.
+// 256·4/8/16 = 8 texels of a 256² texture: level 3. `with_mips` false renders it with no MIP data.
 inline Film render_quad(Scene s, TextureFilter filter, int spp, const glm::vec3& view = {0, 0, 1}, float footprint_scale = 1.0f,
-                 int threads = 0, bool aovs = false) {
+                 int threads = 0, bool aovs = false, bool with_mips = true) {
   LightDesc sun;
   sun.type = LightDesc::Type::directional;
   sun.intensity = kE0;
@@ -161,7 +161,10 @@ inline Film render_quad(Scene s, TextureFilter filter, int spp, const glm::vec3&
   o.integrator.max_depth = 1;  // light reflected once; what leaves the plane meets the black sky
   o.integrator.footprint_scale = footprint_scale;
   o.integrator.footprints = aovs;
-  return render(prepared.world(), o);
+  // Without MIP data every material is shaded as one the MIP maps leave out (level0 lookups).
+  RenderWorld world = prepared.world();
+  if (!with_mips) world.mips = nullptr;
+  return render(world, o);
 }
 
 inline glm::dvec3 pixel(const Image& im, int x, int y) {
