@@ -35,9 +35,12 @@ bool near_integer(double x, double tolerance) { return std::abs(x - std::round(x
 
 const char* wrap_name(WrapMode w) {
   switch (w) {
-    case WrapMode::repeat: return "repeat";
-    case WrapMode::clamp_to_edge: return "clamp-to-edge";
-    case WrapMode::mirrored_repeat: return "mirrored repeat";
+    case WrapMode::repeat:
+      return "repeat";
+    case WrapMode::clamp_to_edge:
+      return "clamp-to-edge";
+    case WrapMode::mirrored_repeat:
+      return "mirrored repeat";
   }
   return "?";
 }
@@ -63,13 +66,16 @@ Fit fit(const std::vector<TextureAffine>& maps, const std::vector<glm::ivec2>& s
   for (std::size_t k = 0; k < maps.size(); ++k) {
     const glm::dvec2 col = maps[k].linear[axis];
     const int b = std::abs(col.x) >= std::abs(col.y) ? 0 : 1;
-    const double q = col[b] == 0.0 ? 0.0 : double(n) / (std::abs(col[b]) * sizes[k][b]);  // grid texels a texel
+    const double q =
+        col[b] == 0.0 ? 0.0 : double(n) / (std::abs(col[b]) * sizes[k][b]);  // grid texels a texel
     Fit here = Fit::exact;
     // The other component's share of a grid texel, in texels: a transform's float rotation by a quarter
     // turn leaves ~1e-8 there.
     const double across = std::abs(col[1 - b]) * sizes[k][1 - b] / n;
-    if (across > 1e-4 || q == 0.0 || !near_integer(q, 1e-4 * q)) here = Fit::aliased;
-    else if (!near_integer(maps[k].offset[b] * sizes[k][b] * std::round(q), 1e-3)) here = Fit::displaced;
+    if (across > 1e-4 || q == 0.0 || !near_integer(q, 1e-4 * q))
+      here = Fit::aliased;
+    else if (!near_integer(maps[k].offset[b] * sizes[k][b] * std::round(q), 1e-3))
+      here = Fit::displaced;
     if (here > f) {
       f = here;
       if (worst) *worst = k;
@@ -79,8 +85,9 @@ Fit fit(const std::vector<TextureAffine>& maps, const std::vector<glm::ivec2>& s
 }
 
 // The grid that follows slot `g` (see the header), or why it cannot.
-std::string grid_following(const TexelInput& g, const std::vector<const TexelInput*>& slots, const TextureSet& textures,
-                           const UvRange& range, std::size_t largest, TexelGrid& grid) {
+std::string grid_following(const TexelInput& g, const std::vector<const TexelInput*>& slots,
+                           const TextureSet& textures, const UvRange& range, std::size_t largest,
+                           TexelGrid& grid) {
   const TextureTransform& tg = g.texture->transform;
   if (glm::determinant(linear_part(tg)) == 0.0)
     return g.name + "'s KHR_texture_transform has a zero scale (its texture space does not map back to uv)";
@@ -96,7 +103,8 @@ std::string grid_following(const TexelInput& g, const std::vector<const TexelInp
   if (!range.empty()) {
     const TextureAffine to_grid{linear_part(tg), glm::dvec2(tg.offset)};
     lo = glm::dvec2(1e300), hi = glm::dvec2(-1e300);
-    for (const glm::dvec2 c : {range.lo, range.hi, glm::dvec2(range.lo.x, range.hi.y), glm::dvec2(range.hi.x, range.lo.y)}) {
+    for (const glm::dvec2 c :
+         {range.lo, range.hi, glm::dvec2(range.lo.x, range.hi.y), glm::dvec2(range.hi.x, range.lo.y)}) {
       const glm::dvec2 t = to_grid.linear * c + to_grid.offset;
       lo = glm::min(lo, t), hi = glm::max(hi, t);
     }
@@ -106,22 +114,25 @@ std::string grid_following(const TexelInput& g, const std::vector<const TexelInp
     if (lo[a] >= -kEdge && hi[a] <= 1.0 + kEdge) continue;
     const WrapMode gw = axis_wrap(gs, a);
     const std::string where = " along " + std::string(a ? "t" : "s") + ", where the surface's TEXCOORD_" +
-                              std::to_string(g.texture->uv_set()) + " reaches [" + number(lo[a]) + ", " + number(hi[a]) +
-                              "] of " + g.name + "'s texture space";
+                              std::to_string(g.texture->uv_set()) + " reaches [" + number(lo[a]) + ", " +
+                              number(hi[a]) + "] of " + g.name + "'s texture space";
     for (std::size_t k = 0; k < slots.size(); ++k) {
       const TextureAffine& m = maps[k];
       const Sampler& ks = textures.sampler(*slots[k]->texture);
-      const std::string who = slots[k]->name + " does not continue as " + g.name + "'s " + wrap_name(gw) + where;
+      const std::string who =
+          slots[k]->name + " does not continue as " + g.name + "'s " + wrap_name(gw) + where;
       if (gw == WrapMode::repeat) {
         const glm::dvec2 col = m.linear[a];
         for (int b = 0; b < 2; ++b) {
           if (!near_integer(col[b], 1e-6 * std::max(1.0, std::abs(col[b]))))
-            return who + " (its KHR_texture_transform moves it by " + number(col[b]) + " of its periods along " +
-                   (b ? "t" : "s") + " per period of the grid, not a whole number)";
+            return who + " (its KHR_texture_transform moves it by " + number(col[b]) +
+                   " of its periods along " + (b ? "t" : "s") +
+                   " per period of the grid, not a whole number)";
           // Repeat has period 1, mirrored repeat period 2 (an even move), clamp-to-edge none.
           const double moves = std::round(col[b]);
           const WrapMode kw = axis_wrap(ks, b);
-          const bool periodic = kw == WrapMode::repeat || (kw == WrapMode::mirrored_repeat && near_integer(moves / 2.0, 0.0));
+          const bool periodic =
+              kw == WrapMode::repeat || (kw == WrapMode::mirrored_repeat && near_integer(moves / 2.0, 0.0));
           if (moves != 0.0 && !periodic)
             return who + " (it moves by " + number(moves) + " of its periods along " + (b ? "t" : "s") +
                    " per period of the grid, and its wrap mode there is " + wrap_name(kw) + ")";
@@ -130,7 +141,8 @@ std::string grid_following(const TexelInput& g, const std::vector<const TexelInp
         const bool same_axis = std::abs(m.linear[a][a] - 1.0) < 1e-9 && m.linear[a][1 - a] == 0.0 &&
                                m.linear[1 - a][a] == 0.0 && std::abs(m.offset[a]) < 1e-9;
         if (!same_axis) return who + " (its KHR_texture_transform differs along that axis)";
-        if (axis_wrap(ks, a) != gw) return who + " (its wrap mode there is " + wrap_name(axis_wrap(ks, a)) + ")";
+        if (axis_wrap(ks, a) != gw)
+          return who + " (its wrap mode there is " + wrap_name(axis_wrap(ks, a)) + ")";
       }
     }
   }
@@ -146,9 +158,10 @@ std::string grid_following(const TexelInput& g, const std::vector<const TexelInp
     }
   const double cap = 4.0 * double(largest);
   if (double(base[0]) * double(base[1]) > cap)
-    return "on " + g.name + "'s grid, " + finest[0]->name + (finest[1] == finest[0] ? "" : " and " + finest[1]->name) +
-           (finest[1] == finest[0] ? " needs " : " need ") + std::to_string(base[0]) +
-           "x" + std::to_string(base[1]) + " texels across its [0, 1]², more than four times the largest texture's";
+    return "on " + g.name + "'s grid, " + finest[0]->name +
+           (finest[1] == finest[0] ? "" : " and " + finest[1]->name) +
+           (finest[1] == finest[0] ? " needs " : " need ") + std::to_string(base[0]) + "x" +
+           std::to_string(base[1]) + " texels across its [0, 1]², more than four times the largest texture's";
   // Per axis the smallest multiple that fits exactly, and the smallest that fits displaced.
   int exact_n[2] = {0, 0}, displaced_n[2] = {0, 0};
   for (int a = 0; a < 2; ++a)
@@ -165,11 +178,14 @@ std::string grid_following(const TexelInput& g, const std::vector<const TexelInp
       return "on " + g.name + "'s grid, " + slots[k]->name + "'s texels span " +
              number(base[a] / std::max(std::abs(col.x) * sizes[k].x, std::abs(col.y) * sizes[k].y)) +
              " grid texels along " + (a ? "t" : "s") +
-             (std::min(std::abs(col.x), std::abs(col.y)) > 1e-6 ? ", turned by its KHR_texture_transform" : "") +
+             (std::min(std::abs(col.x), std::abs(col.y)) > 1e-6 ? ", turned by its KHR_texture_transform"
+                                                                : "") +
              ", and no multiple up to 4 holds them whole: nearest resampling would weigh its texels unevenly";
     }
   // Exact on both axes if the size allows, else displaced on the fewest.
-  const int options[4][2] = {{exact_n[0], exact_n[1]}, {exact_n[0], displaced_n[1]}, {displaced_n[0], exact_n[1]},
+  const int options[4][2] = {{exact_n[0], exact_n[1]},
+                             {exact_n[0], displaced_n[1]},
+                             {displaced_n[0], exact_n[1]},
                              {displaced_n[0], displaced_n[1]}};
   const int* n = nullptr;
   for (const auto& o : options)
@@ -203,10 +219,11 @@ TextureAffine grid_to_texture(const TextureTransform& grid, const TextureTransfo
   return a;
 }
 
-std::string choose_texel_grid(const MaterialDesc& m, const std::vector<const TexelInput*>& slots, const TextureSet& textures,
-                              const UvRange& range, TexelGrid& grid) {
+std::string choose_texel_grid(const MaterialDesc& m, const std::vector<const TexelInput*>& slots,
+                              const TextureSet& textures, const UvRange& range, TexelGrid& grid) {
   const int set = slots.front()->texture->uv_set();
-  if (std::any_of(slots.begin(), slots.end(), [&](const TexelInput* in) { return in->texture->uv_set() != set; })) {
+  if (std::any_of(slots.begin(), slots.end(),
+                  [&](const TexelInput* in) { return in->texture->uv_set() != set; })) {
     // Each set with its textures, in the slots' order.
     std::string sets;
     int last = 0;
@@ -215,16 +232,19 @@ std::string choose_texel_grid(const MaterialDesc& m, const std::vector<const Tex
       std::string names;
       for (const TexelInput* in : slots)
         if (in->texture->uv_set() == n) names += (names.empty() ? "" : ", ") + in->name;
-      if (!names.empty()) sets += (sets.empty() ? "" : "; ") + ("TEXCOORD_" + std::to_string(n)) + ": " + names;
+      if (!names.empty())
+        sets += (sets.empty() ? "" : "; ") + ("TEXCOORD_" + std::to_string(n)) + ": " + names;
     }
     return "its textures read different uv sets (" + sets +
-           "): uv sets bear no fixed relation, so they share no texel grid, and only a baseColorTexture is held apart "
+           "): uv sets bear no fixed relation, so they share no texel grid, and only a baseColorTexture is "
+           "held apart "
            "on its own set";
   }
   std::size_t largest = 0;
   for (const TexelInput* in : slots) {
     const TextureRef& r = *in->texture;
-    if ((&r == &m.normal_texture || &r == &m.clearcoat_normal_texture) && textures.image(r, false).channels < 3)
+    if ((&r == &m.normal_texture || &r == &m.clearcoat_normal_texture) &&
+        textures.image(r, false).channels < 3)
       return in->name + " has fewer than three channels";
     const glm::ivec2 size = textures.size(r);
     largest = std::max(largest, std::size_t(size.x) * std::size_t(size.y));

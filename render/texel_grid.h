@@ -25,14 +25,14 @@
 //     Texels of a fractional number of grid texels (a non-integer ratio of sizes or scales that no
 //     multiple up to 4 resolves, or a rotation other than by quarter turns) would take uneven shares
 //     of the grid — an error at every level, not only at edges — and are refused.
-//   - wrap: inside the grid's [0, 1]² the grid is each texture's own value whatever the wrap modes. Where
-//     the surface's uv (the vertices' bounding box on the grid's uv set) reaches past [0, 1] along an
-//     axis, the grid is read with its own wrap mode there, so each texture must continue as the grid
-//     does: the grid repeats and A_k moves a whole number of k's periods per grid period (A_k's column
-//     of that axis an integer vector), k repeating along each axis it moves (or mirroring, when it moves
-//     an even number: mirrored repeat's period is 2); or the grid clamps or
-//     mirrors and A_k is the identity on that axis with k's wrap mode the same. A footprint that
-//     reaches past the surface's own uv range reads the grid's wrap modes there.
+//   - wrap: inside the grid's [0, 1]² the grid is each texture's own value whatever the wrap modes.
+//     Where the surface's uv (the vertices' bounding box on the grid's uv set) reach past [0, 1] along
+//     an axis, the grid is read with its own wrap mode there, so each texture must continue as the
+//     grid does: the grid repeats and A_k moves a whole number of k's periods per grid period (A_k's column
+//     of that axis an integer vector), k repeating along each axis it moves (or mirroring, when it
+//     moves an even number: mirrored repeat's period is 2); or the grid clamps or mirrors and A_k is
+//     the identity on that axis with k's wrap mode the same. A footprint that reaches past the
+//     surface's own uv range reads the grid's wrap modes there.
 //   - a texture the surface looks up through another uv set has no fixed relation to the grid (uv sets
 //     are independent vertex data): it cannot be resampled (SceneMips holds a base colour texture
 //     apart as a tint; any other refuses the grid).
@@ -77,8 +77,8 @@ struct TexelGrid {
 
 // Chooses the grid for `slots` (the material's texture slots, one uv set or not) and fills `grid`, or
 // says why none serves: one line naming the textures and what they lack.
-std::string choose_texel_grid(const MaterialDesc& m, const std::vector<const TexelInput*>& slots, const TextureSet& textures,
-                              const UvRange& range, TexelGrid& grid);
+std::string choose_texel_grid(const MaterialDesc& m, const std::vector<const TexelInput*>& slots,
+                              const TextureSet& textures, const UvRange& range, TexelGrid& grid);
 
 // `image` (read with `wrap`) resampled onto a grid of `extent` texels whose texture space `to` maps
 // into the image's: each grid texel takes the image's nearest texel at its centre's image.

@@ -59,7 +59,8 @@ Scene quad(Image base, Image mr, Image normal) {
 void expect_no_warning(const Scene& s, const std::string& what) {
   Prepared p(s);
   EXPECT_NE(p.mips->find(0), nullptr) << what;
-  EXPECT_TRUE(p.mips->warnings(TextureFilter::brdf).empty()) << what << ": " << p.mips->warnings(TextureFilter::brdf).front();
+  EXPECT_TRUE(p.mips->warnings(TextureFilter::brdf).empty())
+      << what << ": " << p.mips->warnings(TextureFilter::brdf).front();
 }
 
 // The two scenes render alike under `brdf` (and `param`), head-on (texels of level 2) and at 60°
@@ -93,8 +94,9 @@ TEST(MipMappings, TransformedNormalMapJoinsTheGridAsIfTiledByHand) {
   a.materials[0].normal_texture.transform = TextureTransform::make({0.25f, 0.5f}, 0.0f, {2.0f, 2.0f});
   expect_no_warning(a, "normal map transformed");
   const auto half = [](int i, int j) { return glm::ivec2(i / 2, j / 2); };
-  const Scene b = quad(rebaked(base, 128, 128, half), rebaked(mr, 128, 128, half),
-                       rebaked(normal, 128, 128, [](int i, int j) { return glm::ivec2((i + 16) % 64, (j + 32) % 64); }));
+  const Scene b =
+      quad(rebaked(base, 128, 128, half), rebaked(mr, 128, 128, half),
+           rebaked(normal, 128, 128, [](int i, int j) { return glm::ivec2((i + 16) % 64, (j + 32) % 64); }));
   {
     Prepared p(a);
     p.mips->prepare(TextureFilter::level0);
@@ -136,8 +138,9 @@ TEST(MipMappings, WrapModesJoinTheGridWhereTheyAgreeOnTheSurface) {
   expect_no_warning(a, "mirrored normal map");
   const auto half = [](int i, int j) { return glm::ivec2(i / 2, j / 2); };
   const auto mirror = [](int i) { return i < 64 ? i : 127 - i; };
-  const Scene b = quad(rebaked(base, 128, 128, half), rebaked(mr, 128, 128, half),
-                       rebaked(normal, 128, 128, [&](int i, int j) { return glm::ivec2(mirror(i), mirror(j)); }));
+  const Scene b =
+      quad(rebaked(base, 128, 128, half), rebaked(mr, 128, 128, half),
+           rebaked(normal, 128, 128, [&](int i, int j) { return glm::ivec2(mirror(i), mirror(j)); }));
   expect_renders_alike(a, b, "mirrored normal map");
 
   Scene inside = quad(base, mr, normal);
@@ -154,11 +157,14 @@ TEST(MipMappings, WrapModesJoinTheGridWhereTheyAgreeOnTheSurface) {
 // wrap modes): base colour, roughness, metallic and the normal's z. Sizes, scales (one negative),
 // offsets, turns and wrap modes differ between the three.
 TEST(MipMappings, ExactGridHoldsEveryTexturesLevel0Lookup) {
-  Scene s = quad(slot_image(32, 32, 10, Slot::base), slot_image(64, 32, 11, Slot::mr), slot_image(32, 32, 12, Slot::normal));
+  Scene s = quad(slot_image(32, 32, 10, Slot::base), slot_image(64, 32, 11, Slot::mr),
+                 slot_image(32, 32, 12, Slot::normal));
   // Turned by a quarter: its s runs along the grid's t, 2 periods a grid period, its t along s, 3.
-  s.materials[0].normal_texture.transform = TextureTransform::make({0.5f, 0.25f}, glm::radians(90.0f), {2.0f, 3.0f});
+  s.materials[0].normal_texture.transform =
+      TextureTransform::make({0.5f, 0.25f}, glm::radians(90.0f), {2.0f, 3.0f});
   // Mirrored by its transform along s: a grid texel's edges map to the opposite edges of its texels.
-  s.materials[0].metallic_roughness_texture.transform = TextureTransform::make({0.0f, 0.5f}, 0.0f, {-1.0f, 1.0f});
+  s.materials[0].metallic_roughness_texture.transform =
+      TextureTransform::make({0.0f, 0.5f}, 0.0f, {-1.0f, 1.0f});
   // Mirrored along s, where it moves 3 periods a grid period (odd): it does not repeat with the grid.
   s.textures[2].sampler.wrap_s = WrapMode::mirrored_repeat;
   {
@@ -175,7 +181,7 @@ TEST(MipMappings, ExactGridHoldsEveryTexturesLevel0Lookup) {
   EXPECT_TRUE(mip.level0_exact());
   const MaterialTexels texels = mip.texture().level0_texels();
   auto look = [&](int slot, glm::vec2 uv) {
-    const TextureRef& r = slot == 0 ? s.materials[0].base_color_texture
+    const TextureRef& r = slot == 0   ? s.materials[0].base_color_texture
                           : slot == 1 ? s.materials[0].metallic_roughness_texture
                                       : s.materials[0].normal_texture;
     Sampler nearest = s.textures[std::size_t(slot)].sampler;
@@ -190,7 +196,8 @@ TEST(MipMappings, ExactGridHoldsEveryTexturesLevel0Lookup) {
     EXPECT_FLOAT_EQ(texels.base_color[k].x, linear(glm::vec3(look(0, uv))).x) << uv.x << "," << uv.y;
     EXPECT_FLOAT_EQ(texels.roughness[k], look(1, uv).y) << uv.x << "," << uv.y;
     EXPECT_FLOAT_EQ(texels.metallic[k], look(1, uv).z) << uv.x << "," << uv.y;
-    EXPECT_NEAR(texels.normal[k].z, glm::normalize(2.0f * glm::vec3(look(2, uv)) - 1.0f).z, 1e-6f) << uv.x << "," << uv.y;
+    EXPECT_NEAR(texels.normal[k].z, glm::normalize(2.0f * glm::vec3(look(2, uv)) - 1.0f).z, 1e-6f)
+        << uv.x << "," << uv.y;
   }
 }
 
@@ -202,7 +209,8 @@ TEST(MipMappings, ExactGridHoldsEveryTexturesLevel0Lookup) {
 TEST(MipMappings, ExactGridRendersLevel0AsTheTexturesDo) {
   Scene s = quad(slot_image(16, 16, 20, Slot::base), slot_image(16, 16, 21, Slot::mr), Image(1, 1, 3));
   s.materials[0].normal_texture = TextureRef{};
-  s.materials[0].metallic_roughness_texture.transform = TextureTransform::make({0.5f, 0.25f}, 0.0f, {2.0f, 2.0f});
+  s.materials[0].metallic_roughness_texture.transform =
+      TextureTransform::make({0.5f, 0.25f}, 0.0f, {2.0f, 2.0f});
   s.meshes[0].primitives[0].texcoords[0] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
   {
     Prepared p(s);
@@ -227,7 +235,8 @@ TEST(MipMappings, ExactGridRendersLevel0AsTheTexturesDo) {
 TEST(MipMappings, DisplacedGridLeavesLevel0HitsToTheTextures) {
   Scene s = quad(slot_image(32, 32, 14, Slot::base), slot_image(32, 32, 15, Slot::mr), Image(1, 1, 3));
   s.materials[0].normal_texture = TextureRef{};
-  s.materials[0].metallic_roughness_texture.transform = TextureTransform::make({0.1f, 0.2f}, 0.0f, {1.0f, 1.0f});
+  s.materials[0].metallic_roughness_texture.transform =
+      TextureTransform::make({0.1f, 0.2f}, 0.0f, {1.0f, 1.0f});
   s.meshes[0].primitives[0].texcoords[0] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};  // a texel ≈ 4 pixels
   {
     Prepared p(s);
@@ -262,7 +271,8 @@ TEST(MipMappings, MappingsNoGridServesAreNamed) {
     Scene s = quad(base, mr, normal);
     s.materials[0].metallic_roughness_texture.tex_coord = 1;
     s.meshes[0].primitives[0].texcoords[1] = s.meshes[0].primitives[0].texcoords[0];
-    warned(std::move(s), {"TEXCOORD_0: normalTexture; TEXCOORD_1: metallicRoughnessTexture", "only a baseColorTexture is held apart"});
+    warned(std::move(s), {"TEXCOORD_0: normalTexture; TEXCOORD_1: metallicRoughnessTexture",
+                          "only a baseColorTexture is held apart"});
   }
   {
     // A clamped normal map where the quad's uv reach [0, 4].
@@ -278,7 +288,8 @@ TEST(MipMappings, MappingsNoGridServesAreNamed) {
   }
   {
     // Sizes 25 and 32: a texel of 1.28 grid texels, whole at no multiple up to 4.
-    Scene s = quad(slot_image(32, 32, 16, Slot::base), slot_image(25, 25, 19, Slot::mr), slot_image(32, 32, 18, Slot::normal));
+    Scene s = quad(slot_image(32, 32, 16, Slot::base), slot_image(25, 25, 19, Slot::mr),
+                   slot_image(32, 32, 18, Slot::normal));
     warned(std::move(s), {"metallicRoughnessTexture's texels span 1.28 grid texels", "unevenly"});
   }
   {
@@ -289,7 +300,8 @@ TEST(MipMappings, MappingsNoGridServesAreNamed) {
   {
     // Turned by 30° on a quad whose uv stay in [0, 1] (so the wrap modes ask nothing).
     Scene s = quad(base, mr, normal);
-    s.materials[0].normal_texture.transform = TextureTransform::make({0, 0}, glm::radians(30.0f), {1.0f, 1.0f});
+    s.materials[0].normal_texture.transform =
+        TextureTransform::make({0, 0}, glm::radians(30.0f), {1.0f, 1.0f});
     s.meshes[0].primitives[0].texcoords[0] = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
     warned(std::move(s), {"normalTexture", "turned by its KHR_texture_transform", "unevenly"});
   }
