@@ -46,23 +46,29 @@ std::string page(const fs::path& index) {
 
 class LodParts : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    dir_ = new TempDir;
-    const fs::path d = dir_->path();
-    const auto single = run_command(exe() + kArgs + " --out" + q(d / "single"), d);
-    ASSERT_EQ(single.status, 0) << single.err;
+  // Each process runs one test (ctest), so the renders are made when a test first needs them: the
+  // refusals need the parts alone, the bad options neither.
+  static void SetUpTestSuite() { dir_ = new TempDir; }
+  static void render_parts() {
+    if (fs::exists(dir() / "parts")) return;
     for (int i = 0; i < 3; ++i) {
       const auto part =
-          run_command(exe() + kArgs + " --part " + std::to_string(i) + "/3 --part-out" + q(d / "parts"), d);
+          run_command(exe() + kArgs + " --part " + std::to_string(i) + "/3 --part-out" + q(dir() / "parts"), dir());
       ASSERT_EQ(part.status, 0) << part.err;
       ASSERT_EQ(part.err, "");
     }
+  }
+  static void render_single() {
+    if (fs::exists(dir() / "single")) return;
+    const auto single = run_command(exe() + kArgs + " --out" + q(dir() / "single"), dir());
+    ASSERT_EQ(single.status, 0) << single.err;
   }
   static void TearDownTestSuite() { delete dir_; }
   static fs::path dir() { return dir_->path(); }
 
   // A copy of the three parts to break.
   fs::path copy_parts(const std::string& name) {
+    render_parts();
     const fs::path to = dir() / name;
     fs::remove_all(to);
     fs::copy(dir() / "parts", to, fs::copy_options::recursive);
@@ -83,6 +89,8 @@ class LodParts : public ::testing::Test {
 TempDir* LodParts::dir_ = nullptr;
 
 TEST_F(LodParts, AssembledIsTheSingleRunsReport) {
+  ASSERT_NO_FATAL_FAILURE(render_parts());
+  ASSERT_NO_FATAL_FAILURE(render_single());
   const fs::path single = dir() / "single", assembled = dir() / "assembled";
   const auto r = run_command(exe() + " --assemble" + q(dir() / "parts") + " -q -o" + q(assembled), dir());
   ASSERT_EQ(r.status, 0) << r.err;
@@ -151,6 +159,7 @@ TEST_F(LodParts, APartOfAnotherComparisonIsRefused) {
 // the scripts then run here as Slurm would run them (the array's script once per task number, in the
 // submission's folder), into a report whose name has a space: the single run's report.
 TEST_F(LodParts, TheSlurmSubmissionsScriptsMakeTheSingleRunsReport) {
+  ASSERT_NO_FATAL_FAILURE(render_single());
   const fs::path farm = dir() / "farm", bin = dir() / "bin";
   fs::create_directories(farm);
   fs::create_directories(bin);
