@@ -248,6 +248,26 @@ TEST(MipFile, RefusesOtherVersionsForeignAndMissingFiles) {
   EXPECT_NE(read_error(dir / "short.exr").find("short.exr"), std::string::npos);
 }
 
+// The fuzz target's seeds (fuzz/corpus/mip_file) are MIP files this build reads whole, the layers
+// included: a seed refused at its version check would leave every mutation of it there, and the
+// fuzzer would never reach the levels, the lobes or the checksum.
+TEST(MipFile, TheFuzzCorpusSeedsAreFilesOfThisVersion) {
+  const std::filesystem::path corpus = std::filesystem::path(SVBRDF_SOURCE_DIR) / "fuzz/corpus/mip_file";
+  int files = 0;
+  bool layered = false;
+  for (const auto& e : std::filesystem::directory_iterator(corpus)) {
+    ++files;
+    try {
+      const MipData mip = read_mip_file(e.path());
+      layered = layered || (mip.level0.has_coat() && mip.level0.has_sheen() && !mip.level0.plain_specular());
+    } catch (const Error& err) {
+      ADD_FAILURE() << err.what();
+    }
+  }
+  EXPECT_GE(files, 3);
+  EXPECT_TRUE(layered) << "no seed carries the specular, coat and sheen layers";
+}
+
 // Sets the svbrdf:mip_version attribute of every part of a MIP file to `version`, in place: in each
 // part's header (OpenEXR's "Technical Introduction": name, type name, size, value, uncompressed) the
 // attribute is "svbrdf:mip_version\0int\0", a 4-byte size of 4 and a 4-byte little-endian value.
