@@ -1,7 +1,15 @@
 #pragma once
 // The check of a texel mixture's sampler (mip/lobe_mixture_bsdf.h) that the lookup and sheen tests
 // share: pdf() is the density sample() draws from (χ² over 64 bins of the hemisphere), every weight is
-// f·cosθ/pdf, and their mean is ∫ f·cosθ dωi by dense quadrature.
+// f·cosθ/pdf, and their mean is ∫ f·cosθ dωi by quadrature.
+//
+// The quadrature is adaptive, because a glossy lobe's density is a peak a few α wide about its mirror
+// direction (α ≥ 10⁻³, lobe.h) that a fixed grid fine enough for the rest of the hemisphere misses or
+// hits by chance. It integrates over w = cosθ and φ, in which dω = dw dφ has no singularity at the
+// horizon, on a base grid aligned with the χ² bins; a cell is split in four while its midpoint value
+// and its quarters' sum differ by more than kTolerance, or while it is wider than a quarter of a lobe's
+// α and lies within kPeakWidths α of that lobe's mirror direction (where the first criterion could be
+// fooled by a peak that falls between the midpoints).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,21 +21,107 @@
 
 namespace svbrdf::testing_sampling {
 
+constexpr double kPi = 3.14159265358979323846;
+
+// A hemisphere quadrature of one mixture at one wo: the pdf's mass and ∫ f·cosθ dωi (green) per cell.
+class AdaptiveQuadrature {
+ public:
+  static constexpr double kTolerance = 1e-9;  // per cell, of a total of at most 1
+  static constexpr double kPeakWidths = 8.0;
+  static constexpr int kMaxDepth = 16;
+
+  struct Sums {
+    double pdf = 0, fcos = 0;
+  };
+
+  AdaptiveQuadrature(const LobeMixtureBsdf& bsdf, const glm::vec3& wo) : bsdf_(bsdf), wo_(wo) {
+    // Each lobe's mirror direction and its α (the base's lobes and the coat's).
+    auto add = [&](const Lobe& l) {
+      const glm::dvec3 n = glm::normalize(glm::dvec3(l.normal)), o(wo);
+      const glm::dvec3 r = 2.0 * glm::dot(o, n) * n - o;
+      if (r.z > 0) peaks_[std::size_t(peak_count_++)] = {glm::normalize(r), std::sqrt(double(l.alpha2))};
+    };
+    for (int k = 0; k < bsdf.size() && peak_count_ < kMaxPeaks; ++k) add(bsdf.lobe(k));
+    for (int k = 0; k < bsdf.coat_size() && peak_count_ < kMaxPeaks; ++k) add(bsdf.coat_lobe(k));
+  }
+
+  // The integrals over w ∈ [w0, w1], φ ∈ [p0, p1].
+  Sums integrate(double w0, double w1, double p0, double p1) const {
+    return refine(w0, w1, p0, p1, midpoint(w0, w1, p0, p1), 0);
+  }
+
+ private:
+  static constexpr int kMaxPeaks = 2 * kMaxLobes;
+  struct Peak {
+    glm::dvec3 dir;
+    double alpha;
+  };
+
+  static glm::dvec3 direction(double w, double p) {
+    const double s = std::sqrt(std::max(0.0, 1 - w * w));
+    return {s * std::cos(p), s * std::sin(p), w};
+  }
+
+  Sums midpoint(double w0, double w1, double p0, double p1) const {
+    const glm::vec3 wi(direction(0.5 * (w0 + w1), 0.5 * (p0 + p1)));
+    const double area = (w1 - w0) * (p1 - p0);
+    return {double(bsdf_.pdf(wi, wo_)) * area, double(bsdf_.eval(wi, wo_).g) * double(wi.z) * area};
+  }
+
+  // Whether the cell is wider than a quarter of some lobe's α within kPeakWidths α of its peak.
+  bool near_unresolved_peak(double w0, double w1, double p0, double p1) const {
+    const glm::dvec3 c = direction(0.5 * (w0 + w1), 0.5 * (p0 + p1));
+    double radius = 0;  // the largest angle from the centre to a corner
+    for (const double w : {w0, w1})
+      for (const double p : {p0, p1})
+        radius = std::max(radius, std::acos(std::clamp(glm::dot(c, direction(w, p)), -1.0, 1.0)));
+    for (int k = 0; k < peak_count_; ++k) {
+      const Peak& pk = peaks_[std::size_t(k)];
+      if (radius <= 0.25 * pk.alpha) continue;
+      if (std::acos(std::clamp(glm::dot(c, pk.dir), -1.0, 1.0)) < kPeakWidths * pk.alpha + radius) return true;
+    }
+    return false;
+  }
+
+  Sums refine(double w0, double w1, double p0, double p1, const Sums& whole, int depth) const {
+    const double wm = 0.5 * (w0 + w1), pm = 0.5 * (p0 + p1);
+    const std::array<Sums, 4> q{midpoint(w0, wm, p0, pm), midpoint(wm, w1, p0, pm), midpoint(w0, wm, pm, p1),
+                                midpoint(wm, w1, pm, p1)};
+    Sums sum;
+    for (const Sums& s : q) sum.pdf += s.pdf, sum.fcos += s.fcos;
+    const bool converged =
+        std::abs(sum.pdf - whole.pdf) <= kTolerance && std::abs(sum.fcos - whole.fcos) <= kTolerance;
+    if (depth >= kMaxDepth || (converged && !near_unresolved_peak(w0, w1, p0, p1))) return sum;
+    const Sums a = refine(w0, wm, p0, pm, q[0], depth + 1), b = refine(wm, w1, p0, pm, q[1], depth + 1),
+               c = refine(w0, wm, pm, p1, q[2], depth + 1), d = refine(wm, w1, pm, p1, q[3], depth + 1);
+    return {a.pdf + b.pdf + c.pdf + d.pdf, a.fcos + b.fcos + c.fcos + d.fcos};
+  }
+
+  const LobeMixtureBsdf& bsdf_;
+  glm::vec3 wo_;
+  std::array<Peak, kMaxPeaks> peaks_{};
+  int peak_count_ = 0;
+};
+
 inline void expect_sampling_matches_pdf_and_integral(const LobeMixtureBsdf& bsdf, const glm::vec3& wo) {
-  constexpr double kPi = 3.14159265358979323846;
-  // Bins: 8 in cos²θ (equal cosine-weighted mass) × 8 in φ; expected mass by midpoint quadrature.
-  constexpr int nb = 8, sub = 48;
+  // Bins: 8 in u = sin²θ (equal cosine-weighted mass) × 8 in φ; each bin's expected mass by the adaptive
+  // quadrature over sub × sub base cells (w = √(1 − u) runs down as u runs up).
+  constexpr int nb = 8, sub = 16;
+  const AdaptiveQuadrature quadrature(bsdf, wo);
   std::array<double, nb * nb> expected{};
   double integral = 0;
-  for (int a = 0; a < nb * sub; ++a)
-    for (int b = 0; b < nb * sub; ++b) {
-      const double u = (a + 0.5) / (nb * sub), v = (b + 0.5) / (nb * sub);
-      const double ct = std::sqrt(1 - u), st = std::sqrt(u), phi = 2 * kPi * v;
-      const glm::vec3 wi(float(st * std::cos(phi)), float(st * std::sin(phi)), float(ct));
-      const double dw = kPi / ((nb * sub) * (nb * sub)) / ct;  // solid angle of the cell (dω = π du dv / cosθ)
-      expected[static_cast<std::size_t>((a / sub) * nb + b / sub)] += bsdf.pdf(wi, wo) * dw;
-      integral += double(bsdf.eval(wi, wo).g) * ct * dw;
-    }
+  for (int a = 0; a < nb; ++a) {
+    const double w_hi = std::sqrt(1.0 - double(a) / nb), w_lo = std::sqrt(1.0 - double(a + 1) / nb);
+    for (int b = 0; b < nb; ++b)
+      for (int x = 0; x < sub; ++x)
+        for (int y = 0; y < sub; ++y) {
+          const double w0 = w_lo + (w_hi - w_lo) * x / sub, w1 = w_lo + (w_hi - w_lo) * (x + 1) / sub;
+          const double p0 = 2 * kPi * (b + double(y) / sub) / nb, p1 = 2 * kPi * (b + double(y + 1) / sub) / nb;
+          const AdaptiveQuadrature::Sums s = quadrature.integrate(w0, w1, p0, p1);
+          expected[static_cast<std::size_t>(a * nb + b)] += s.pdf;
+          integral += s.fcos;
+        }
+  }
   Rng rng(23, 5);
   constexpr int n = 200000;
   std::array<double, nb * nb> observed{};

@@ -188,18 +188,10 @@ TEST(SheenPyramid, UniformSheenKeepsItsMeans) {
 }
 
 // The mixture's sampler with a sheen (sampling_check.h: χ² of sample() against pdf(), the weights, their
-// mean against the quadrature of f·cosθ), for a level-0 texel and coarse texels of a textured sheen. The base is rough (perceptual roughness ≥ 0.2
-// everywhere): a glossy spread core's own sampler misses this test's bounds without any sheen (seed 1's
-// level-2 texel: 4 % of the density's mass), which is the base's to answer for, not the sheen's.
+// mean against the quadrature of f·cosθ), for a level-0 texel and coarse texels of a textured sheen,
+// over the first seed that draws one, whatever its base's roughness.
 TEST(SheenPyramid, SamplingWithASheenMatchesItsPdfAndIntegral) {
-  std::uint64_t seed = 0;
-  for (const std::uint64_t s : sheen_seeds(20, 1, true)) {
-    const RandomMaterialDraw d = draw_random_material(s);
-    if (d.roughness >= 0.2f && (d.second_share == 0.0f || d.second_roughness >= 0.2f)) {
-      seed = s;
-      break;
-    }
-  }
+  const std::uint64_t seed = sheen_seeds(1, 1, true).front();
   ASSERT_GT(seed, 0u);
   const MipData mip = build_mip(seed_texels(seed, 16));
   // The first texel with a sheen at levels 0, 2 and 3 (row-major from the last row: a textured
