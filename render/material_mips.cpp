@@ -9,6 +9,7 @@
 #include "mip/gltf_material.h"
 #include "render/texel_grid.h"
 #include "render/texel_inputs.h"
+#include "render/uv_relation.h"
 #include "textures/material_loader.h"
 
 namespace svbrdf {
@@ -17,12 +18,12 @@ namespace {
 
 // The maps from the grid's texture space to its textures' (render/texel_grid.h), for the MIP cache's
 // key: empty when every texture is on the grid's own mapping (the key is then what it always was).
-std::vector<double> grid_mappings(const MaterialDesc& m, const TextureTransform& grid) {
+std::vector<double> grid_mappings(const MaterialDesc& m, const MaterialMip& mip) {
   std::vector<double> out;
   bool any = false;
   for (const TexelInput& in : texel_inputs(m)) {
     if (!in.texture || !in.texture->present()) continue;
-    const TextureAffine a = grid_to_texture(grid, in.texture->transform);
+    const TextureAffine a = mip.texture_map(*in.texture);
     any = any || !a.identity();
     out.insert(out.end(), {a.linear[0][0], a.linear[0][1], a.linear[1][0], a.linear[1][1], a.offset.x, a.offset.y});
   }
@@ -42,6 +43,12 @@ Footprint transformed(const TextureTransform& t, const Footprint& f) {
 
 Footprint MaterialMip::to_texture(const Footprint& f) const { return transformed(grid_.transform, f); }
 
+TextureAffine MaterialMip::texture_map(const TextureRef& r) const {
+  const int set = r.uv_set();
+  const bool related = set >= 0 && set < static_cast<int>(uv_.size());
+  return grid_to_texture(grid_.transform, r.transform, related ? uv_[static_cast<std::size_t>(set)] : TextureAffine{});
+}
+
 Rgb MaterialMip::base_color(TextureFilter filter, const Footprint& f) const {
   return base_color_->texture->base_color(filter, transformed(base_color_->ref.transform, f));
 }
@@ -59,9 +66,11 @@ SceneMips::SceneMips(const Scene& scene, const TextureSet& textures)
     std::string why = mip_unsupported(m);
     const bool modelled = why.empty();
     // The grid the textures are resampled onto (render/texel_grid.h), in the uv range the material's
-    // primitives reach on the grid's uv set.
+    // primitives reach on the grid's uv set, its textures on other uv sets placed by the relations of
+    // the sets (render/uv_relation.h).
+    const UvRelations relations(scene, static_cast<int>(i), slots, textures);
     auto choose = [&](const std::vector<const TexelInput*>& s, TexelGrid& g) {
-      return choose_texel_grid(m, s, textures, material_uv_range(scene, static_cast<int>(i), s.front()->texture->uv_set()), g);
+      return choose_texel_grid(m, s, textures, relations, g);
     };
     TexelGrid grid;
     if (modelled) why = choose(slots, grid);
@@ -91,7 +100,7 @@ SceneMips::SceneMips(const Scene& scene, const TextureSet& textures)
     for (std::size_t k = 0; k < mips_.size() && slot_[i] < 0; ++k) {
       const MaterialMip& o = mips_[k];
       if (same_texels(scene.materials[source_[k]], m) && o.grid_.texture == g.texture &&
-          same_transform(o.grid_.transform, g.transform) && o.extent_ == grid.extent &&
+          same_transform(o.grid_.transform, g.transform) && o.extent_ == grid.extent && o.uv_ == grid.uv &&
           o.base_color_.has_value() == separate_base)
         slot_[i] = static_cast<int>(k);
     }
@@ -100,6 +109,7 @@ SceneMips::SceneMips(const Scene& scene, const TextureSet& textures)
     mip.grid_ = g;
     mip.sampler_ = gs;
     mip.extent_ = grid.extent;
+    mip.uv_ = grid.uv;
     mip.level0_exact_ = grid.exact;
     mip.grid_material_ = m;
     if (separate_base) {
@@ -190,7 +200,7 @@ void SceneMips::read_cached(std::vector<std::size_t>& todo, std::vector<std::str
     tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t t) {
       MaterialMip& mip = mips_[todo[t]];
       all[t] = mip_cache_key(scene_, textures_, mip.grid_material_, mip.extent_, color_identity_, mip.tint_,
-                             grid_mappings(mip.grid_material_, mip.grid_.transform));
+                             grid_mappings(mip.grid_material_, mip));
       if (std::optional<MipData> data = cache_->load(all[t])) {
         mip.texture_.emplace(std::move(*data), mip.sampler_.wrap_s, mip.sampler_.wrap_t);
         read[t] = 1;
@@ -225,7 +235,7 @@ void SceneMips::build(std::size_t i, TextureFilter filter) {
   auto image_for = [&](const TextureRef& r, bool color) -> SlotImage {
     const Image& im = textures_.image(r, color);
     const bool linear = color && textures_.linearized(r);
-    const TextureAffine to = grid_to_texture(mip.grid_.transform, r.transform);
+    const TextureAffine to = mip.texture_map(r);
     if (to.identity() && im.width == mip.extent_.width && im.height == mip.extent_.height) return {&im, linear};
     resampled.push_back(resample(im, textures_.sampler(r).wrap(), to, mip.extent_));
     return {&resampled.back(), linear};

@@ -14,23 +14,27 @@
 // SurfaceBsdf with level0 lookups under every filter (an untextured one has nothing to filter); a
 // textured one that is left out gets one warning saying why.
 //
-// One texel grid per material (render/texel_grid.h): the textures it reads on one uv set are resampled
-// onto the grid of one of them, whatever their KHR_texture_transforms, sizes and wrap modes, so each
-// BRDF-averaged texel averages parameters known together at every point it covers. The grid is exact
+// One texel grid per material (render/texel_grid.h): the textures it reads are resampled onto the grid
+// of one of them, whatever their KHR_texture_transforms, sizes and wrap modes, so each BRDF-averaged
+// texel averages parameters known together at every point it covers. Textures on another uv set join
+// it when that set is an affine function of the grid's over the material's vertices (identical sets,
+// or one the other scaled and offset; render/uv_relation.h): the relation then places every point's
+// texels on the grid as a transform does, within 1/1020 of a texel. The grid is exact
 // (reproduces every texture's level0 lookup) when the textures' texels are whole blocks of its texels;
 // when an offset shifts them by a fraction of a grid texel it holds them displaced by under half of
 // one, and hits at level 0 are shaded from the textures themselves (level0_exact). texel_grid.h says
 // which mappings it refuses (texels of fractional width, a grid of more than four times the largest
-// texture, textures that do not wrap as the grid does where the surface's uv reach past it).
-// A base colour texture that cannot join the grid (on another uv set, or refused by it) is held
-// apart: the grid's
+// texture, textures that do not wrap as the grid does where the surface's uv reach past it, uv sets
+// that no affine map relates). A base colour texture that cannot join the grid (on an unrelated uv
+// set, or refused by it) is held apart: the grid's
 // texels take the base colour factor, the pyramid is built tintable, and a lookup tints it by the
 // base colour texture filtered on its own (its parameter pyramid: base colour is linear in the BRDF
 // (mip/lobe.h tinted), so this is exact wherever the colour and the other parameters vary
 // independently over the footprint — the premise of giving them different mappings; a colour that
 // follows the other maps' features through another mapping is averaged apart from them). Any other
-// texture the grid refuses, or on another uv set than the rest, leaves the material out, with a
-// warning naming the material, the textures and what they lack.
+// texture the grid refuses, or on a uv set unrelated to the rest's, leaves the material out, with a
+// warning naming the material, the textures and what they lack (for uv sets, each set's textures and
+// how far the best affine fit misses, against the tolerance).
 //
 // COLOR_0 is the lookups' tint. A material drawn by a primitive whose COLOR_0 is not white has its
 // BRDF pyramid built tintable (mip.h; 6 bytes a stored lobe more), found by the scene scan, so brdf
@@ -54,6 +58,7 @@
 #include "mip/mip.h"
 #include "gltf/scene.h"
 #include "render/mip_cache.h"
+#include "render/texel_grid.h"
 #include "render/texture_set.h"
 #include "base/setup_progress.h"
 
@@ -67,6 +72,9 @@ class MaterialMip {
   // A footprint of the grid's uv set (before the texture transform) carried into texture space:
   // the transform applied to uv and to both derivatives.
   Footprint to_texture(const Footprint& uvset_footprint) const;
+  // The map from the grid's texture space to that of the material's texture `r` (render/texel_grid.h
+  // A_k), through the relation of their uv sets when they differ.
+  TextureAffine texture_map(const TextureRef& r) const;
   // Whether the grid's level-0 texel at a point holds every texture's level0 lookup there (the textures'
   // texels are whole unions of the grid's); otherwise a level-0 hit is shaded from the textures.
   bool level0_exact() const { return level0_exact_; }
@@ -90,6 +98,7 @@ class MaterialMip {
   TextureRef grid_;  // the slot whose uv set and transform the grid follows
   Sampler sampler_;  // the grid's wrap modes
   Extent extent_{};  // the grid's size (render/texel_grid.h)
+  std::vector<TextureAffine> uv_;  // per uv set, the map from the grid's (TexelGrid::uv)
   bool level0_exact_ = true;
   bool tint_ = false;  // drawn with a COLOR_0 tint or a base colour held apart: the BRDF pyramid is tintable
   MaterialDesc grid_material_;  // what the grid's texels are made of: the material, less a base colour held apart

@@ -6,30 +6,11 @@
 
 #include <tbb/parallel_for.h>
 
+#include "render/uv_relation.h"
+
 namespace svbrdf {
 
-UvRange material_uv_range(const Scene& scene, int index, int set) {
-  UvRange r;
-  for (const Mesh& mesh : scene.meshes)
-    for (const MeshPrimitive& p : mesh.primitives) {
-      if (p.material != index) continue;
-      if (set < 0 || set > 1 || p.texcoords[set].empty()) {
-        r.add({0.0, 0.0});
-        continue;
-      }
-      for (const glm::vec2& uv : p.texcoords[set]) r.add(glm::dvec2(uv));
-    }
-  return r;
-}
-
 namespace {
-
-// KHR_texture_transform's linear part R·S (textures/sampler.h apply_linear) as a matrix.
-glm::dmat2 linear_part(const TextureTransform& t) {
-  const double c = std::cos(double(t.rotation())), s = std::sin(double(t.rotation()));
-  // Columns: the images of the uv axes.
-  return glm::dmat2(glm::dvec2(c, -s) * double(t.scale.x), glm::dvec2(s, c) * double(t.scale.y));
-}
 
 bool near_integer(double x, double tolerance) { return std::abs(x - std::round(x)) <= tolerance; }
 
@@ -84,24 +65,51 @@ Fit fit(const std::vector<TextureAffine>& maps, const std::vector<glm::ivec2>& s
   return f;
 }
 
+// The uv sets `slots` read, each with its textures, in the slots' order: "TEXCOORD_0: a, b; TEXCOORD_1: c".
+std::string uv_sets(const std::vector<const TexelInput*>& slots) {
+  std::string sets;
+  int last = 0;
+  for (const TexelInput* in : slots) last = std::max(last, in->texture->uv_set());
+  for (int n = 0; n <= last; ++n) {
+    std::string names;
+    for (const TexelInput* in : slots)
+      if (in->texture->uv_set() == n) names += (names.empty() ? "" : ", ") + in->name;
+    if (!names.empty()) sets += (sets.empty() ? "" : "; ") + ("TEXCOORD_" + std::to_string(n)) + ": " + names;
+  }
+  return sets;
+}
+
 // The grid that follows slot `g` (see the header), or why it cannot.
 std::string grid_following(const TexelInput& g, const std::vector<const TexelInput*>& slots,
-                           const TextureSet& textures, const UvRange& range, std::size_t largest,
+                           const TextureSet& textures, const UvRelations& relations, std::size_t largest,
                            TexelGrid& grid) {
   const TextureTransform& tg = g.texture->transform;
-  if (glm::determinant(linear_part(tg)) == 0.0)
+  if (glm::determinant(texture_transform_linear(tg)) == 0.0)
     return g.name + "'s KHR_texture_transform has a zero scale (its texture space does not map back to uv)";
   const Sampler& gs = textures.sampler(*g.texture);
+  const int set = g.texture->uv_set();
+  const UvRange& range = relations.range(set);
+  // A texture on another uv set reaches the grid through the relation of the sets (uv_relation.h).
+  std::vector<TextureAffine> uv;
   std::vector<TextureAffine> maps;
   std::vector<glm::ivec2> sizes;
   for (const TexelInput* in : slots) {
-    maps.push_back(grid_to_texture(tg, in->texture->transform));
+    TextureAffine relation;
+    if (const std::string why = relations.relation(set, *in, relation); !why.empty())
+      return "its textures read different uv sets (" + uv_sets(slots) + "), and " + why +
+             "; they share no texel grid, and only a baseColorTexture is held apart on its own set";
+    const int k = in->texture->uv_set();
+    if (k >= 0 && !relation.identity()) {
+      if (uv.size() <= std::size_t(k)) uv.resize(std::size_t(k) + 1);
+      uv[std::size_t(k)] = relation;
+    }
+    maps.push_back(grid_to_texture(tg, in->texture->transform, relation));
     sizes.push_back(textures.size(*in->texture));
   }
   // The surface's uv range in the grid's texture space: the images of its box's corners.
   glm::dvec2 lo(0.0), hi(1.0);
   if (!range.empty()) {
-    const TextureAffine to_grid{linear_part(tg), glm::dvec2(tg.offset)};
+    const TextureAffine to_grid{texture_transform_linear(tg), glm::dvec2(tg.offset)};
     lo = glm::dvec2(1e300), hi = glm::dvec2(-1e300);
     for (const glm::dvec2 c :
          {range.lo, range.hi, glm::dvec2(range.lo.x, range.hi.y), glm::dvec2(range.hi.x, range.lo.y)}) {
@@ -204,15 +212,33 @@ std::string grid_following(const TexelInput& g, const std::vector<const TexelInp
   grid.follows = &g;
   grid.extent = {base[0] * n[0], base[1] * n[1]};
   grid.exact = exact;
+  grid.uv = std::move(uv);
   return {};
 }
 
 }  // namespace
 
+glm::dmat2 texture_transform_linear(const TextureTransform& t) {
+  const double c = std::cos(double(t.rotation())), s = std::sin(double(t.rotation()));
+  // Columns: the images of the uv axes.
+  return glm::dmat2(glm::dvec2(c, -s) * double(t.scale.x), glm::dvec2(s, c) * double(t.scale.y));
+}
+
+TextureAffine grid_to_texture(const TextureTransform& grid, const TextureTransform& texture,
+                              const TextureAffine& uv) {
+  if (uv.identity()) return grid_to_texture(grid, texture);
+  // t_k = L_k·(R·uv_g + r) + o_k with uv_g = L_g⁻¹·(t_g − o_g).
+  const glm::dmat2 lk = texture_transform_linear(texture);
+  TextureAffine a;
+  a.linear = lk * uv.linear * glm::inverse(texture_transform_linear(grid));
+  a.offset = lk * uv.offset + glm::dvec2(texture.offset) - a.linear * glm::dvec2(grid.offset);
+  return a;
+}
+
 TextureAffine grid_to_texture(const TextureTransform& grid, const TextureTransform& texture) {
   // t_k = L_k·uv + o_k with uv = L_g⁻¹·(t_g − o_g).
   TextureAffine a;
-  a.linear = linear_part(texture) * glm::inverse(linear_part(grid));
+  a.linear = texture_transform_linear(texture) * glm::inverse(texture_transform_linear(grid));
   a.offset = glm::dvec2(texture.offset) - a.linear * glm::dvec2(grid.offset);
   // Equal transforms map exactly onto each other (the inverse's rounding aside).
   if (same_transform(grid, texture)) a = TextureAffine{};
@@ -220,26 +246,7 @@ TextureAffine grid_to_texture(const TextureTransform& grid, const TextureTransfo
 }
 
 std::string choose_texel_grid(const MaterialDesc& m, const std::vector<const TexelInput*>& slots,
-                              const TextureSet& textures, const UvRange& range, TexelGrid& grid) {
-  const int set = slots.front()->texture->uv_set();
-  if (std::any_of(slots.begin(), slots.end(),
-                  [&](const TexelInput* in) { return in->texture->uv_set() != set; })) {
-    // Each set with its textures, in the slots' order.
-    std::string sets;
-    int last = 0;
-    for (const TexelInput* in : slots) last = std::max(last, in->texture->uv_set());
-    for (int n = 0; n <= last; ++n) {
-      std::string names;
-      for (const TexelInput* in : slots)
-        if (in->texture->uv_set() == n) names += (names.empty() ? "" : ", ") + in->name;
-      if (!names.empty())
-        sets += (sets.empty() ? "" : "; ") + ("TEXCOORD_" + std::to_string(n)) + ": " + names;
-    }
-    return "its textures read different uv sets (" + sets +
-           "): uv sets bear no fixed relation, so they share no texel grid, and only a baseColorTexture is "
-           "held apart "
-           "on its own set";
-  }
+                              const TextureSet& textures, const UvRelations& relations, TexelGrid& grid) {
   std::size_t largest = 0;
   for (const TexelInput* in : slots) {
     const TextureRef& r = *in->texture;
@@ -254,7 +261,7 @@ std::string choose_texel_grid(const MaterialDesc& m, const std::vector<const Tex
   bool found = false;
   for (const TexelInput* g : slots) {
     TexelGrid candidate;
-    const std::string why = grid_following(*g, slots, textures, range, largest, candidate);
+    const std::string why = grid_following(*g, slots, textures, relations, largest, candidate);
     if (!why.empty()) {
       if (first_why.empty()) first_why = why;
       continue;

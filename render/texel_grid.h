@@ -33,9 +33,12 @@
 //     moves an even number: mirrored repeat's period is 2); or the grid clamps or mirrors and A_k is
 //     the identity on that axis with k's wrap mode the same. A footprint that reaches past the
 //     surface's own uv range reads the grid's wrap modes there.
-//   - a texture the surface looks up through another uv set has no fixed relation to the grid (uv sets
-//     are independent vertex data): it cannot be resampled (SceneMips holds a base colour texture
-//     apart as a tint; any other refuses the grid).
+//   - a texture the surface looks up through another uv set joins the grid when that set is an affine
+//     function of the grid's over the surface's vertices (render/uv_relation.h): the relation, composed
+//     with the two transforms, is one more affine map A_k, and the rules above decide as for one set.
+//     Any other relation leaves the two sets' texels unrelated, and the texture cannot be resampled
+//     (SceneMips holds a base colour texture apart as a tint; any other refuses the grid, saying how far
+//     the best affine fit misses).
 // Among the textures that can be followed, the grid with the fewest texels; it may hold at most four
 // times the texels of the material's largest texture (one MIP level more), else it is refused.
 #include <string>
@@ -50,35 +53,49 @@
 
 namespace svbrdf {
 
-// The bounding box of a material's uv over its primitives' vertices, on one uv set.
+class UvRelations;
+
+// The bounding box of a material's uv over its primitives' vertices, on one uv set (UvRelations).
 struct UvRange {
   glm::dvec2 lo{1e300}, hi{-1e300};
   void add(glm::dvec2 uv) { lo = glm::min(lo, uv), hi = glm::max(hi, uv); }
   bool empty() const { return lo.x > hi.x; }
 };
-// The uv range of the primitives drawn with material `index`, on uv set `set` (a vertex without that
-// set reads uv (0, 0), as the surface does).
-UvRange material_uv_range(const Scene& scene, int index, int set);
 
-// The affine map from one texture space to another: t' = linear · t + offset.
+// An affine map of the plane: from one texture space to another, or one uv set to another:
+// t' = linear · t + offset.
 struct TextureAffine {
   glm::dmat2 linear{1.0};
   glm::dvec2 offset{0.0};
   bool identity() const { return linear == glm::dmat2(1.0) && offset == glm::dvec2(0.0); }
+  bool operator==(const TextureAffine&) const = default;
 };
+// KHR_texture_transform's linear part R·S (textures/sampler.h apply_linear) as a matrix.
+glm::dmat2 texture_transform_linear(const TextureTransform& t);
 // A_k: from `grid`'s texture space to `texture`'s (both on one uv set; grid's transform invertible).
 TextureAffine grid_to_texture(const TextureTransform& grid, const TextureTransform& texture);
+// A_k for a texture on another uv set, `uv` the map from the grid's uv set to the texture's
+// (render/uv_relation.h): T_k ∘ uv ∘ T_grid⁻¹.
+TextureAffine grid_to_texture(const TextureTransform& grid, const TextureTransform& texture,
+                              const TextureAffine& uv);
 
 struct TexelGrid {
   const TexelInput* follows = nullptr;  // the slot whose uv set, transform and wrap modes the grid has
   Extent extent{0, 0};
   bool exact = true;  // every texture's texels are whole unions of grid texels
+  // Per uv set, the map from the grid's uv set to it (the identity on the grid's own and on sets no
+  // texture reads).
+  std::vector<TextureAffine> uv;
+  const TextureAffine& uv_map(int set) const {
+    static const TextureAffine identity;
+    return set >= 0 && set < static_cast<int>(uv.size()) ? uv[static_cast<std::size_t>(set)] : identity;
+  }
 };
 
-// Chooses the grid for `slots` (the material's texture slots, one uv set or not) and fills `grid`, or
-// says why none serves: one line naming the textures and what they lack.
+// Chooses the grid for `slots` (the material's texture slots, one uv set or not; `uv` their relations
+// and ranges) and fills `grid`, or says why none serves: one line naming the textures and what they lack.
 std::string choose_texel_grid(const MaterialDesc& m, const std::vector<const TexelInput*>& slots,
-                              const TextureSet& textures, const UvRange& range, TexelGrid& grid);
+                              const TextureSet& textures, const UvRelations& uv, TexelGrid& grid);
 
 // `image` (read with `wrap`) resampled onto a grid of `extent` texels whose texture space `to` maps
 // into the image's: each grid texel takes the image's nearest texel at its centre's image.

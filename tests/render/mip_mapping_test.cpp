@@ -11,6 +11,7 @@
 
 #include "appearance/rng.h"
 #include "mip_quad.h"
+#include "render/uv_relation.h"
 #include "textures/sampler.h"
 
 namespace svbrdf {
@@ -253,6 +254,152 @@ TEST(MipMappings, DisplacedGridLeavesLevel0HitsToTheTextures) {
   EXPECT_EQ(brdf.pixels, none.pixels);
 }
 
+// The quad's square cut into n×n cells, TEXCOORD_0 over [0, 4]² as before and TEXCOORD_1 =
+// uv1(TEXCOORD_0) at each vertex.
+void tessellate(Scene& s, int n, const std::function<glm::vec2(glm::vec2)>& uv1) {
+  MeshPrimitive& p = s.meshes[0].primitives[0];
+  p.positions.clear(), p.texcoords[0].clear(), p.texcoords[1].clear(), p.indices.clear();
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const float x = float(i) / float(n), y = float(j) / float(n);
+      p.positions.push_back({-4 + 8 * x, 4 - 8 * y, 0});
+      p.texcoords[0].push_back({4 * x, 4 * y});
+      p.texcoords[1].push_back(uv1({4 * x, 4 * y}));
+    }
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const std::uint32_t a = std::uint32_t(j * (n + 1) + i), b = a + 1, d = a + std::uint32_t(n) + 1,
+                          c = d + 1;
+      p.indices.insert(p.indices.end(), {d, c, b, d, b, a});  // counter-clockwise seen from +z
+    }
+  p.normals.assign(p.positions.size(), {0, 0, 1});
+  p.tangents.assign(p.positions.size(), {1, 0, 0, 1});
+}
+
+// A texture on TEXCOORD_1 joins the grid when TEXCOORD_1 is an affine function of TEXCOORD_0 over the
+// vertices (render/uv_relation.h), its KHR_texture_transform composed with the relation: the same
+// as TEXCOORD_0 (A = I, b = 0); twice it plus (¼, 0), the normal map's transform (scale ½, offset
+// (−⅛, 0)) bringing it back onto TEXCOORD_0; turned by a quarter, uv1 = (4 − v0, u0), the
+// metallic-roughness map's transform (a quarter turn back, offset (0, 4)) doing the same. Each takes
+// part with no warning and renders as the scene whose textures all read TEXCOORD_0 untransformed. The
+// fit reads the vertices the triangles reference, not the others an accessor holds.
+TEST(MipMappings, TexturesOnAnAffinelyRelatedUvSetJoinTheGrid) {
+  const Image base = slot_image(64, 64, 30, Slot::base), mr = slot_image(64, 64, 31, Slot::mr),
+              normal = slot_image(64, 64, 32, Slot::normal);
+  Scene one_set = quad(base, mr, normal);
+  tessellate(one_set, 6, [](glm::vec2 uv) { return uv; });
+  one_set.meshes[0].primitives[0].texcoords[1].clear();
+
+  Scene identical = quad(base, mr, normal);
+  tessellate(identical, 6, [](glm::vec2 uv) { return uv; });
+  identical.materials[0].normal_texture.tex_coord = 1;
+  // A vertex that no triangle references is never on the surface, whatever its uv.
+  MeshPrimitive& p = identical.meshes[0].primitives[0];
+  p.positions.push_back({0, 0, 1}), p.normals.push_back({0, 0, 1}), p.tangents.push_back({1, 0, 0, 1});
+  p.texcoords[0].push_back({1, 1}), p.texcoords[1].push_back({3, -7});
+  expect_no_warning(identical, "identical sets");
+  {
+    Prepared p(identical);
+    ASSERT_NE(p.mips->find(0), nullptr);
+    EXPECT_TRUE(p.mips->find(0)->texture_map(identical.materials[0].normal_texture).identity());
+  }
+  expect_renders_alike(identical, one_set, "identical sets");
+
+  Scene scaled = quad(base, mr, normal);
+  tessellate(scaled, 6, [](glm::vec2 uv) { return 2.0f * uv + glm::vec2(0.25f, 0.0f); });
+  scaled.materials[0].normal_texture.tex_coord = 1;
+  scaled.materials[0].normal_texture.transform = TextureTransform::make({-0.125f, 0.0f}, 0.0f, {0.5f, 0.5f});
+  expect_no_warning(scaled, "scaled and offset");
+  expect_renders_alike(scaled, one_set, "scaled and offset");
+
+  Scene turned = quad(base, mr, normal);
+  tessellate(turned, 6, [](glm::vec2 uv) { return glm::vec2(4.0f - uv.y, uv.x); });
+  turned.materials[0].metallic_roughness_texture.tex_coord = 1;
+  turned.materials[0].metallic_roughness_texture.transform =
+      TextureTransform::make({0.0f, 4.0f}, glm::radians(90.0f), {1.0f, 1.0f});
+  expect_no_warning(turned, "turned by a quarter");
+  expect_renders_alike(turned, one_set, "turned by a quarter");
+}
+
+// A TEXCOORD_1 that no affine map makes of TEXCOORD_0 keeps the material at level0, its warning naming
+// the sets, their textures and the miss against the tolerance: a swirl (each point turned about the
+// centre by half its distance in radians); and two primitives each with an affine TEXCOORD_1 but not
+// the same one (the second's shifted by ½ along u), whose least-squares fit over both is A = I,
+// b = (¼, 0), missing every vertex by ¼ along u: 16 texels of the 64² normal map.
+TEST(MipMappings, UnrelatedUvSetsKeepTheMaterialAtLevel0) {
+  const Image base = slot_image(64, 64, 33, Slot::base), mr = slot_image(64, 64, 34, Slot::mr),
+              normal = slot_image(64, 64, 35, Slot::normal);
+  auto warning = [](const Scene& s) {
+    Prepared p(s);
+    EXPECT_EQ(p.mips->find(0), nullptr);
+    const std::vector<std::string> w = p.mips->warnings(TextureFilter::brdf);
+    return w.size() == 1 ? w[0] : std::string("no single warning");
+  };
+  auto expect_in = [](const std::string& w, const std::string& needle) {
+    EXPECT_NE(w.find(needle), std::string::npos) << "'" << needle << "' in: " << w;
+  };
+  Scene swirl = quad(base, mr, normal);
+  tessellate(swirl, 8, [](glm::vec2 uv) {
+    const glm::vec2 d = uv - glm::vec2(2.0f);
+    const float a = 0.5f * glm::length(d), c = std::cos(a), s = std::sin(a);
+    return glm::vec2(2.0f) + glm::vec2(c * d.x - s * d.y, s * d.x + c * d.y);
+  });
+  swirl.materials[0].normal_texture.tex_coord = 1;
+  const std::string w = warning(swirl);
+  expect_in(w, "materials[0]");
+  // The base colour, which could be held apart, is; the rest are named.
+  expect_in(w, "TEXCOORD_0: metallicRoughnessTexture; TEXCOORD_1: normalTexture");
+  expect_in(w, "TEXCOORD_1 is no affine function of TEXCOORD_0");
+  expect_in(w, "texels of normalTexture, where 0.00098 are allowed");
+
+  Scene two = quad(base, mr, normal);
+  tessellate(two, 2, [](glm::vec2 uv) { return uv; });
+  MeshPrimitive second = two.meshes[0].primitives[0];
+  for (glm::vec3& p : second.positions) p.x += 10;
+  for (glm::vec2& uv : second.texcoords[1]) uv.x += 0.5f;
+  second.where = "meshes[0].primitives[1]";
+  two.meshes[0].primitives.push_back(second);
+  two.materials[0].normal_texture.tex_coord = 1;
+  expect_in(warning(two), "misses one of meshes[0].primitives[0] by 16 texels of normalTexture");
+}
+
+// The tolerance is 1/1020 of a texel of the textures a relation places on the grid
+// (render/uv_relation.h), in their own texels. TEXCOORD_1 is TEXCOORD_0 plus a checkerboard of ±δ along
+// u on a 4×4 grid of vertices: a pattern that sums to nothing against 1, u and v, so the fit either
+// way is the identity and misses every vertex by δ. With the metallic-roughness map on TEXCOORD_0 and
+// the normal map on TEXCOORD_1 (no base colour texture, which could be held apart), δ of half the
+// tolerance in texels of a 64² map joins and twice it does not; the same δ is refused when both maps
+// are 256² or tiled 4 times by their transforms (four times the texels), and joins when only one is:
+// the grid follows the fine one and places the coarse one.
+TEST(MipMappings, UvRelationToleranceIsAFractionOfATexel) {
+  auto scene = [](int mr_size, int normal_size, double texels_of_64, float tiles = 1.0f) {
+    Scene s = quad(Image(1, 1, 3), slot_image(mr_size, mr_size, 36, Slot::mr),
+                   slot_image(normal_size, normal_size, 37, Slot::normal));
+    s.materials[0].base_color_texture = TextureRef{};
+    for (TextureRef* r : {&s.materials[0].metallic_roughness_texture, &s.materials[0].normal_texture})
+      r->transform = TextureTransform::make({0.0f, 0.0f}, 0.0f, {tiles, tiles});
+    const float delta = float(texels_of_64 * kUvRelationTolerance / 64);
+    tessellate(s, 3, [&](glm::vec2 uv) {
+      const int parity = int(std::lround(uv.x * 3 / 4 + uv.y * 3 / 4)) % 2;
+      return uv + glm::vec2(parity ? delta : -delta, 0.0f);
+    });
+    s.materials[0].normal_texture.tex_coord = 1;
+    return s;
+  };
+  auto joins = [](const Scene& s) { return Prepared(s).mips->find(0) != nullptr; };
+  EXPECT_TRUE(joins(scene(64, 64, 0.5)));
+  EXPECT_FALSE(joins(scene(64, 64, 2.0)));
+  EXPECT_FALSE(joins(scene(256, 256, 0.5)));
+  EXPECT_FALSE(joins(scene(64, 64, 0.5, 4.0f)));
+  EXPECT_TRUE(joins(scene(256, 64, 0.5)));
+  EXPECT_TRUE(joins(scene(64, 256, 0.5)));
+  // The accepted relation is the identity: the checkerboard is orthogonal to every affine map.
+  const Scene s = scene(64, 64, 0.5);
+  const Prepared p(s);
+  ASSERT_NE(p.mips->find(0), nullptr);
+  EXPECT_TRUE(p.mips->find(0)->texture_map(s.materials[0].normal_texture).identity());
+}
+
 // The mappings no grid serves leave the material to level0 with one warning naming the material and
 // the textures, and what they lack.
 TEST(MipMappings, MappingsNoGridServesAreNamed) {
@@ -267,12 +414,12 @@ TEST(MipMappings, MappingsNoGridServesAreNamed) {
   const Image base = slot_image(16, 16, 16, Slot::base), mr = slot_image(16, 16, 17, Slot::mr),
               normal = slot_image(16, 16, 18, Slot::normal);
   {
-    // Another uv set: no fixed relation to the grid's.
+    // Another uv set that no affine map relates to the grid's: two corners swapped, a bow tie.
     Scene s = quad(base, mr, normal);
     s.materials[0].metallic_roughness_texture.tex_coord = 1;
-    s.meshes[0].primitives[0].texcoords[1] = s.meshes[0].primitives[0].texcoords[0];
+    s.meshes[0].primitives[0].texcoords[1] = {{0, 4}, {4, 4}, {0, 0}, {4, 0}};
     warned(std::move(s), {"TEXCOORD_0: normalTexture; TEXCOORD_1: metallicRoughnessTexture",
-                          "only a baseColorTexture is held apart"});
+                          "no affine function", "only a baseColorTexture is held apart"});
   }
   {
     // A clamped normal map where the quad's uv reach [0, 4].
