@@ -83,13 +83,9 @@ struct TexelGrid {
   const TexelInput* follows = nullptr;  // the slot whose uv set, transform and wrap modes the grid has
   Extent extent{0, 0};
   bool exact = true;  // every texture's texels are whole unions of grid texels
-  // Per uv set, the map from the grid's uv set to it (the identity on the grid's own and on sets no
-  // texture reads).
+  // Per uv set, the map from the grid's uv set to it (the identity on the grid's own, on sets no
+  // texture reads and past the end).
   std::vector<TextureAffine> uv;
-  const TextureAffine& uv_map(int set) const {
-    static const TextureAffine identity;
-    return set >= 0 && set < static_cast<int>(uv.size()) ? uv[static_cast<std::size_t>(set)] : identity;
-  }
 };
 
 // Chooses the grid for `slots` (the material's texture slots, one uv set or not; `uv` their relations
