@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <bit>
 #include <memory>
 
 #include <OpenImageIO/imagecache.h>
@@ -20,8 +21,30 @@ namespace {
 
 OIIO::TypeDesc type_of(PixelFormat format) { return format == PixelFormat::uint8 ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT; }
 
-// What a tile that cannot be read reads as: zeros, as many bytes as a float tile.
-alignas(64) const std::byte kZeroTile[TextureTiles::kTileSide * TextureTiles::kTileSide * 16] = {};
+// Makes `folder` or throws.
+void create_folder(const fs::path& folder) {
+  std::error_code ec;
+  fs::create_directories(folder, ec);
+  if (ec)
+    throw environment_error(folder.string(),
+                            "cannot create the folder for the texture cache: " + ec.message());
+}
+
+// A use, for the MIP cache's eviction (least recent first).
+void touch(const fs::path& path) { ::utimensat(AT_FDCWD, path.c_str(), nullptr, 0); }
+
+// Writes `tmp` with `out`, then syncs it and renames it to `path`; a failure removes `tmp` and throws.
+void finish(OIIO::ImageOutput& out, bool ok, const fs::path& tmp, const fs::path& path) {
+  ok = ok && out.close();
+  if (!ok) {
+    const std::string why = out.geterror();
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    throw environment_error(path.string(), "cannot write the texture cache's file: " + why);
+  }
+  sync_file(tmp, path.string());
+  move_into_place(tmp, path);
+}
 
 }  // namespace
 
@@ -59,32 +82,32 @@ bool TextureTiles::usable(const fs::path& path, int width, int height, PixelForm
 }
 
 int TextureTiles::add(const std::string& key, int width, int height, PixelFormat format, const void* rgba) {
-  const fs::path path = folder_ / (key + ".tx");
+  const fs::path path = path_of(key);
   if (!usable(path, width, height, format)) {
-    std::error_code ec;
-    fs::create_directories(folder_, ec);
-    if (ec) throw environment_error(folder_.string(), "cannot create the folder for the texture cache: " + ec.message());
+    create_folder(folder_);
     const fs::path tmp = temp_path_for(path);
     auto out = OIIO::ImageOutput::create(path.string());
     if (!out) throw environment_error(path.string(), "OpenImageIO writes no TIFF: " + OIIO::geterror());
     OIIO::ImageSpec spec(width, height, 4, type_of(format));
     spec.tile_width = spec.tile_height = kTileSide;
     spec.attribute("compression", "zip");
-    const bool ok = out->open(tmp.string(), spec) && out->write_image(type_of(format), rgba) && out->close();
-    if (!ok) {
-      const std::string why = out->geterror();
-      fs::remove(tmp, ec);
-      throw environment_error(path.string(), "cannot write the texture cache's file: " + why);
-    }
-    sync_file(tmp, path.string());
-    move_into_place(tmp, path);
+    finish(*out, out->open(tmp.string(), spec) && out->write_image(type_of(format), rgba), tmp, path);
   } else {
-    ::utimensat(AT_FDCWD, path.c_str(), nullptr, 0);  // a use, for the MIP cache's eviction (least recent first)
+    touch(path);
   }
+  return open_file(path, kTileSide,
+                   {Level{width, height, 4, std::size_t(format == PixelFormat::uint8 ? 4 : 16)}});
+}
+
+int TextureTiles::open_file(const fs::path& path, int tile_side, std::vector<Level> levels) {
   File f;
   f.path = path;
-  f.width = width, f.height = height;
-  f.texel_bytes = format == PixelFormat::uint8 ? 4 : 16;
+  f.tile_shift = std::countr_zero(unsigned(tile_side));
+  f.levels = std::move(levels);
+  std::size_t tile_bytes = 0;
+  for (const Level& l : f.levels)
+    tile_bytes = std::max(tile_bytes, l.texel_bytes * std::size_t(tile_side) * std::size_t(tile_side));
+  if (zero_tile_.size() < tile_bytes) zero_tile_.assign(tile_bytes, std::byte{0});
   // Opened now and kept open (see the header): one more file than are added is always allowed.
   cache_->attribute("max_open_files", std::max(100, int(files_.size()) + 16));
   f.handle = cache_->get_image_handle(OIIO::ustring(path.string()));
@@ -95,23 +118,118 @@ int TextureTiles::add(const std::string& key, int width, int height, PixelFormat
   return int(files_.size()) - 1;
 }
 
+std::optional<RecordLayout> TextureTiles::inspect_records(const std::string& key, std::string* why) const {
+  const fs::path path = path_of(key);
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return std::nullopt;
+  const auto say = [&](const std::string& what) -> std::optional<RecordLayout> {
+    if (why) *why = path.string() + ": " + what;
+    return std::nullopt;
+  };
+  const auto in = OIIO::ImageInput::open(path.string());
+  if (!in) return say("not a file OpenImageIO reads (" + OIIO::geterror() + ")");
+  RecordLayout layout;
+  for (int level = 0; in->seek_subimage(level, 0); ++level) {
+    const OIIO::ImageSpec s = in->spec();
+    if (level == 0) {
+      layout.tile_side = s.tile_width;
+      layout.description = s.get_string_attribute("ImageDescription");
+    }
+    if (s.format != OIIO::TypeDesc::FLOAT || s.channelformats.size() > 0 ||
+        s.tile_width != layout.tile_side || s.tile_height != layout.tile_side || s.tile_depth > 1 ||
+        s.x != 0 || s.y != 0 || s.z != 0 || s.depth > 1 || s.width <= 0 || s.height <= 0 ||
+        s.nchannels <= 0 || in->seek_subimage(level, 1))
+      return say("level " + std::to_string(level) + " is not laid out as the texture cache writes it");
+    layout.levels.push_back({s.width, s.height, s.nchannels});
+  }
+  (void)in->geterror();
+  if (layout.levels.empty()) return say("holds no level");
+  if (!std::has_single_bit(unsigned(layout.tile_side)) || layout.tile_side < 8 ||
+      layout.tile_side > kTileSide)
+    return say("its tiles are not as the texture cache writes them");
+  return layout;
+}
+
+int TextureTiles::write_records(const std::string& key, const RecordLayout& layout, const FillRows& fill) {
+  const fs::path path = path_of(key);
+  create_folder(folder_);
+  const fs::path tmp = temp_path_for(path);
+  auto out = OIIO::ImageOutput::create(path.string());
+  if (!out) throw environment_error(path.string(), "OpenImageIO writes no TIFF: " + OIIO::geterror());
+  std::vector<OIIO::ImageSpec> specs;
+  for (const RecordLevel& l : layout.levels) {
+    OIIO::ImageSpec& s = specs.emplace_back(l.width, l.height, l.words, OIIO::TypeDesc::FLOAT);
+    s.tile_width = s.tile_height = layout.tile_side;
+    s.attribute("compression", "zip");
+    s.attribute("ImageDescription", layout.description);
+  }
+  bool ok = out->open(tmp.string(), int(specs.size()), specs.data());
+  std::vector<std::uint32_t> band, tile;
+  for (std::size_t level = 0; ok && level < specs.size(); ++level) {
+    const RecordLevel& l = layout.levels[level];
+    if (level > 0) ok = out->open(tmp.string(), specs[level], OIIO::ImageOutput::AppendSubimage);
+    // A row of tiles at a time: the level is never whole in memory. Each tile is written whole, the
+    // part past the level's edge zeros (what OpenImageIO pads a partial tile with is not defined, and
+    // the file must be the same for the same records).
+    const std::size_t side = std::size_t(layout.tile_side), words = std::size_t(l.words);
+    band.resize(side * std::size_t(l.width) * words);
+    tile.resize(side * side * words);
+    for (int y = 0; ok && y < l.height; y += layout.tile_side) {
+      const int rows = std::min(l.height - y, layout.tile_side);
+      fill(int(level), y, y + rows, band.data());
+      for (int x = 0; ok && x < l.width; x += layout.tile_side) {
+        const std::size_t columns = std::size_t(std::min(l.width - x, layout.tile_side));
+        std::fill(tile.begin(), tile.end(), 0u);
+        for (std::size_t r = 0; r < std::size_t(rows); ++r)
+          std::copy_n(band.begin() + std::ptrdiff_t((r * std::size_t(l.width) + std::size_t(x)) * words),
+                      columns * words, tile.begin() + std::ptrdiff_t(r * side * words));
+        ok = out->write_tile(x, y, 0, OIIO::TypeDesc::FLOAT, tile.data());
+      }
+    }
+  }
+  finish(*out, ok, tmp, path);
+  return open_records(key, layout);
+}
+
+int TextureTiles::open_records(const std::string& key, const RecordLayout& layout) {
+  const fs::path path = path_of(key);
+  touch(path);
+  std::vector<Level> levels;
+  for (const RecordLevel& l : layout.levels)
+    levels.push_back({l.width, l.height, l.words, 4 * std::size_t(l.words)});
+  const int file = open_file(path, layout.tile_side, std::move(levels));
+  // What the cache opened is what was inspected or written (another render may have replaced it
+  // since with a file of the same key: then the same content).
+  for (std::size_t level = 0; level < layout.levels.size(); ++level) {
+    OIIO::ImageSpec s;
+    const RecordLevel& l = layout.levels[level];
+    if (!cache_->get_imagespec(files_.back().handle, nullptr, s, int(level), 0) || s.width != l.width ||
+        s.height != l.height || s.nchannels != l.words || s.tile_width != layout.tile_side)
+      throw environment_error(path.string(), "the texture cache's file changed under it");
+  }
+  return file;
+}
+
 void TextureTiles::refill(Pins& pins, Pin& pin, int file, std::uint64_t key) const {
   if (!pins.info) pins.info = cache_->get_perthread_info();
   if (pin.tile) cache_->release_tile(pin.tile);
   pin = Pin{};
   const File& f = files_[std::size_t(file)];
-  const int x = int(key & 0x1FFFFF) << kTileShift, y = int((key >> 21) & 0x1FFFFF) << kTileShift;
-  OIIO::ImageCache::Tile* tile = cache_->get_tile(f.handle, pins.info, 0, 0, x, y, 0);
+  const int level = int((key >> kLevelShift) & 31);
+  const int x = int(key & 0x1FFFFF) << f.tile_shift, y = int((key >> 21) & 0x1FFFFF) << f.tile_shift;
+  OIIO::ImageCache::Tile* tile = cache_->get_tile(f.handle, pins.info, level, 0, x, y, 0);
   OIIO::TypeDesc format;
   const void* pixels = tile ? cache_->tile_pixels(tile, format) : nullptr;
-  if (!pixels || 4 * format.size() != f.texel_bytes) {
+  // The tile's bytes per texel: the cache's channels are the file's (checked when it was opened).
+  const std::size_t texel_bytes = f.levels[std::size_t(level)].texel_bytes;
+  if (!pixels || format.size() * std::size_t(f.levels[std::size_t(level)].channels) != texel_bytes) {
     if (tile) cache_->release_tile(tile);
     const std::lock_guard<std::mutex> lock(mutex_);
     if (failure_.empty())
       failure_ = f.path.string() + ": the texture cache cannot read the tile at (" + std::to_string(x) + ", " +
                  std::to_string(y) + "): " + cache_->geterror() + " (removing the file makes the next render write it again)";
     failed_.store(true, std::memory_order_relaxed);
-    pin.pixels = kZeroTile;  // key left unset: the next lookup of this tile tries again
+    pin.pixels = zero_tile_.data();  // key left unset: the next lookup of this tile tries again
     return;
   }
   pin.key = key, pin.tile = tile, pin.pixels = static_cast<const std::byte*>(pixels);
@@ -119,9 +237,11 @@ void TextureTiles::refill(Pins& pins, Pin& pin, int file, std::uint64_t key) con
 
 std::vector<std::byte> TextureTiles::read_all(int file) const {
   const File& f = files_[std::size_t(file)];
-  std::vector<std::byte> out(f.texel_bytes * std::size_t(f.width) * std::size_t(f.height));
+  const Level& l = f.levels[0];
+  std::vector<std::byte> out(l.texel_bytes * std::size_t(l.width) * std::size_t(l.height));
   const auto in = OIIO::ImageInput::open(f.path.string());
-  if (!in || !in->read_image(0, 0, 0, 4, f.texel_bytes == 4 ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT, out.data()))
+  if (!in || !in->read_image(0, 0, 0, 4, l.texel_bytes == 4 ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT,
+                             out.data()))
     throw environment_error(f.path.string(), "the texture cache cannot read its file: " +
                                                  (in ? in->geterror() : OIIO::geterror()));
   return out;

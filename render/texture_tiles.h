@@ -1,12 +1,18 @@
 #pragma once
-// Out-of-core textures: images kept as tiled files on disk and read through an OpenImageIO
-// ImageCache whose memory is capped, so the texels resident at once are bounded by the cap whatever
-// the scene holds (`svbrdf-render --texture-cache MB`). TextureSet (render/texture_set.h) writes
-// each decoded image here once and looks its texels up through texel().
+// Out-of-core textures: images and MIP data kept as tiled files on disk and read through an
+// OpenImageIO ImageCache whose memory is capped, so the texels resident at once are bounded by the cap
+// whatever the scene holds (`svbrdf-render --texture-cache MB`). TextureSet (render/texture_set.h)
+// writes each decoded image here once and looks its texels up through texel(); the MIP textures of
+// the materials (render/mip_tiles.h) write their pyramids as record files and read them through
+// record().
 //
-// Files: TIFF, 4 channels (RGBA), 64 × 64 tiles, one level (the level-0 texels; the coarser levels a
-// filter reads are the MIP pyramids', render/material_mips.h), 8-bit or 32-bit float, named by a
-// key that TextureSet makes from the image's content, in the MIP cache's folder (render/mip_cache.h),
+// Image files: TIFF, 4 channels (RGBA), 64 × 64 tiles, one level (the level-0 texels), 8-bit or
+// 32-bit float. Record files: TIFF, one subimage a level (a level's texels have their own number of
+// channels, which OpenImageIO's MIP levels do not allow), each texel a record of 32-bit words stored
+// as float channels (bit-cast: the cache keeps floats as the file holds them, its other 32-bit types
+// it converts), small tiles (records are up to a few hundred bytes), and a description (the TIFF
+// ImageDescription) that says what the records hold. Both are named by a
+// key that their writer makes from what they hold, in the MIP cache's folder (render/mip_cache.h),
 // which counts them in its size and evicts them as it does its entries. A file is written to a
 // temporary beside it and renamed into place (base/atomic_file.h), so concurrent renders that share
 // the folder see a whole file or none; one that is there with the expected size and layout is
@@ -14,20 +20,23 @@
 // open files is raised to hold them all), so an eviction by another render cannot pull it from
 // under this one.
 //
-// Lookups: a per-thread table of pinned tiles (ImageCache::get_tile), direct-mapped by tile, so
-// that a lookup whose tile a recent lookup of the same thread read costs a hash and a compare, not a
-// call into the cache (bench/results/render.md). A thread pins at most kPinnedTiles tiles; the
-// cache's own bookkeeping counts them, so they are inside the cap.
+// Lookups: a per-thread table of pinned tiles (ImageCache::get_tile), direct-mapped by file, level and
+// tile, so that a lookup whose tile a recent lookup of the same thread read costs a hash and a
+// compare, not a call into the cache (bench/results/render.md). A thread pins at most kPinnedTiles
+// tiles; the cache's own bookkeeping counts them, so they are inside the cap.
 //
-// A tile that cannot be read (the disk failed) reads as zeros and is recorded: failure() says so
-// after the render, which then fails (exit 1) rather than pass an image with holes.
+// A tile that cannot be read (the disk failed, a corrupt file) reads as zeros and is recorded:
+// failure() says so after the render, which then fails (exit 1) rather than pass an image with holes.
 #include <array>
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -61,6 +70,19 @@ struct TiledImage {
   CodeTable raw_table{}, linear_table{};
 };
 
+// A level of a record file: its texels and the 32-bit words of each one's record.
+struct RecordLevel {
+  int width = 0, height = 0, words = 0;
+  bool operator==(const RecordLevel&) const = default;
+};
+// What a record file holds: its levels, its tile side and the writer's description of the records.
+struct RecordLayout {
+  std::vector<RecordLevel> levels;
+  int tile_side = 16;
+  std::string description;
+  bool operator==(const RecordLayout&) const = default;
+};
+
 class TextureTiles {
  public:
   static constexpr int kTileSide = 64;  // texels; a power of two (lookups shift and mask)
@@ -83,15 +105,25 @@ class TextureTiles {
   // texel(). Throws svbrdf::Error (environment) when it can be neither found nor written.
   int add(const std::string& key, int width, int height, PixelFormat format, const void* rgba);
 
+  // The record file of `key` as `path_of` names it: the layout that file holds (nullopt: none, or
+  // not one this class wrote: `why` says what is wrong with one that is there).
+  std::optional<RecordLayout> inspect_records(const std::string& key, std::string* why = nullptr) const;
+  // Writes the record file of `key` (temporary, sync, rename) with `layout`, each level's rows from
+  // `fill` (level, first row, end row, out: (end − first) · width · words words, rows from the top),
+  // then opens it; open_records opens the one there, which must hold `layout` (inspect_records). The
+  // file's index for record(). Throw svbrdf::Error (environment) when it cannot be written or opened.
+  using FillRows = std::function<void(int level, int row_begin, int row_end, std::uint32_t* out)>;
+  int write_records(const std::string& key, const RecordLayout& layout, const FillRows& fill);
+  int open_records(const std::string& key, const RecordLayout& layout);
+  std::filesystem::path path_of(const std::string& key) const { return folder_ / (key + ".tx"); }
+
   // The first byte of texel (i, j) of file `file` (inside the image): 4 bytes or 4 floats.
-  // Thread-safe; the pointer holds until this thread's next texel() call.
-  const std::byte* texel(int file, int i, int j) const {
-    const std::uint64_t key = (std::uint64_t(file) << 42) | (std::uint64_t(j >> kTileShift) << 21) | std::uint64_t(i >> kTileShift);
-    Pins& pins = pins_.local();
-    Pin& pin = pins.slots[(key * 0x9E3779B97F4A7C15ull) >> (64 - kPinBits)];
-    if (pin.key != key) refill(pins, pin, file, key);
-    const File& f = files_[std::size_t(file)];
-    return pin.pixels + f.texel_bytes * std::size_t(((j & (kTileSide - 1)) << kTileShift) + (i & (kTileSide - 1)));
+  // Thread-safe; the pointer holds until this thread's next texel() or record() call.
+  const std::byte* texel(int file, int i, int j) const { return fetch(file, 0, i, j); }
+  // The record of texel (i, j) of level `level` of record file `file` (inside the level): its words.
+  // Thread-safe; the pointer holds until this thread's next texel() or record() call.
+  const std::uint32_t* record(int file, int level, int i, int j) const {
+    return reinterpret_cast<const std::uint32_t*>(fetch(file, level, i, j));
   }
 
   // The whole level-0 image of `file`, as stored (for the MIP builds, which read every texel).
@@ -109,7 +141,8 @@ class TextureTiles {
   int file_count() const { return int(files_.size()); }
   std::uint64_t texel_bytes() const {
     std::uint64_t n = 0;
-    for (const File& f : files_) n += f.texel_bytes * std::uint64_t(f.width) * std::uint64_t(f.height);
+    for (const File& f : files_)
+      for (const Level& l : f.levels) n += l.texel_bytes * std::uint64_t(l.width) * std::uint64_t(l.height);
     return n;
   }
 
@@ -119,12 +152,31 @@ class TextureTiles {
  private:
   static constexpr int kPinBits = 6;
   static_assert(1 << kPinBits == kPinnedTiles);
+  // A pin's key: file, level and tile, 17 + 5 + 21 + 21 bits.
+  static constexpr int kLevelShift = 42, kFileShift = 47;
+  struct Level {
+    int width = 0, height = 0;
+    int channels = 0;             // an image's 4; a record's words
+    std::size_t texel_bytes = 0;  // an image's 4 (uint8) or 16 (float); a record's 4 a word
+  };
   struct File {
     std::filesystem::path path;
     OIIO::pvt::ImageCacheFile* handle = nullptr;
-    int width = 0, height = 0;
-    std::size_t texel_bytes = 0;  // 4 (uint8) or 16 (float)
+    int tile_shift = kTileShift;
+    std::vector<Level> levels;  // an image's one
   };
+  const std::byte* fetch(int file, int level, int i, int j) const {
+    const File& f = files_[std::size_t(file)];
+    const int shift = f.tile_shift, mask = (1 << shift) - 1;
+    const std::uint64_t key = (std::uint64_t(file) << kFileShift) | (std::uint64_t(level) << kLevelShift) |
+                              (std::uint64_t(j >> shift) << 21) | std::uint64_t(i >> shift);
+    Pins& pins = pins_.local();
+    Pin& pin = pins.slots[(key * 0x9E3779B97F4A7C15ull) >> (64 - kPinBits)];
+    if (pin.key != key) refill(pins, pin, file, key);
+    return pin.pixels +
+           f.levels[std::size_t(level)].texel_bytes * std::size_t(((j & mask) << shift) + (i & mask));
+  }
+  int open_file(const std::filesystem::path& path, int tile_side, std::vector<Level> levels);
   struct Pin {
     std::uint64_t key = ~std::uint64_t(0);
     OIIO::pvt::ImageCacheTile* tile = nullptr;
@@ -140,6 +192,7 @@ class TextureTiles {
   std::filesystem::path folder_;
   OIIO::ImageCache* cache_ = nullptr;
   std::vector<File> files_;  // complete before the first lookup
+  std::vector<std::byte> zero_tile_;  // what a tile that cannot be read reads as: the largest tile's bytes
   std::vector<std::unique_ptr<TiledImage>> images_;
   mutable tbb::enumerable_thread_specific<Pins, tbb::cache_aligned_allocator<Pins>, tbb::ets_key_per_instance> pins_;
   mutable std::mutex mutex_;  // guards failure_

@@ -4,9 +4,6 @@
 // overhead; bad values are refused in one line.
 #include <gtest/gtest.h>
 
-#include <sys/resource.h>
-#include <sys/wait.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -17,10 +14,9 @@
 #include "base/json.h"
 #include "gltf/writer.h"
 #include "scenes/texture_set.h"
-#include "tests/common/run_command.h"
-#include "tests/common/spawn.h"
 #include "tests/common/temp_dir.h"
-#include "tests/common/test_paths.h"
+#include "tests/render/quad_row.h"
+#include "tests/render/render_child.h"
 #include "textures/image.h"
 
 namespace svbrdf {
@@ -28,39 +24,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kRender = std::string(SVBRDF_BINARY_DIR) + "/svbrdf-render";
+using testing::Child;
+using testing::expect_same_pixels;
 
-struct Child {
-  int status = -1;
-  std::string err;
-  long peak_kb = 0;  // the child's peak resident set (getrusage's ru_maxrss)
-};
-
-// svbrdf-render with `args`, its peak resident set read from wait4's rusage.
 Child render(const std::vector<std::string>& args, const fs::path& dir) {
-  std::vector<std::string> all = {kRender};
-  all.insert(all.end(), args.begin(), args.end());
-  const fs::path err = dir / "stderr.txt";
-  const pid_t pid = testing::spawn_program(all, err);
-  Child r;
-  if (pid < 0) return r;
-  int status = 0;
-  struct rusage usage {};
-  if (::wait4(pid, &status, 0, &usage) != pid) return r;
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.peak_kb = usage.ru_maxrss;
-  r.err = testing::slurp(err);
-  return r;
-}
-
-void expect_same_pixels(const fs::path& a, const fs::path& b) {
-  const Image x = read_image(a), y = read_image(b);
-  ASSERT_EQ(x.width, y.width);
-  ASSERT_EQ(x.height, y.height);
-  ASSERT_EQ(x.channels, y.channels);
-  std::size_t differ = 0;
-  for (std::size_t k = 0; k < x.pixels.size(); ++k) differ += x.pixels[k] != y.pixels[k];
-  EXPECT_EQ(differ, 0u) << a << " and " << b << " differ in " << differ << " of " << x.pixels.size() << " values";
+  return testing::render_child(args, dir);
 }
 
 // A baked material on a quad: metal-tray's textures are 16-bit (the float files), sandstone's base
@@ -117,44 +85,6 @@ TEST(TextureCache, TheMipCacheLimitEvictsTheFilesWithoutTakingThemFromTheRender)
   for (const auto& e : fs::directory_iterator(dir.path() / "tiles")) EXPECT_NE(e.path().extension(), ".tx") << e.path();
 }
 
-// `count` quads side by side, each with its own unlit base colour texture of side² texels (8-bit
-// RGBA PNG, smooth so that the files are small: the encoded bytes the reader holds stay out of the
-// measure), or none (`textured` false: the baseline).
-fs::path quads(const fs::path& dir, int count, int side, bool textured) {
-  GltfWriter w("svbrdf texture cache test");
-  TriangleMesh quad;
-  quad.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
-  quad.normals.assign(4, glm::vec3(0, 0, 1));
-  quad.uvs = {{0, 1}, {1, 1}, {1, 0}, {0, 0}};
-  quad.indices = {0, 1, 2, 0, 2, 3};
-  for (int k = 0; k < count; ++k) {
-    Json material = {{"extensions", {{"KHR_materials_unlit", Json::object()}}}};
-    if (textured) {
-      Image im(side, side, 4);
-      for (int j = 0; j < side; ++j)
-        for (int i = 0; i < side; ++i) {
-          im.at(i, j, 0) = float((i + k) % 256) / 255.0f;
-          im.at(i, j, 1) = float((j + 3 * k) % 256) / 255.0f;
-          im.at(i, j, 2) = float((i + j) % 256) / 255.0f;
-          im.at(i, j, 3) = 1.0f;
-        }
-      // Appended piece by piece: GCC 12 warns falsely (-Wrestrict, PR 105651) on "t" + std::string.
-      std::string name = "t";
-      name += std::to_string(k);
-      name += ".png";
-      write_image(dir / name, im, PixelFormat::uint8);
-      material["pbrMetallicRoughness"] = {{"baseColorTexture", {{"index", w.add_texture(name)}}}};
-    }
-    const int mesh = w.add_mesh("quad" + std::to_string(k), quad, w.add_material(material));
-    Placement at;
-    at.translation = {double(k % 8), double(k / 8), 0.0};
-    w.add_mesh_node("quad" + std::to_string(k), mesh, at);
-  }
-  const fs::path path = dir / (textured ? "textured.gltf" : "plain.gltf");
-  w.write(path);
-  return path;
-}
-
 // The cap's bound: what the render may hold beyond the cap and beyond a render of the same quads
 // without textures is 20 MB — OpenImageIO's bookkeeping beyond the tile bytes it counts against the
 // cap, the buffers of the 64 files it keeps open, the threads' pinned tiles (TextureTiles), and the
@@ -167,7 +97,8 @@ TEST(TextureCache, ResidentSetStaysUnderTheCapPlusTheStatedOverhead) {
   constexpr double kCapMb = 10.0;
   // Textures at 4 bytes a texel in the cache: 67 MB, more than 4× the cap.
   static_assert(double(kCount) * kSide * kSide * 4 >= 4 * kCapMb * 1e6);
-  const fs::path textured = quads(dir.path(), kCount, kSide, true), plain = quads(dir.path(), kCount, kSide, false);
+  const fs::path textured = testing::quads(dir.path(), kCount, kSide, true),
+                 plain = testing::quads(dir.path(), kCount, kSide, false);
   // 1 spp on 384×240 pixels: each quad is seen by a few thousand samples, which read every one of
   // its 64 tiles.
   const std::vector<std::string> common = {"--res", "384x240", "--spp", "1", "--filter", "level0", "-q", "--threads", "2",
