@@ -42,6 +42,7 @@ bool LobeMixtureBsdf::fill_slot(int at, const Lobe& l) {
 
 void LobeMixtureBsdf::assign(std::span<const Lobe> lobes, std::span<const Lobe> coat) {
   correction_ = nullptr;
+  own_correction_ = false;
   sheen_on_ = false;
   count_ = 0;
   coat_count_ = 0;
@@ -66,7 +67,8 @@ Rgb LobeMixtureBsdf::eval(const glm::vec3& wi, const glm::vec3& wo) const {
   const PairTerms<float> p = pair_terms<float>(wi, wo);
   if (!p.valid) return Rgb(0);
   Rgb f(0);
-  const float scale = correction_ ? correction_at(*correction_, *grid_, p.h) : 1.0f;
+  const RadialCorrection* correction = own_correction_ ? &correction_copy_ : correction_;
+  const float scale = correction ? correction_at(*correction, *grid_, p.h) : 1.0f;
   if (coat_count_ == 0 && !sheen_on_) {
     for (int k = 0; k < count_; ++k) f += lobe_eval(slot(k).lobe, slot(k).shape, p, scale);
     return f;

@@ -53,6 +53,15 @@ class LobeMixtureBsdf final : public Bsdf {
   void set_correction(const RadialCorrection* correction, const RadialGrid* grid) {
     correction_ = correction;
     grid_ = grid;
+    own_correction_ = false;
+  }
+  // The same from a correction the object keeps a copy of (a texel decoded from a record, mip.h, whose
+  // memory ends with the lookup).
+  void set_correction_copy(const RadialCorrection& correction, const RadialGrid* grid) {
+    correction_copy_ = correction;
+    correction_ = nullptr;
+    grid_ = grid;
+    own_correction_ = true;
   }
   // The texel's sheen means (sheen_layer.h), over the base lobes assign() took with their sheen shares;
   // colour 0 or no lobe with a share: none. assign() clears it.
@@ -108,6 +117,8 @@ class LobeMixtureBsdf final : public Bsdf {
   int coat_count_ = 0;  // coat lobes, in the slots after them
   const RadialCorrection* correction_ = nullptr;
   const RadialGrid* grid_ = nullptr;
+  bool own_correction_ = false;  // correction_copy_ is the correction (a copy moves with the object)
+  RadialCorrection correction_copy_;
   bool sheen_on_ = false;
   float sheen_roughness_ = 0.0f;
   Rgb sheen_scale_{0.0f};  // C̄ / Σ_k w_k·σ_k (sheen_layer.h)

@@ -8,6 +8,7 @@
 #include "mip/coat_layer.h"
 #include "mip/mip_file.h"
 #include "mip/mip_lookup.h"
+#include "mip/mip_records.h"
 #include "mip/param_pyramid.h"
 #include "mip/sheen_layer.h"
 
@@ -53,7 +54,17 @@ MipTexture::MipTexture(MipData data, WrapMode wrap_s, WrapMode wrap_t)
   pyramids_->tint = pyramids_->brdf.tintable();
 }
 
+MipTexture::MipTexture(const MipRecordLayout& layout, std::unique_ptr<const MipRecordSource> source,
+                       WrapMode wrap_s, WrapMode wrap_t)
+    : extent_(layout.extent), wrap_s_(wrap_s), wrap_t_(wrap_t), records_(std::make_unique<MipRecords>()) {
+  records_->layout = layout;
+  records_->source = std::move(source);
+  records_->grid = layout.radial_grid();
+}
+
 void MipTexture::write(const std::filesystem::path& path, const std::string& cache_key) const {
+  if (records_)
+    throw Error(path.string() + ": a MIP file is written from the pyramids in memory", Error::Kind::internal);
   if (!prepared(TextureFilter::brdf) || !prepared(TextureFilter::param))
     throw Error(path.string() + ": a MIP file needs both pyramids built", Error::Kind::internal);
   write_mip_file(path, pyramids_->param, pyramids_->brdf, cache_key);
@@ -73,14 +84,30 @@ std::string mip_build_identity(bool tint) {
   return text;
 }
 
+MipRecordLayout MipTexture::record_layout() const {
+  if (records_ || !pyramids_->param.complete())
+    throw Error("records are made from a complete parameter pyramid in memory", Error::Kind::internal);
+  return MipRecordLayout::of(pyramids_->param, pyramids_->has_brdf ? &pyramids_->brdf : nullptr);
+}
+
+void MipTexture::encode_records(const MipRecordLayout& layout, int level, int row_begin, int row_end,
+                                std::uint32_t* out) const {
+  svbrdf::encode_records(layout, pyramids_->param, layout.brdf ? &pyramids_->brdf : nullptr, level, row_begin,
+                         row_end, out);
+}
+
 void MipTexture::prepare(TextureFilter filter) {
   if (prepared(filter)) return;
+  if (records_)
+    throw Error("a texture read from records without the BRDF pyramid's cannot build it",
+                Error::Kind::internal);
   // The BRDF build reads MaterialTexels: level 0 remade from its one stored copy (the same floats).
   pyramids_->build(filter,
                    filter == TextureFilter::brdf ? pyramids_->param.level0_texels() : MaterialTexels{});
 }
 
 bool MipTexture::prepared(TextureFilter filter) const {
+  if (records_) return filter != TextureFilter::brdf || records_->layout.brdf;
   if (reads_param_pyramid(filter)) return pyramids_->param.complete();
   return filter != TextureFilter::brdf || pyramids_->has_brdf;
 }
@@ -90,11 +117,16 @@ glm::ivec2 MipTexture::nearest_texel(glm::vec2 uv) const {
           nearest_texel_index(uv.y, extent_.height, wrap_t_)};
 }
 
-MaterialTexels MipTexture::level0_texels() const { return pyramids_->param.level0_texels(); }
+MaterialTexels MipTexture::level0_texels() const {
+  if (records_)
+    throw Error("the level-0 texels of a texture read from records are not in memory", Error::Kind::internal);
+  return pyramids_->param.level0_texels();
+}
 
-bool MipTexture::tintable() const { return pyramids_->tint; }
+bool MipTexture::tintable() const { return records_ ? records_->layout.tint : pyramids_->tint; }
 
 Rgb MipTexture::base_color(TextureFilter filter, const Footprint& f) const {
+  if (records_) return record_base_color(filter, f);
   if (filter == TextureFilter::level0) {
     const glm::ivec2 t = nearest_texel(f.uv);
     return pyramids_->level0(t.x, t.y).base_color;
@@ -108,6 +140,7 @@ float mip_level(Extent level0, const Footprint& f) { return filter_level(level0,
 
 MipTexture::Choice MipTexture::choose(TextureFilter filter, const Footprint& f, const Rgb& tint,
                                       float u) const {
+  if (records_) return choose_record(filter, f, tint, u);
   Choice c{filter, f, tint};
   const Pyramids& p = *pyramids_;
   if (filter == TextureFilter::brdf && (tint == Rgb(1.0f) || p.tint)) {
@@ -129,6 +162,7 @@ MipTexture::Choice MipTexture::choose(TextureFilter filter, const Footprint& f, 
 }
 
 std::span<const Lobe> MipTexture::lobes(const Choice& c, Scratch& scratch) const {
+  if (records_) return record_lobes(c, scratch);
   const Pyramids& p = *pyramids_;
   if (c.level < 0) {
     SpecularLayer layer;
@@ -162,6 +196,7 @@ std::span<const Lobe> MipTexture::lobes(const Choice& c, Scratch& scratch) const
 }
 
 const SheenLayer* MipTexture::sheen(const Choice& c, const Scratch& scratch) const {
+  if (records_) return records_->layout.sheen ? &scratch.sheen : nullptr;  // record_lobes decoded it
   const Pyramids& p = *pyramids_;
   if (!p.param.has_sheen()) return nullptr;
   if (c.level < 0) return &scratch.sheen;
@@ -170,6 +205,11 @@ const SheenLayer* MipTexture::sheen(const Choice& c, const Scratch& scratch) con
 }
 
 std::span<const Lobe> MipTexture::coat(const Choice& c, Scratch& scratch) const {
+  if (records_) {
+    if (!records_->layout.coat) return {};
+    if (c.level >= 1) return {scratch.coat_lobe, static_cast<std::size_t>(scratch.coat_count)};
+    return {&scratch.coat, 1};
+  }
   const Pyramids& p = *pyramids_;
   if (!p.param.has_coat()) return {};
   if (c.level >= 1) return p.brdf.coat(c.level, c.i, c.j).lobes;
@@ -178,6 +218,7 @@ std::span<const Lobe> MipTexture::coat(const Choice& c, Scratch& scratch) const 
 }
 
 void MipTexture::lookup(const Choice& c, LobeMixtureBsdf& out) const {
+  if (records_) return record_lookup(c, out);
   Scratch scratch;
   const std::span<const Lobe> base = lobes(c, scratch);
   out.assign(base, coat(c, scratch));

@@ -30,6 +30,12 @@
 // level 0), for level0's lookups and brdf's level-0 taps, which the BRDF pyramid does not hold; the
 // parameter pyramid's coarse levels and the BRDF pyramid are built for the filters that read them.
 // Lookups allocate nothing and only read, so any number of threads may call them for a prepared filter.
+//
+// Out of core (mip_records.h): a texture may instead read its texels' records from storage that holds
+// them (render/mip_tiles.h: the texture cache's tiles), one record a lookup, decoded into the lookup's
+// Scratch. Decoding gives the in-memory pyramids' values bit for bit, so every filter answers as the
+// texture that wrote the records; a texture without the BRDF pyramid's records serves level0 and the
+// parameter filters.
 #include <filesystem>
 #include <memory>
 #include <span>
@@ -46,6 +52,9 @@
 namespace svbrdf {
 
 struct MipData;  // mip_data.h: what a MIP file holds (mip_file.h)
+struct MipRecordLayout;  // mip_records.h
+class MipRecordSource;
+struct MipRecords;
 
 class MipTexture {
  public:
@@ -58,6 +67,9 @@ class MipTexture {
   // filter is prepared and nothing is built. A MIP file reads back bit-identically, so lookups answer
   // as those of the texture that wrote it.
   MipTexture(MipData data, WrapMode wrap_s, WrapMode wrap_t);
+  // Records of `layout` read from `source` (mip_records.h): every filter the records serve is prepared.
+  MipTexture(const MipRecordLayout& layout, std::unique_ptr<const MipRecordSource> source, WrapMode wrap_s,
+             WrapMode wrap_t);
   MipTexture(MipTexture&&) noexcept;
   MipTexture& operator=(MipTexture&&) noexcept;
   ~MipTexture();
@@ -73,6 +85,13 @@ class MipTexture {
   // Writes level 0 and both pyramids as a MIP file (mip_file.h; `cache_key` as there); brdf and a
   // parameter filter must be prepared. Throws svbrdf::Error naming the file when it cannot be written.
   void write(const std::filesystem::path& path, const std::string& cache_key = {}) const;
+
+  // The records of what is built (mip_records.h: the parameter pyramid, complete, and the BRDF pyramid
+  // when brdf is prepared), for storage that serves lookups from them; and rows [row_begin, row_end)
+  // of level `level`'s records. A texture read from records has none to give (internal error).
+  MipRecordLayout record_layout() const;
+  void encode_records(const MipRecordLayout& layout, int level, int row_begin, int row_end,
+                      std::uint32_t* out) const;
 
   // A lookup in two steps, so that a caller can do other work while the texel's memory arrives (the
   // fetch into a large texture is most of a lookup's cost): choose() picks the texel — brdf's
@@ -102,8 +121,15 @@ class MipTexture {
     };
     union {
       Lobe coat;  // a level-0 texel's or a parameter filter's coat lobe
+      Lobe coat_lobe[kMaxLobes];  // a coarse texel's coat lobes, decoded from its record
     };
-    SheenLayer sheen;  // a parameter filter's mean sheen (sheen())
+    SheenLayer sheen;  // a parameter filter's mean sheen (sheen()), or a texel's decoded from its record
+    // Decoded from a coarse texel's record: its coat lobes' count and its radial correction.
+    int coat_count;
+    bool corrected;
+    union {
+      RadialCorrection correction;
+    };
   };
   std::span<const Lobe> lobes(const Choice& choice, Scratch& scratch) const;
   std::span<const Lobe> lobes(TextureFilter filter, const Footprint& footprint, const Rgb& tint, float u,
@@ -139,10 +165,16 @@ class MipTexture {
  private:
   struct Pyramids;  // mip.cpp: the parameter pyramid (level 0 always) and the BRDF pyramid
   WrapModes wrap() const { return {wrap_s_, wrap_t_}; }
+  // The lookups from records (mip_record_lookup.cpp).
+  Choice choose_record(TextureFilter filter, const Footprint& footprint, const Rgb& tint, float u) const;
+  std::span<const Lobe> record_lobes(const Choice& choice, Scratch& scratch) const;
+  void record_lookup(const Choice& choice, LobeMixtureBsdf& out) const;
+  Rgb record_base_color(TextureFilter filter, const Footprint& footprint) const;
 
   Extent extent_{};
   WrapMode wrap_s_ = WrapMode::repeat, wrap_t_ = WrapMode::repeat;
-  std::unique_ptr<Pyramids> pyramids_;
+  std::unique_ptr<Pyramids> pyramids_;  // null where the texels are read from records
+  std::unique_ptr<MipRecords> records_;
 };
 
 // What a MipTexture's build depends on besides its level-0 texels and this code, as text for a cache

@@ -177,43 +177,21 @@ LobeMixtureBsdf lookup_brdf(const MipData& mip, const Footprint& footprint, floa
 
 ParamTexel filter_params(const ParamPyramid& pyramid, const Footprint& footprint, WrapModes wrap, int max_probes,
                          SpecularLayer* specular, ParamCoat* coat, SheenLayer* sheen) {
-  ParamTexel sum;
-  sum.normal = glm::vec3(0.0f);
-  if (specular) *specular = {1.0f, glm::vec3(1.0f), pyramid.ior()};
-  if (coat) *coat = {};
-  if (sheen) *sheen = {};
-  if (pyramid.levels() == 0) return sum;
-  const FilterTaps taps = filter_taps(pyramid.level0(), pyramid.levels(), footprint, wrap, max_probes);
-  const bool layer = specular && !pyramid.specular_level(0).empty();
-  if (layer) specular->specular = 0.0f, specular->color = glm::vec3(0.0f);
-  const bool coated = coat && pyramid.has_coat();
-  if (coated) coat->normal = glm::vec3(0.0f);
-  const bool sheened = sheen && pyramid.has_sheen();
-  for (int k = 0; k < taps.count; ++k) {
-    const FilterTap& t = taps.taps[static_cast<std::size_t>(k)];
-    const ParamTexel& p = pyramid.texel(t.level, t.i, t.j);
-    sum.base_color += t.weight * p.base_color;
-    sum.metallic += t.weight * p.metallic;
-    sum.roughness += t.weight * p.roughness;
-    sum.normal += t.weight * p.normal;
-    if (layer) {
-      const SpecularLayer s = pyramid.specular(t.level, t.i, t.j);
-      specular->specular += t.weight * s.specular;
-      specular->color += t.weight * s.color;
-    }
-    if (coated) {
-      const ParamCoat& c = *pyramid.coat(t.level, t.i, t.j);
-      coat->clearcoat += t.weight * c.clearcoat;
-      coat->roughness += t.weight * c.roughness;
-      coat->normal += t.weight * c.normal;
-    }
-    if (sheened) {
-      const SheenLayer& c = *pyramid.sheen(t.level, t.i, t.j);
-      sheen->color += t.weight * c.color;
-      sheen->roughness += t.weight * c.roughness;
-    }
-  }
-  return sum;
+  const ParamStore store{pyramid.level0(),   pyramid.levels(),
+                         pyramid.ior(),      !pyramid.specular_level(0).empty(),
+                         pyramid.has_coat(), pyramid.has_sheen()};
+  return filter_params_of(
+      store,
+      [&](int level, int i, int j, ParamSpecular* s, ParamCoat* c, SheenLayer* h) -> const ParamTexel& {
+        if (s) {
+          const SpecularLayer l = pyramid.specular(level, i, j);
+          *s = {l.specular, l.color};
+        }
+        if (c) *c = *pyramid.coat(level, i, j);
+        if (h) *h = *pyramid.sheen(level, i, j);
+        return pyramid.texel(level, i, j);
+      },
+      footprint, wrap, max_probes, specular, coat, sheen);
 }
 
 Lobe lookup_param(const ParamPyramid& pyramid, const Footprint& footprint, TextureFilter filter, WrapModes wrap,

@@ -72,6 +72,59 @@ LobeMixtureBsdf lookup_brdf(const MipData& mip, const Footprint& footprint, floa
 ParamTexel filter_params(const ParamPyramid& pyramid, const Footprint& footprint, WrapModes wrap = {},
                          int max_probes = kMaxProbes, SpecularLayer* specular = nullptr, ParamCoat* coat = nullptr,
                          SheenLayer* sheen = nullptr);
+// The same over any store of a parameter pyramid's texels: `texel(level, i, j, specular, coat, sheen)`
+// gives a ParamTexel and fills the layers asked for (not null); the pyramid's level 0, its level count
+// and ior, and which layers it has, given. filter_params is this over ParamPyramid; the out-of-core
+// texture (mip.h) reads records with it, so both sum the same values in the same order.
+struct ParamStore {
+  Extent level0{};
+  int levels = 0;
+  float ior = 1.5f;
+  bool specular = false, coat = false, sheen = false;
+};
+template <class Texel>
+ParamTexel filter_params_of(const ParamStore& store, const Texel& texel, const Footprint& footprint,
+                            WrapModes wrap, int max_probes, SpecularLayer* specular, ParamCoat* coat,
+                            SheenLayer* sheen) {
+  ParamTexel sum;
+  sum.normal = glm::vec3(0.0f);
+  if (specular) *specular = {1.0f, glm::vec3(1.0f), store.ior};
+  if (coat) *coat = {};
+  if (sheen) *sheen = {};
+  if (store.levels == 0) return sum;
+  const FilterTaps taps = filter_taps(store.level0, store.levels, footprint, wrap, max_probes);
+  const bool layer = specular && store.specular;
+  if (layer) specular->specular = 0.0f, specular->color = glm::vec3(0.0f);
+  const bool coated = coat && store.coat;
+  if (coated) coat->normal = glm::vec3(0.0f);
+  const bool sheened = sheen && store.sheen;
+  ParamSpecular s;
+  ParamCoat c;
+  SheenLayer h;
+  for (int k = 0; k < taps.count; ++k) {
+    const FilterTap& t = taps.taps[static_cast<std::size_t>(k)];
+    const ParamTexel& p =
+        texel(t.level, t.i, t.j, layer ? &s : nullptr, coated ? &c : nullptr, sheened ? &h : nullptr);
+    sum.base_color += t.weight * p.base_color;
+    sum.metallic += t.weight * p.metallic;
+    sum.roughness += t.weight * p.roughness;
+    sum.normal += t.weight * p.normal;
+    if (layer) {
+      specular->specular += t.weight * s.specular;
+      specular->color += t.weight * s.color;
+    }
+    if (coated) {
+      coat->clearcoat += t.weight * c.clearcoat;
+      coat->roughness += t.weight * c.roughness;
+      coat->normal += t.weight * c.normal;
+    }
+    if (sheened) {
+      sheen->color += t.weight * h.color;
+      sheen->roughness += t.weight * h.roughness;
+    }
+  }
+  return sum;
+}
 Lobe lookup_param(const ParamPyramid& pyramid, const Footprint& footprint,
                   TextureFilter filter = TextureFilter::param, WrapModes wrap = {}, int max_probes = kMaxProbes);
 
