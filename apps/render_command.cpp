@@ -330,7 +330,8 @@ RenderOutcome run_render(RenderCommand& c, const fs::path& scene_path, const cha
   print_mip_cache_warnings(mip_cache.get(), program);
   if (const auto counts = prepared.mip_cache_counts(); !c.quiet && counts.read + counts.built > 0)
     std::fprintf(stderr, "%s: MIP maps: %d read from the MIP cache %s, %d built\n", program, counts.read,
-                 message_line(mip_cache->folder().string()).c_str(), counts.built);
+                 message_line((mip_cache ? mip_cache->folder() : tiles->folder()).string()).c_str(),
+                 counts.built);
   if (tiles && !c.quiet)
     std::fprintf(stderr, "%s: texture cache: %d files in %s, %.1f MB of texels, at most %.1f MB of them in memory\n", program,
                  tiles->file_count(), message_line(tiles->folder().string()).c_str(), double(tiles->texel_bytes()) / 1e6,

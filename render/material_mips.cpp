@@ -131,8 +131,9 @@ SceneMips::SceneMips(const Scene& scene, const TextureSet& textures)
 }
 
 std::vector<std::string> SceneMips::warnings(TextureFilter filter) const {
-  if (filter == TextureFilter::level0) return {};
-  return warnings_;
+  std::vector<std::string> out = tile_warnings_;
+  if (filter != TextureFilter::level0) out.insert(out.end(), warnings_.begin(), warnings_.end());
+  return out;
 }
 
 int SceneMips::active_count() const {
@@ -145,8 +146,15 @@ void SceneMips::use_cache(MipCache* cache, std::string color_identity) {
   color_identity_ = std::move(color_identity);
 }
 
+void SceneMips::use_tiles(TextureTiles* tiles, std::string color_identity) {
+  const std::lock_guard<std::mutex> lock(mutex_);
+  tiles_ = tiles;
+  color_identity_ = std::move(color_identity);
+}
+
 void SceneMips::prepare(TextureFilter filter, SetupProgress* progress) {
   const std::lock_guard<std::mutex> lock(mutex_);
+  if (tiles_) return prepare_tiled(filter, progress);
   // The base colours held apart (see the header): their own parameter pyramids, whatever the filter
   // (level0 reads their level 0), their texels decoded as the grid's would be. Not cached: a parameter
   // pyramid builds in less time than an entry takes to read.
@@ -199,8 +207,7 @@ void SceneMips::read_cached(std::vector<std::size_t>& todo, std::vector<std::str
     const SetupProgress::Stage stage(progress, "reading the materials' MIP maps from the MIP cache", todo.size());
     tbb::parallel_for(std::size_t(0), todo.size(), [&](std::size_t t) {
       MaterialMip& mip = mips_[todo[t]];
-      all[t] = mip_cache_key(scene_, textures_, mip.grid_material_, mip.extent_, color_identity_, mip.tint_,
-                             grid_mappings(mip.grid_material_, mip));
+      all[t] = key_of(todo[t]);
       if (std::optional<MipData> data = cache_->load(all[t])) {
         mip.texture_.emplace(std::move(*data), mip.sampler_.wrap_s, mip.sampler_.wrap_t);
         read[t] = 1;
@@ -218,6 +225,12 @@ void SceneMips::read_cached(std::vector<std::size_t>& todo, std::vector<std::str
     keys.push_back(std::move(all[t]));
   }
   todo = std::move(missed);
+}
+
+std::string SceneMips::key_of(std::size_t entry) const {
+  const MaterialMip& mip = mips_[entry];
+  return mip_cache_key(scene_, textures_, mip.grid_material_, mip.extent_, color_identity_, mip.tint_,
+                       grid_mappings(mip.grid_material_, mip));
 }
 
 void SceneMips::build(std::size_t i, TextureFilter filter) {

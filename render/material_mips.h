@@ -50,6 +50,15 @@
 // seconds, is read from the cache when an entry of its key is there (no texels are decoded, nothing
 // is built), and stored there with both pyramids when it was built. The parameter filters build in
 // less time than an entry takes to read, and do not use it.
+//
+// Out of core (use_tiles, `--texture-cache`): every MIP texture, the base colours held apart among
+// them, reads its records from a file of the texture cache (render/mip_tiles.h), so that the MIP data
+// resident at once are bounded by its cap. prepare() opens the file of each entry's key when it is
+// there (nothing decoded, built or read whole: the render reads tiles as it needs them); else it reads
+// the MIP cache's entry or builds, writes the file and frees the pyramids. One entry at a time (each
+// build parallel inside), so the set-up holds about one material's build at once, and the images
+// TextureSet read back for the builds are released once no later build of the call reads them. A
+// brdf file serves every filter; the others build and write the parameter pyramid's alone.
 #include <mutex>
 #include <optional>
 #include <string>
@@ -116,7 +125,11 @@ class SceneMips {
   // Reads and stores brdf builds in `cache` (null: none), their keys made with the color config's
   // identity (ColorConfig::identity, the config that decoded the textures). `cache` must outlive this.
   void use_cache(MipCache* cache, std::string color_identity);
-  // How many distinct MIP builds prepare() read from the cache and how many it built (brdf only).
+  // Out of core: the MIP textures read from files in `tiles` (see the header), their keys made with
+  // the color config's identity. `tiles` must outlive this.
+  void use_tiles(TextureTiles* tiles, std::string color_identity);
+  // How many distinct MIP builds prepare() read from the cache and how many it built (brdf only; out of
+  // core, under every filter: the files opened or entries read, and the builds).
   struct CacheCounts {
     int read = 0, built = 0;
   };
@@ -148,6 +161,10 @@ class SceneMips {
   // and one entry's build.
   void read_cached(std::vector<std::size_t>& todo, std::vector<std::string>& keys, SetupProgress* progress);
   void build(std::size_t entry, TextureFilter filter);
+  // prepare() out of core (render/scene_mips_tiles.cpp), and the base colours held apart.
+  void prepare_tiled(TextureFilter filter, SetupProgress* progress);
+  void prepare_base_colors_tiled();
+  std::string key_of(std::size_t entry) const;
 
   const Scene& scene_;
   const TextureSet& textures_;
@@ -156,7 +173,9 @@ class SceneMips {
   std::vector<std::size_t> source_;      // per entry: the first material that uses it
   std::vector<std::string> warnings_;        // materials left out
   MipCache* cache_ = nullptr;
+  TextureTiles* tiles_ = nullptr;
   std::string color_identity_;
+  std::vector<std::string> tile_warnings_;  // record files refused
   CacheCounts counts_;
   std::mutex mutex_;
 };

@@ -63,9 +63,12 @@ class MipCache {
   // The warnings so far, one line each, and forgets them.
   std::vector<std::string> take_warnings();
 
+  // Removes the least recently used entries until the folder is within the size limit (store() does
+  // after each entry; a writer of the texture cache's files after each of those).
+  void evict();
+
  private:
   void warn(const std::string& line);
-  void evict();
 
   std::filesystem::path folder_;
   std::uint64_t max_bytes_;

@@ -64,6 +64,7 @@ PreparedScene::PreparedScene(Scene scene, const SceneSetup& setup, const ColorCo
     mips_ = std::make_unique<SceneMips>(scene_, *textures_);
   }
   if (setup.mip_cache) mips_->use_cache(setup.mip_cache, color.identity());
+  if (setup.texture_tiles) mips_->use_tiles(setup.texture_tiles, color.identity());
   if (setup.filter) mips_->prepare(*setup.filter, setup.progress);
   {
     const SetupProgress::Stage stage(setup.progress, "building the BVH");

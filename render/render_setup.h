@@ -35,8 +35,9 @@ struct SceneSetup {
   // Where brdf MIP builds are read from and stored (render/mip_cache.h); null: built every time.
   MipCache* mip_cache = nullptr;
   // Where the scene's images went when they were loaded out of core (LoadOptions::take_image with
-  // TextureSet::store); null: the scene holds its pixels.
-  const TextureTiles* texture_tiles = nullptr;
+  // TextureSet::store), and where the materials' MIP data go (render/mip_tiles.h); null: the scene
+  // holds its pixels and its MIP data.
+  TextureTiles* texture_tiles = nullptr;
   // Depth of field (render/camera.h; glTF cameras carry no lens): the thin lens's radius in scene
   // units (0: the pinhole), and the distance along the view axis it focuses at (0: the distance along
   // the axis to the first surface the ray through the frame's centre meets, else to the centre of the

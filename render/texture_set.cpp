@@ -181,16 +181,30 @@ void TextureSet::store(std::size_t index, ImageDesc& desc, bool color, const Col
 }
 
 struct TextureSet::ReadBack {
-  std::once_flag once[2];
+  std::mutex mutex;
+  bool done[2] = {false, false};
   Image image[2];  // raw, linear
 };
+
+void TextureSet::release(const TextureRef& ref) const {
+  const Prepared& p = textures_[static_cast<std::size_t>(ref.texture)];
+  if (!p.tiled) return;
+  ReadBack& r = *read_back_[p.image];
+  const std::lock_guard<std::mutex> lock(r.mutex);
+  for (int k = 0; k < 2; ++k) {
+    r.done[k] = false;
+    r.image[k] = Image();
+  }
+}
 
 const Image& TextureSet::read_back(const Prepared& p, bool color) const {
   const TiledImage& t = *p.tiled;
   const bool linear = color && t.linear;
   ReadBack& r = *read_back_[p.image];
   Image& out = r.image[linear];
-  std::call_once(r.once[linear], [&] {
+  const std::lock_guard<std::mutex> lock(r.mutex);
+  if (r.done[linear]) return out;
+  {
     const std::vector<std::byte> bytes = tiles_->read_all(linear && !t.codes ? t.linear_file : t.raw_file);
     // The decoded image's channels from texel()'s RGBA: gray is R, gray+alpha is (R, A).
     const int channels = std::min(t.channels, 4);
@@ -204,7 +218,8 @@ const Image& TextureSet::read_back(const Prepared& p, bool color) const {
             t.codes ? table[std::size_t(s)][std::to_integer<std::size_t>(bytes[4 * k + std::size_t(s)])]
                     : reinterpret_cast<const float*>(bytes.data())[4 * k + std::size_t(s)];
       }
-  });
+  }
+  r.done[linear] = true;
   return out;
 }
 

@@ -83,13 +83,16 @@ class TextureSet {
   }
 
   // The image a slot reads: the linearized copy when `color` and one exists, else as stored. Out of
-  // core, read back from the texture cache's files on first use and kept (the MIP builds read every
-  // texel; a level0 render never asks).
+  // core, read back from the texture cache's files on first use and kept until release() (the MIP
+  // builds read every texel; a level0 render never asks).
   const Image& image(const TextureRef& ref, bool color) const {
     const Prepared& p = textures_[static_cast<std::size_t>(ref.texture)];
     if (p.tiled) return read_back(p, color);
     return color && p.linear ? *p.linear : *p.raw;
   }
+  // Out of core: frees what image() read back of the slot's image (both forms); a later image() reads it
+  // back again. No reference image() gave for it may be in use. In memory: nothing.
+  void release(const TextureRef& ref) const;
   // Whether image(ref, true) is a linearized copy (color slots have one).
   bool linearized(const TextureRef& ref) const {
     const Prepared& p = textures_[static_cast<std::size_t>(ref.texture)];
