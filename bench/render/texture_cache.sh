@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # What reading the textures out of core costs (bench/results/render.md, "Out-of-core textures"): the
 # same render with the images in memory (the anchor) and through the texture cache capped at 25 %,
-# 50 % and 100 % of the scene's texture memory at the cache's formats (what the render reports; a cap
-# is at least TextureTiles::kMinMegabytes), alternating ROUNDS times in one run so that every side
+# 50 % and 100 % of the scene's texture memory at the cache's formats, the MIP data's records among
+# it under a MIP filter (what the render reports; a cap is at least TextureTiles::kMinMegabytes),
+# alternating ROUNDS times in one run so that every side
 # sees the same machine. Per side: the render's own seconds (its "rays in S s" line: the frame, not
 # the set-up), the whole run's wall seconds, and the peak resident set (GNU time's %M); then each
 # side's render seconds over the in-memory one's. Every cached EXR is checked against the in-memory
@@ -16,7 +17,9 @@ out=$(mktemp -d /tmp/svbrdf-texture-cache-bench.XXXXXX)
 trap 'rm -rf "$out"' EXIT
 calc() { awk "BEGIN { print $* }"; }
 now() { date +%s.%N; }
-# Writes the cache's files (a warm start for every side) and reads the scene's texture memory.
+# Writes the cache's files and, under brdf, the in-memory side's MIP cache entries (a warm start for
+# every side), and reads the scene's texture memory.
+"$render" "$scene" "$@" --mip-cache "$out/cache" -o "$out/warm-memory.exr" 2>/dev/null
 "$render" "$scene" "$@" --mip-cache "$out/cache" --texture-cache -o "$out/warm.exr" 2>"$out/warm.txt"
 mb=$(sed -n 's/.*texture cache: [0-9]* files in .*, \([0-9.]*\) MB of texels.*/\1/p' "$out/warm.txt")
 [ -n "$mb" ] || { echo "no texture cache report in $out/warm.txt" >&2; exit 1; }
