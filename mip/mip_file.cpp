@@ -3,6 +3,8 @@
 #include <Imath/half.h>
 #include <OpenImageIO/hash.h>
 #include <OpenImageIO/imageio.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
@@ -46,6 +48,9 @@ constexpr std::size_t kBandBytes = std::size_t(1) << 22;
 int band_rows(int width, std::size_t stride) {
   return static_cast<int>(std::max<std::size_t>(1, kBandBytes / (std::size_t(std::max(width, 1)) * std::max<std::size_t>(stride, 1))));
 }
+// Texels a packing task takes: a band of kBandBytes holds 16 to 128 thousand texels (strides of 256 to
+// 32 bytes), so each band of a large level splits among at least 16 tasks.
+constexpr std::size_t kPackGrain = 1024;
 
 // The fingerprint of one band of pixels in name order. Fingerprint128 is fixed and portable (unlike
 // OpenImageIO's Hash128), so a file checks on any machine; it guards against corruption, not against
@@ -130,13 +135,14 @@ void put_lobes(std::byte* px, const NativeLayout& layout, std::size_t first, int
                const std::vector<LobeChannel>& channels) {
   // Empty slots: weight 0 (and a plain GGX of α² 1 about the geometric normal, so every channel holds a
   // meaningful value).
-  static const Lobe kEmpty = [] {
+  // Packed once: most texels of a level leave most of its slots empty.
+  static const LobeValues kEmpty = [] {
     Lobe l;
     l.weight = 0.0f, l.diffuse = glm::vec3(0), l.f0 = glm::vec3(0), l.alpha2 = 1.0f;
-    return l;
+    return pack_lobe(l);
   }();
   for (int k = 0; k < slots; ++k) {
-    const LobeValues v = pack_lobe(k < static_cast<int>(lobes.size()) ? lobes[static_cast<std::size_t>(k)] : kEmpty);
+    const LobeValues v = k < static_cast<int>(lobes.size()) ? pack_lobe(lobes[static_cast<std::size_t>(k)]) : kEmpty;
     for (std::size_t c = 0; c < channels.size(); ++c) {
       const std::size_t ch = first + static_cast<std::size_t>(k) * channels.size() + c;
       if (channels[c].role == Role::normal_direction) put_uint(px, layout, ch, v.direction);
@@ -145,46 +151,47 @@ void put_lobes(std::byte* px, const NativeLayout& layout, std::size_t first, int
   }
 }
 
-// Level `level`'s pixels in `layout` (the spec's channels, by index, at the layout's offsets).
-std::vector<std::byte> pack_level(const ParamPyramid& param, const BrdfPyramid& brdf, int level, const NativeLayout& layout,
-                                  const LevelChannels& ch) {
+// Rows [y0, y1) of level `level`'s pixels in `layout` (the spec's channels, by index, at the layout's
+// offsets) into `out`, every byte of each texel written; texels in parallel (each is its own bytes).
+void pack_rows(const ParamPyramid& param, const BrdfPyramid& brdf, int level, const NativeLayout& layout,
+               const LevelChannels& ch, int y0, int y1, std::byte* out) {
   const Extent e = param.extent(level);
-  const std::size_t texels = static_cast<std::size_t>(e.width) * e.height;
-  std::vector<std::byte> buf(texels * layout.stride);
   const auto params = param.level(level);
   const auto specular = param.specular_level(level);
   const auto coat = param.coat_level(level);
   const auto sheen = param.sheen_level(level);
   const std::vector<LobeChannel> coat_channels = coat_lobe_channels();
-  for (std::size_t t = 0; t < texels; ++t) {
-    std::byte* px = buf.data() + t * layout.stride;
-    const ParamTexel& p = params[t];
-    const float values[8] = {p.base_color.r, p.base_color.g, p.base_color.b, p.metallic,
-                             p.roughness,    p.normal.x,     p.normal.y,     p.normal.z};
-    for (std::size_t c = 0; c < 8; ++c) put_float(px, layout, c, values[c]);
-    std::size_t next = 8;
-    if (ch.specular) {
-      const ParamSpecular& sp = specular[t];
-      for (const float v : {sp.specular, sp.color.r, sp.color.g, sp.color.b}) put_float(px, layout, next++, v);
+  const std::size_t first = static_cast<std::size_t>(y0) * e.width, last = static_cast<std::size_t>(y1) * e.width;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(first, last, kPackGrain), [&](const tbb::blocked_range<std::size_t>& texels) {
+    for (std::size_t t = texels.begin(); t != texels.end(); ++t) {
+      std::byte* px = out + (t - first) * layout.stride;
+      const ParamTexel& p = params[t];
+      const float values[8] = {p.base_color.r, p.base_color.g, p.base_color.b, p.metallic,
+                               p.roughness,    p.normal.x,     p.normal.y,     p.normal.z};
+      for (std::size_t c = 0; c < 8; ++c) put_float(px, layout, c, values[c]);
+      std::size_t next = 8;
+      if (ch.specular) {
+        const ParamSpecular& sp = specular[t];
+        for (const float v : {sp.specular, sp.color.r, sp.color.g, sp.color.b}) put_float(px, layout, next++, v);
+      }
+      if (ch.coat) {
+        const ParamCoat& c = coat[t];
+        for (const float v : {c.clearcoat, c.roughness, c.normal.x, c.normal.y, c.normal.z}) put_float(px, layout, next++, v);
+      }
+      if (ch.sheen) {
+        const SheenLayer& c = sheen[t];
+        for (const float v : {c.color.r, c.color.g, c.color.b, c.roughness}) put_float(px, layout, next++, v);
+      }
+      if (level == 0) continue;
+      const BrdfLevel& bl = brdf.level(level);
+      put_lobes(px, layout, ch.first_lobe(), ch.slots, bl.texel_lobes(t), ch.lobe);
+      if (ch.radial)
+        for (int r = 0; r < RadialGrid::kNodes; ++r)
+          put_float(px, layout, ch.first_radial() + static_cast<std::size_t>(r), bl.correction[t].ratio[static_cast<std::size_t>(r)]);
+      if (ch.coat_slots > 0)
+        put_lobes(px, layout, ch.first_coat_lobe(), ch.coat_slots, brdf.coat_level(level).texel_lobes(t), coat_channels);
     }
-    if (ch.coat) {
-      const ParamCoat& c = coat[t];
-      for (const float v : {c.clearcoat, c.roughness, c.normal.x, c.normal.y, c.normal.z}) put_float(px, layout, next++, v);
-    }
-    if (ch.sheen) {
-      const SheenLayer& c = sheen[t];
-      for (const float v : {c.color.r, c.color.g, c.color.b, c.roughness}) put_float(px, layout, next++, v);
-    }
-    if (level == 0) continue;
-    const BrdfLevel& bl = brdf.level(level);
-    put_lobes(px, layout, ch.first_lobe(), ch.slots, bl.texel_lobes(t), ch.lobe);
-    if (ch.radial)
-      for (int r = 0; r < RadialGrid::kNodes; ++r)
-        put_float(px, layout, ch.first_radial() + static_cast<std::size_t>(r), bl.correction[t].ratio[static_cast<std::size_t>(r)]);
-    if (ch.coat_slots > 0)
-      put_lobes(px, layout, ch.first_coat_lobe(), ch.coat_slots, brdf.coat_level(level).texel_lobes(t), coat_channels);
-  }
-  return buf;
+  });
 }
 
 // Checks a level's pixels against its svbrdf:checksum band by band as they are read (`native`: the
@@ -273,6 +280,14 @@ void write_mip_file(const fs::path& path, const ParamPyramid& param, const BrdfP
     c.lobe = lobe_channels(bl.specular_layer(), brdf.tintable() && bl.tint_layer(), c.coat, c.sheen);
     c.coat_slots = c.coat ? brdf.coat_level(level).slots : 0;
   }
+  // Each level is packed twice a band of rows at a time, for its checksum (the headers come first) and
+  // to be written, into one buffer: a level's whole pixels would be hundreds of megabytes of fresh pages.
+  std::unique_ptr<std::byte[]> band_bytes;
+  std::size_t band_capacity = 0;
+  const auto band_buffer = [&](std::size_t bytes) {
+    if (bytes > band_capacity) band_bytes = std::make_unique_for_overwrite<std::byte[]>(band_capacity = bytes);
+    return std::span<std::byte>(band_bytes.get(), bytes);
+  };
   std::vector<OIIO::ImageSpec> specs(static_cast<std::size_t>(levels));
   std::vector<NativeLayout> layouts(static_cast<std::size_t>(levels));
   for (int level = 0; level < levels; ++level) {
@@ -321,11 +336,14 @@ void write_mip_file(const fs::path& path, const ParamPyramid& param, const BrdfP
     // Every header is written when the file opens, so the checksums come first: the level packed once
     // in name order for them, and again as written below.
     const NativeLayout ordered_layout = name_ordered(s.channelnames, s.channelformats);
-    const std::vector<std::byte> ordered = pack_level(param, brdf, level, ordered_layout, ch);
-    const std::size_t band_bytes = std::size_t(band_rows(e.width, ordered_layout.stride)) * e.width * ordered_layout.stride;
+    const int rows = band_rows(e.width, ordered_layout.stride);
     std::vector<std::uint64_t> bands;
-    for (std::size_t at = 0; at < ordered.size(); at += band_bytes)
-      add_band(bands, std::span(ordered).subspan(at, std::min(band_bytes, ordered.size() - at)));
+    for (int y = 0; y < e.height; y += rows) {
+      const int end = std::min(e.height, y + rows);
+      const std::span<std::byte> band = band_buffer(static_cast<std::size_t>(end - y) * e.width * ordered_layout.stride);
+      pack_rows(param, brdf, level, ordered_layout, ch, y, end, band.data());
+      add_band(bands, band);
+    }
     s.attribute(kChecksum, level_checksum(s, brdf.max_lobes(), radial_inner, radial_outer, bands));
   }
   // OpenImageIO 2.4's multi-part OpenEXR writer ignores an "oiio:ioproxy" (it writes a file of the
@@ -340,10 +358,15 @@ void write_mip_file(const fs::path& path, const ParamPyramid& param, const BrdfP
       const OIIO::ImageSpec& s = specs[static_cast<std::size_t>(level)];
       if (level > 0 && !out->open(tmp.string(), s, OIIO::ImageOutput::AppendSubimage))
         throw environment_error(where(path), "cannot write level " + std::to_string(level) + ": " + out->geterror());
-      const std::vector<std::byte> buf =
-          pack_level(param, brdf, level, layouts[static_cast<std::size_t>(level)], channels[static_cast<std::size_t>(level)]);
-      if (!out->write_image(OIIO::TypeUnknown, buf.data()))
-        throw environment_error(where(path), "cannot write level " + std::to_string(level) + ": " + out->geterror());
+      const NativeLayout& layout = layouts[static_cast<std::size_t>(level)];
+      const int rows = band_rows(s.width, layout.stride);
+      for (int y = 0; y < s.height; y += rows) {
+        const int end = std::min(s.height, y + rows);
+        const std::span<std::byte> band = band_buffer(static_cast<std::size_t>(end - y) * s.width * layout.stride);
+        pack_rows(param, brdf, level, layout, channels[static_cast<std::size_t>(level)], y, end, band.data());
+        if (!out->write_scanlines(y, end, 0, OIIO::TypeUnknown, band.data()))
+          throw environment_error(where(path), "cannot write level " + std::to_string(level) + ": " + out->geterror());
+      }
     }
     if (!out->close()) throw environment_error(where(path), "cannot finish writing: " + out->geterror());
   });
