@@ -92,6 +92,17 @@ void apply_processor(const OCIO::ConstCPUProcessorRcPtr& cpu, Image& image) {
   });
 }
 
+// The same for packed RGB texels, in parallel over runs of them.
+static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "packed RGB texels");
+void apply_processor(const OCIO::ConstCPUProcessorRcPtr& cpu, std::span<glm::vec3> rgb) {
+  constexpr std::size_t kRun = std::size_t(1) << 16;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rgb.size(), kRun), [&](const tbb::blocked_range<std::size_t>& r) {
+    OCIO::PackedImageDesc desc(&rgb[r.begin()].x, long(r.size()), 1, OCIO::CHANNEL_ORDERING_RGB, OCIO::BIT_DEPTH_F32,
+                               sizeof(float), 3 * sizeof(float), std::ptrdiff_t(3 * sizeof(float) * r.size()));
+    cpu->apply(desc);
+  });
+}
+
 float apply_one(const OCIO::ConstCPUProcessorRcPtr& cpu, float v) {
   float rgb[3] = {v, v, v};
   cpu->applyRGB(rgb);
@@ -151,6 +162,7 @@ std::string ColorConfig::identity() const {
 }
 
 void ColorConfig::srgb_texture_to_linear(Image& image) const { apply_processor(impl_->srgb_to_linear, image); }
+void ColorConfig::srgb_texture_to_linear(std::span<glm::vec3> rgb) const { apply_processor(impl_->srgb_to_linear, rgb); }
 void ColorConfig::linear_to_srgb_texture(Image& image) const { apply_processor(impl_->linear_to_srgb, image); }
 
 float ColorConfig::srgb_texture_to_linear(float v) const { return apply_one(impl_->srgb_to_linear, v); }

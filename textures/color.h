@@ -11,9 +11,12 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
+
+#include <glm/glm.hpp>
 
 #include "textures/image.h"
 
@@ -52,6 +55,8 @@ class ColorConfig {
   // channels) is first expanded to RGB(A), as glTF reads gray color textures.
   void srgb_texture_to_linear(Image& image) const;
   void linear_to_srgb_texture(Image& image) const;
+  // In place, packed RGB texels (a MaterialTexels colour): the same transform, without an Image.
+  void srgb_texture_to_linear(std::span<glm::vec3> rgb) const;
   // Linear Rec.709 → a display/view of the config (empty: its defaults), for rendered output.
   void linear_to_display(Image& image, const std::string& display = {}, const std::string& view = {}) const;
   // Any two color spaces of the config (names or aliases); throws svbrdf::Error for an unknown name.

@@ -183,33 +183,40 @@ std::vector<std::byte> read_file_bytes(const std::filesystem::path& path) {
 
 // libpng's default error handler prints "libpng error: ..." to stderr before OpenImageIO reports the
 // same text as its error, which the caller puts in its one line: the programs' contract is that one
-// line. While a PNG is decoded, file descriptor 2 points at /dev/null (decodes are serialized, so no
-// other decode's message is lost; OpenImageIO's error string keeps libpng's words).
+// line. While any PNG is decoded, file descriptor 2 points at /dev/null: the first decode to start
+// points it there and the last to finish points it back, so PNGs decode in parallel (OpenImageIO's
+// error string keeps libpng's words, and the one line is printed after the decodes).
 class QuietStderr {
  public:
-  QuietStderr() : lock_(mutex()) {
+  QuietStderr() {
+    const std::lock_guard<std::mutex> lock(state().mutex);
+    if (state().decoders++ > 0) return;
     std::fflush(stderr);
-    saved_ = ::dup(2);
+    state().saved = ::dup(2);
     const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
-    if (saved_ >= 0 && null >= 0) ::dup2(null, 2);
+    if (state().saved >= 0 && null >= 0) ::dup2(null, 2);
     if (null >= 0) ::close(null);
   }
   ~QuietStderr() {
-    if (saved_ >= 0) {
-      ::dup2(saved_, 2);
-      ::close(saved_);
-    }
+    const std::lock_guard<std::mutex> lock(state().mutex);
+    if (--state().decoders > 0 || state().saved < 0) return;
+    ::dup2(state().saved, 2);
+    ::close(state().saved);
+    state().saved = -1;
   }
   QuietStderr(const QuietStderr&) = delete;
   QuietStderr& operator=(const QuietStderr&) = delete;
 
  private:
-  static std::mutex& mutex() {
-    static std::mutex m;
-    return m;
+  struct State {
+    std::mutex mutex;
+    int decoders = 0;  // PNG decodes running
+    int saved = -1;    // the real stderr while any runs
+  };
+  static State& state() {
+    static State s;
+    return s;
   }
-  std::lock_guard<std::mutex> lock_;
-  int saved_ = -1;
 };
 
 Image decode_memory(std::span<const std::byte> bytes, std::string_view mime_type, const std::string& name,

@@ -1,9 +1,11 @@
 #include "textures/material_loader.h"
 
 #include <tbb/blocked_range.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/parallel_for.h>
 
 #include <cmath>
+#include <exception>
 
 #include "base/error.h"
 #include "textures/normal_map.h"
@@ -81,10 +83,15 @@ MaterialTexels decode_material_texels(const MaterialImages& in, const ColorConfi
   const glm::vec3 factor(in.base_color_factor);
 
   if (in.base_color) {
-    Image linear = *in.base_color;
-    if (!in.base_color_is_linear) color.srgb_texture_to_linear(linear);  // gray becomes RGB here
+    // Decoded in the texels' own storage (a gray image's value in R, G and B, as glTF reads it), not
+    // in a copy of the image.
+    const Image& stored = *in.base_color;
     for_rows(out.height, out.width, [&](int j) {
-      for (int i = 0; i < out.width; ++i) out.base_color[out.index(i, j)] = glm::vec3(texel(linear, i, j)) * factor;
+      for (int i = 0; i < out.width; ++i) out.base_color[out.index(i, j)] = glm::vec3(texel(stored, i, j));
+    });
+    if (!in.base_color_is_linear) color.srgb_texture_to_linear(std::span(out.base_color));
+    for_rows(out.height, out.width, [&](int j) {
+      for (int i = 0; i < out.width; ++i) out.base_color[out.index(i, j)] *= factor;
     });
   } else {
     std::fill(out.base_color.begin(), out.base_color.end(), factor);
@@ -180,21 +187,35 @@ MaterialTexels decode_material_texels(const MaterialImages& in, const ColorConfi
 
 MaterialTexels load_material_texels(const MaterialFiles& files, const ColorConfig& color) {
   std::optional<Image> base, mr, normal;
+  PixelFormat base_stored{};
+  // The files decode in parallel (a PNG's inflate runs on one thread); a failure is reported as the
+  // sequential reads would: the first bad file in the order below.
+  std::exception_ptr failed[3];
+  const auto read = [&](int k, const std::optional<std::filesystem::path>& path, std::optional<Image>& image,
+                        PixelFormat* stored) {
+    if (!path) return;
+    try {
+      image = read_image(*path, stored);
+    } catch (...) {
+      failed[k] = std::current_exception();
+    }
+  };
+  tbb::parallel_invoke([&] { read(0, files.base_color, base, &base_stored); },
+                       [&] { read(1, files.metallic_roughness, mr, nullptr); },
+                       [&] { read(2, files.normal, normal, nullptr); });
+  for (const std::exception_ptr& e : failed)
+    if (e) std::rethrow_exception(e);
   MaterialImages in;
   if (files.base_color) {
-    PixelFormat stored{};
-    base = read_image(*files.base_color, &stored);
-    in.base_color_is_linear = stored == PixelFormat::half || stored == PixelFormat::float32;
+    in.base_color_is_linear = base_stored == PixelFormat::half || base_stored == PixelFormat::float32;
     in.base_color = &*base;
     in.base_color_name = files.base_color->string();
   }
   if (files.metallic_roughness) {
-    mr = read_image(*files.metallic_roughness);
     in.metallic_roughness = &*mr;
     in.metallic_roughness_name = files.metallic_roughness->string();
   }
   if (files.normal) {
-    normal = read_image(*files.normal);
     in.normal = &*normal;
     in.normal_name = files.normal->string();
   }

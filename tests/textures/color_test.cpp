@@ -110,6 +110,29 @@ TEST(Color, SrgbDecodeMatchesIec61966At256Points) {
   EXPECT_NEAR(cfg.srgb_texture_to_linear(0.04045f), 0.0031308, 1e-6);
 }
 
+// Packed RGB texels decode as the image does, over more texels than one parallel run (16-bit codes,
+// each channel its own): the IEC curve within 1e-6, and the image's floats exactly (a MIP map's bytes
+// must not depend on which holds the texels).
+TEST(Color, PackedTexelsDecodeAsAnImage) {
+  const ColorConfig& cfg = ColorConfig::builtin();
+  const int n = 3 * 65536 + 7;
+  Image img(n, 1, 3);
+  std::vector<glm::vec3> texels(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k)
+    for (int c = 0; c < 3; ++c) img.at(k, 0, c) = texels[static_cast<std::size_t>(k)][c] = float((k * (c + 1) * 7919) % 65536) / 65535.0f;
+  cfg.srgb_texture_to_linear(img);
+  cfg.srgb_texture_to_linear(std::span(texels));
+  int differ = 0, off_curve = 0;
+  for (int k = 0; k < n; ++k)
+    for (int c = 0; c < 3; ++c) {
+      const float code = float((k * (c + 1) * 7919) % 65536) / 65535.0f;
+      differ += texels[static_cast<std::size_t>(k)][c] != img.at(k, 0, c);
+      off_curve += std::abs(texels[static_cast<std::size_t>(k)][c] - iec_decode(code)) > 1e-6;
+    }
+  EXPECT_EQ(differ, 0);
+  EXPECT_EQ(off_curve, 0);
+}
+
 // sRGB → linear → sRGB returns every 8-bit code, and encoding matches IEC too.
 TEST(Color, RoundTripIsIdentityOn8BitCodes) {
   const ColorConfig& cfg = ColorConfig::builtin();

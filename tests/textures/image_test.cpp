@@ -2,10 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <thread>
 
 #include "base/error.h"
 #include "base/resource_limits.h"
@@ -183,11 +185,9 @@ TEST(Image, AbsurdAndEmptySizesAreRefused) {
   EXPECT_NO_THROW(check_image_size("x", kMaxImageSide, 1));
 }
 
-// A PNG whose compressed data is damaged under valid CRCs fails inside libpng, whose default handler
-// prints its own "libpng error: ..." line; the error must come back only as the thrown message (the
-// programs print one line).
-TEST(Image, DamagedPngDataPrintsNothingOfItsOwn) {
-  const TempDir dir;
+// A PNG whose compressed data is damaged under valid CRCs (it fails inside libpng, whose default handler
+// prints its own "libpng error: ..." line).
+std::vector<std::byte> damaged_png(const TempDir& dir) {
   write_image(dir / "ok.png", gradient(16, 16, 3), PixelFormat::uint8);
   std::vector<std::byte> png = file_bytes(dir / "ok.png");
   bool damaged = false;
@@ -202,10 +202,44 @@ TEST(Image, DamagedPngDataPrintsNothingOfItsOwn) {
     }
     at += 12 + n;
   }
-  ASSERT_TRUE(damaged);
+  EXPECT_TRUE(damaged);
+  return png;
+}
+
+// The error must come back only as the thrown message (the programs print one line).
+TEST(Image, DamagedPngDataPrintsNothingOfItsOwn) {
+  const TempDir dir;
+  const std::vector<std::byte> png = damaged_png(dir);
   ::testing::internal::CaptureStderr();
   expect_bad_input([&] { read_image_from_memory(png, "image/png", "images[1]"); }, "images[1]");
   EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
+}
+
+// PNGs decode in parallel: damaged ones among good ones, on several threads at once, print nothing of
+// their own while any decode runs, and stderr is the program's again once they are all done.
+TEST(Image, PngsDecodedInParallelPrintNothingAndGiveStderrBack) {
+  const TempDir dir;
+  const std::vector<std::byte> bad = damaged_png(dir);
+  const std::vector<std::byte> good = file_bytes(dir / "ok.png");
+  ::testing::internal::CaptureStderr();
+  std::vector<std::thread> threads;
+  std::atomic<int> refused{0}, read{0};
+  for (int t = 0; t < 8; ++t)
+    threads.emplace_back([&, t] {
+      for (int k = 0; k < 20; ++k) {
+        try {
+          if ((t + k) % 2) read_image_from_memory(bad, "image/png", "bad");
+          else if (read_image_from_memory(good, "image/png", "good").width == 16) ++read;
+        } catch (const Error&) {
+          ++refused;
+        }
+      }
+    });
+  for (std::thread& t : threads) t.join();
+  std::fputs("after\n", stderr);
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), "after\n");
+  EXPECT_EQ(refused.load(), 80);
+  EXPECT_EQ(read.load(), 80);
 }
 
 // A 16384² PNG header (a file of a few dozen bytes) is within the per-side limit but over the default

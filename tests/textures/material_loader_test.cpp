@@ -138,6 +138,25 @@ TEST(MaterialLoader, BadInputNamesTheFile) {
   }
 }
 
+// The files decode in parallel, and a failure is the one a reading in order (base colour,
+// metallic-roughness, normal) meets first, whichever decode fails first.
+TEST(MaterialLoader, SeveralBadFilesReportTheFirstInReadingOrder) {
+  const TempDir dir;
+  std::ofstream(dir / "corrupt.png") << "\x89PNG\r\n\x1a\nthis is not a png";
+  write_image(dir / "good.png", Image(4, 4, 3), PixelFormat::uint8);
+  MaterialFiles f;
+  f.base_color = dir / "absent_base.png";
+  f.metallic_roughness = dir / "corrupt.png";
+  f.normal = dir / "absent_normal.png";
+  expect_error_naming([&] { load_material_texels(f); }, {"absent_base.png"});
+  f.base_color = dir / "good.png";
+  expect_error_naming([&] { load_material_texels(f); }, {"corrupt.png"});
+  f.metallic_roughness = dir / "good.png";
+  expect_error_naming([&] { load_material_texels(f); }, {"absent_normal.png"});
+  f.normal = dir / "good.png";
+  EXPECT_EQ(load_material_texels(f).width, 4);
+}
+
 // From memory (a .glb): the same decode with the names the caller gives.
 TEST(MaterialLoader, DecodesImagesInMemoryWithTheirNames) {
   const Image base = image_of(1, 2, 3, {0.5f, 0.5f, 0.5f, 1.0f, 1.0f, 1.0f});
