@@ -99,6 +99,12 @@ ProceduralMaterial generate_material(const MaterialRecipe& recipe, const ColorCo
   normals_from_height(out.height_mm, n, n, mm, raw.normal);
 
   stage("encoding");
+  store_material_images(raw, color, out);
+  return out;
+}
+
+void store_material_images(const MaterialTexels& raw, const ColorConfig& color, ProceduralMaterial& out) {
+  const int n = raw.width;
   out.base_color = Image(n, n, 3);
   out.metallic_roughness = Image(n, n, 3);
   out.normal = Image(n, n, 3);
@@ -126,7 +132,6 @@ ProceduralMaterial generate_material(const MaterialRecipe& recipe, const ColorCo
   stored.metallic_roughness = &out.metallic_roughness;
   stored.normal = &out.normal;
   out.texels = decode_material_texels(stored, color);
-  return out;
 }
 
 }  // namespace svbrdf

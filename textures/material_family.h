@@ -68,6 +68,12 @@ struct ProceduralMaterial {
 ProceduralMaterial generate_material(const MaterialRecipe& recipe, const ColorConfig& color = ColorConfig::builtin(),
                                      const ProgressFn& progress = {});
 
+// The stored images of square level-0 texels `raw` (its base colour, metallic, roughness and normal:
+// the sRGB base colour, metallic-roughness and normal map) in `out`'s formats, quantized to them, and
+// out.texels as a reader decodes those images back: generate_material's last step, for texels made
+// elsewhere (the random family's, written as files by bench/mip/random_texture_set.cpp).
+void store_material_images(const MaterialTexels& raw, const ColorConfig& color, ProceduralMaterial& out);
+
 // The default mm per texel of a preset's variant (variants may differ: halftone print is finer).
 double default_mm_per_texel(std::string_view preset, std::string_view variant);
 
