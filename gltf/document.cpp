@@ -73,6 +73,9 @@ namespace {
 // What the document says of the files beside it, read before tinygltf opens any of them.
 struct FileRules {
   std::map<fs::path, std::uint64_t> buffer_bytes;  // a buffer's file → its byteLength
+  // The image file read_whole_file last checked and left unread: tinygltf hands the image loader
+  // (keep_image_bytes) the bytes of the file it just read, one image at a time.
+  fs::path unread_image;
   std::string error;                               // the first file refused, for the message
   std::map<fs::path, std::string> refused;         // every file refused → why
 };
@@ -115,9 +118,19 @@ std::string read_regular_file(const std::string& path, Bytes& out,
   return why;
 }
 
+// Why an image file of `size` bytes is refused, or empty.
+std::string image_size_refusal(std::uint64_t size) {
+  if (size > image_file_limit() || size > resource_limits().memory_bytes)
+    return "is " + byte_size_text(size) + ", more than an image of at most " + std::to_string(resource_limits().max_texels) +
+           " texels can be (--max-texels)";
+  return {};
+}
+
 // tinygltf's file reader, replaced: only regular files (a FIFO or a device would hang or never end),
 // and no more bytes than the document allows the file — a buffer exactly its byteLength, an image
-// at most image_file_limit() — checked from the file's size before reading.
+// at most image_file_limit() — checked from the file's size before reading. An image file is only
+// checked: tinygltf gets one placeholder byte, and take_image_bytes reads the file when its image is
+// decoded.
 bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
   auto* rules = static_cast<FileRules*>(user);
   auto refuse = [&](const std::string& why) {
@@ -129,17 +142,26 @@ bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const st
   };
   const auto it = rules->buffer_bytes.find(normal(path));
   const bool buffer = it != rules->buffer_bytes.end();
-  const std::string why = read_regular_file(
+  std::uint64_t image_size = 0;
+  // The image's size is checked, then its reading stopped before a byte is read.
+  static const std::string kUnread = "unread";
+  std::string why = read_regular_file(
       path, *out,
       [&](std::uint64_t size) -> std::string {
         if (buffer && size != it->second)
           return "is " + std::to_string(size) + " bytes; its buffer's byteLength says " + std::to_string(it->second);
-        if (!buffer && (size > image_file_limit() || size > resource_limits().memory_bytes))
-          return "is " + byte_size_text(size) + ", more than an image of at most " +
-                 std::to_string(resource_limits().max_texels) + " texels can be (--max-texels)";
-        return {};
+        if (buffer) return {};
+        image_size = size;
+        const std::string refusal = image_size_refusal(size);
+        return refusal.empty() ? kUnread : refusal;
       },
       nullptr);
+  if (why == kUnread) {
+    why.clear();
+    // An empty file stays empty: tinygltf then reports the image as unreadable, as it would.
+    out->assign(image_size > 0 ? 1 : 0, 0);
+    rules->unread_image = path;
+  }
   return why.empty() ? true : refuse(why);
 }
 
@@ -488,7 +510,13 @@ class Reader {
         return true;
       }
     }
-    if (size > 0 && bytes) ib.bytes.assign(bytes, bytes + size);
+    const bool external = image->bufferView < 0 && !image->uri.empty() && image->uri.rfind("data:", 0) != 0;
+    if (external && !self->rules_.unread_image.empty()) {
+      ib.file = self->rules_.unread_image;
+      self->rules_.unread_image.clear();
+    } else if (size > 0 && bytes) {
+      ib.bytes.assign(bytes, bytes + size);
+    }
     ib.loaded = true;
     return true;
   }
@@ -503,5 +531,19 @@ class Reader {
 }  // namespace
 
 Document read_document(const fs::path& path) { return Reader(path).run(); }
+
+std::vector<unsigned char> take_image_bytes(Document& doc, std::size_t i) {
+  ImageBytes& ib = doc.images.at(i);
+  std::vector<unsigned char> out;
+  if (ib.file.empty()) {
+    out.swap(ib.bytes);
+    return out;
+  }
+  const std::string why = read_regular_file(ib.file.string(), out, image_size_refusal, nullptr);
+  if (!why.empty())
+    throw input_error(doc.path.string() + ": " + json_index("images", int(i)), "'" + ib.file.string() + "' " + why);
+  ib.file.clear();
+  return out;
+}
 
 }  // namespace svbrdf::gltf

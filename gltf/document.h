@@ -5,6 +5,8 @@
 // every file tinygltf reads beside it (buffers, images) checked to be a regular file of a size the
 // document allows before one byte of it is read. Image bytes are kept encoded, for OpenImageIO to
 // decode (tinygltf 2.7 reports success for an image it could not read: DEPENDENCIES.md pitfall 3).
+// An image file beside the document is checked (a regular file of an allowed size) but read only
+// when take_image_bytes asks for it: a scene's encoded images are then never all in memory at once.
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -14,9 +16,10 @@
 
 namespace svbrdf::gltf {
 
-// One image's encoded bytes (a file beside the glTF, a data: URI or a buffer view), or why not.
+// One image's encoded bytes (a data: URI or a buffer view) or its file beside the glTF, or why not.
 struct ImageBytes {
   std::vector<unsigned char> bytes;
+  std::filesystem::path file;  // checked, its bytes not yet read (take_image_bytes reads them)
   std::string error;  // set when the bytes could not be had (the message names the JSON path)
   bool loaded = false;
 };
@@ -34,6 +37,10 @@ struct Document {
 // Reads `path`. Throws svbrdf::Error "PATH: [JSON path: ]what" (bad input) when the file cannot be
 // read or violates the container's and the buffers' bounds.
 Document read_document(const std::filesystem::path& path);
+
+// Image i's encoded bytes, released from `doc`: those it holds, or its file read now (checked again
+// as the document checked it). Throws svbrdf::Error "PATH: images[i]: why" when the file cannot be read.
+std::vector<unsigned char> take_image_bytes(Document& doc, std::size_t i);
 
 // Percent-decoding of a URI reference (RFC 3986 §2.1), as glTF §3.2 asks of relative paths and
 // RFC 2397 of a data: URI that is not base64.

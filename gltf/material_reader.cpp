@@ -45,7 +45,7 @@ class MaterialReader {
       if (i >= doc_.images.size()) fail(d.where, "has no image data");
       const ImageBytes& ib = doc_.images[i];
       if (!ib.error.empty()) fail(d.where, ib.error);
-      if (!ib.loaded || ib.bytes.empty())
+      if (!ib.loaded || (ib.bytes.empty() && ib.file.empty()))
         fail(d.where, im.uri.empty() ? "has no image data" : "cannot read the image file '" + im.uri + "'");
     }
   }
@@ -326,7 +326,7 @@ Materials read_materials(const Document& doc) { return MaterialReader(doc).run()
 void decode_image(Document& doc, Materials& m, std::size_t i) {
   ImageDesc& d = m.images.at(i);
   if (d.pixels.width > 0) return;
-  auto& b = doc.images.at(i).bytes;
+  const std::vector<unsigned char> b = take_image_bytes(doc, i);
   try {
     d.pixels = read_image_from_memory(std::as_bytes(std::span(b.data(), b.size())), d.mime_type,
                                       d.uri.empty() ? d.where : d.where + " ('" + d.uri + "')");
@@ -334,7 +334,6 @@ void decode_image(Document& doc, Materials& m, std::size_t i) {
     throw input_error(doc.path.string(), e.what());
   }
   d.encoded_digest = sha256(std::as_bytes(std::span(b.data(), b.size())));
-  std::vector<unsigned char>().swap(b);
 }
 
 const std::vector<std::string>& supported_extensions() {

@@ -26,7 +26,7 @@ struct Materials {
 Materials read_materials(const Document& doc);
 
 // Decodes image i into `m.images[i].pixels` (OpenImageIO; values as stored) and releases its bytes
-// in `doc`. A second call for the same image does nothing. Not thread-safe: OpenImageIO 2.4.7
+// in `doc` (take_image_bytes: an image file is read only now). A second call for the same image does nothing. Not thread-safe: OpenImageIO 2.4.7
 // crashes (decode_icc_profile) when PNGs with ICC profiles are opened concurrently.
 void decode_image(Document& doc, Materials& m, std::size_t i);
 
