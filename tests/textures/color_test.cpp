@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -119,13 +120,13 @@ TEST(Color, PackedTexelsDecodeAsAnImage) {
   Image img(n, 1, 3);
   std::vector<glm::vec3> texels(static_cast<std::size_t>(n));
   for (int k = 0; k < n; ++k)
-    for (int c = 0; c < 3; ++c) img.at(k, 0, c) = texels[static_cast<std::size_t>(k)][c] = float((k * (c + 1) * 7919) % 65536) / 65535.0f;
+    for (int c = 0; c < 3; ++c) img.at(k, 0, c) = texels[static_cast<std::size_t>(k)][c] = float((std::int64_t(k) * (c + 1) * 7919) % 65536) / 65535.0f;
   cfg.srgb_texture_to_linear(img);
   cfg.srgb_texture_to_linear(std::span(texels));
   int differ = 0, off_curve = 0;
   for (int k = 0; k < n; ++k)
     for (int c = 0; c < 3; ++c) {
-      const float code = float((k * (c + 1) * 7919) % 65536) / 65535.0f;
+      const float code = float((std::int64_t(k) * (c + 1) * 7919) % 65536) / 65535.0f;
       differ += texels[static_cast<std::size_t>(k)][c] != img.at(k, 0, c);
       off_curve += std::abs(texels[static_cast<std::size_t>(k)][c] - iec_decode(code)) > 1e-6;
     }
