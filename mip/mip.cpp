@@ -11,6 +11,7 @@
 #include "mip/mip_records.h"
 #include "mip/param_pyramid.h"
 #include "mip/sheen_layer.h"
+#include "mip/texel_choice.h"
 
 namespace svbrdf {
 
@@ -141,23 +142,12 @@ float mip_level(Extent level0, const Footprint& f) { return filter_level(level0,
 MipTexture::Choice MipTexture::choose(TextureFilter filter, const Footprint& f, const Rgb& tint,
                                       float u) const {
   if (records_) return choose_record(filter, f, tint, u);
-  Choice c{filter, f, tint};
   const Pyramids& p = *pyramids_;
-  if (filter == TextureFilter::brdf && (tint == Rgb(1.0f) || p.tint)) {
-    const FilterTap t = select_tap(p.brdf.level0(), p.brdf.levels(), f, u, wrap());  // O(1), mip_lookup.h
-    c.level = t.level, c.i = t.i, c.j = t.j;
-    if (c.level >= 1)
-      p.brdf.prefetch(c.level, c.i, c.j);
-    else
-      __builtin_prefetch(&p.level0(c.i, c.j));
-  } else if (reads_param_pyramid(filter)) {
-    c.level = -1;
-  } else {
-    // level0, and brdf on a tinted hit of a texture not built for tints: the nearest texel.
-    const glm::ivec2 t = nearest_texel(f.uv);
-    c.level = 0, c.i = t.x, c.j = t.y;
+  const Choice c = choose_texel(*this, wrap(), filter, f, tint, u, true, p.tint, p.brdf.levels());
+  if (c.level >= 1)
+    p.brdf.prefetch(c.level, c.i, c.j);
+  else if (c.level == 0)
     __builtin_prefetch(&p.level0(c.i, c.j));
-  }
   return c;
 }
 

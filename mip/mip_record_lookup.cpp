@@ -9,6 +9,7 @@
 #include "mip/mip_lookup.h"
 #include "mip/mip_records.h"
 #include "mip/sheen_layer.h"
+#include "mip/texel_choice.h"
 
 namespace svbrdf {
 
@@ -32,19 +33,9 @@ ParamStore store_of(const MipRecordLayout& l) {
 
 MipTexture::Choice MipTexture::choose_record(TextureFilter filter, const Footprint& f, const Rgb& tint,
                                              float u) const {
-  // As choose() does in memory; the records' memory is asked for when they are read.
-  Choice c{filter, f, tint};
+  // The records' memory is asked for when they are read.
   const MipRecordLayout& l = records_->layout;
-  if (filter == TextureFilter::brdf && l.brdf && (tint == Rgb(1.0f) || l.tint)) {
-    const FilterTap t = select_tap(l.extent, l.levels, f, u, wrap());
-    c.level = t.level, c.i = t.i, c.j = t.j;
-  } else if (reads_param_pyramid(filter)) {
-    c.level = -1;
-  } else {
-    const glm::ivec2 t = nearest_texel(f.uv);
-    c.level = 0, c.i = t.x, c.j = t.y;
-  }
-  return c;
+  return choose_texel(*this, wrap(), filter, f, tint, u, l.brdf, l.tint, l.levels);
 }
 
 std::span<const Lobe> MipTexture::record_lobes(const Choice& c, Scratch& scratch) const {
