@@ -315,12 +315,18 @@ RenderOutcome run_render(RenderCommand& c, const fs::path& scene_path, const cha
     load.take_image = [&](std::size_t index, ImageDesc& image, bool is_color) {
       TextureSet::store(index, image, is_color, color, *tiles);
     };
+    // An image whose files an earlier render wrote is not decoded.
+    load.find_image = [&](std::size_t index, ImageDesc& image, bool is_color) {
+      return TextureSet::find(index, image, is_color, color, *tiles);
+    };
     setup.texture_tiles = tiles.get();
   }
   setup_progress.begin("reading " + scene_path.filename().string() + " and decoding its images");
   Scene scene = load_gltf(scene_path, load);
   setup_progress.end();
   for (const std::string& w : scene.warnings) std::fprintf(stderr, "%s: warning: %s\n", program, message_line(w).c_str());
+  if (tiles)
+    for (const std::string& w : tiles->warnings()) std::fprintf(stderr, "%s: warning: %s\n", program, message_line(w).c_str());
   PreparedScene prepared(std::move(scene), setup, color);
   // Every frame's pose checked before the first renders; the notes below are the first frame's.
   if (range) {
@@ -333,9 +339,11 @@ RenderOutcome run_render(RenderCommand& c, const fs::path& scene_path, const cha
                  message_line((mip_cache ? mip_cache->folder() : tiles->folder()).string()).c_str(),
                  counts.built);
   if (tiles && !c.quiet)
-    std::fprintf(stderr, "%s: texture cache: %d files in %s, %.1f MB of texels, at most %.1f MB of them in memory\n", program,
-                 tiles->file_count(), message_line(tiles->folder().string()).c_str(), double(tiles->texel_bytes()) / 1e6,
-                 *texture_cache_megabytes(c.texture_cache));
+    std::fprintf(stderr,
+                 "%s: texture cache: %d files in %s (images: %d decoded, %d found there), %.1f MB of texels, at most %.1f MB "
+                 "of them in memory\n",
+                 program, tiles->file_count(), message_line(tiles->folder().string()).c_str(), tiles->image_counts().decoded,
+                 tiles->image_counts().found, double(tiles->texel_bytes()) / 1e6, *texture_cache_megabytes(c.texture_cache));
   // glTF carries no environment: whichever one lights the render is said, once (a note, not a
   // warning: --quiet silences it with the progress).
   if (!c.quiet && !prepared.environment_note().empty())

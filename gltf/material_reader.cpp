@@ -323,17 +323,19 @@ class MaterialReader {
 
 Materials read_materials(const Document& doc) { return MaterialReader(doc).run(); }
 
-void decode_image(Document& doc, Materials& m, std::size_t i) {
+bool decode_image(Document& doc, Materials& m, std::size_t i, const std::function<bool(ImageDesc&)>& found) {
   ImageDesc& d = m.images.at(i);
-  if (d.pixels.width > 0) return;
+  if (d.pixels.width > 0) return false;
   const std::vector<unsigned char> b = take_image_bytes(doc, i);
+  d.encoded_digest = sha256(std::as_bytes(std::span(b.data(), b.size())));
+  if (found && found(d)) return false;
   try {
     d.pixels = read_image_from_memory(std::as_bytes(std::span(b.data(), b.size())), d.mime_type,
                                       d.uri.empty() ? d.where : d.where + " ('" + d.uri + "')");
   } catch (const Error& e) {
     throw input_error(doc.path.string(), e.what());
   }
-  d.encoded_digest = sha256(std::as_bytes(std::span(b.data(), b.size())));
+  return true;
 }
 
 const std::vector<std::string>& supported_extensions() {

@@ -5,6 +5,7 @@
 // value throws svbrdf::Error with one line naming the file and the JSON path, e.g.
 // "scene.gltf: materials[2].pbrMetallicRoughness.roughnessFactor: is 3, outside [0, 1]".
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -26,9 +27,12 @@ struct Materials {
 Materials read_materials(const Document& doc);
 
 // Decodes image i into `m.images[i].pixels` (OpenImageIO; values as stored) and releases its bytes
-// in `doc` (take_image_bytes: an image file is read only now). A second call for the same image does nothing. Not thread-safe: OpenImageIO 2.4.7
-// crashes (decode_icc_profile) when PNGs with ICC profiles are opened concurrently.
-void decode_image(Document& doc, Materials& m, std::size_t i);
+// in `doc` (take_image_bytes: an image file is read only now); true when it decoded. `found`, when
+// given, is asked first, the image's encoded_digest set: when it returns true, its texels are had
+// elsewhere (it set the size and channels) and the image is not decoded. A second call for the same
+// image does nothing. Not thread-safe: OpenImageIO 2.4.7 crashes (decode_icc_profile) when PNGs with
+// ICC profiles are opened concurrently.
+bool decode_image(Document& doc, Materials& m, std::size_t i, const std::function<bool(ImageDesc&)>& found = {});
 
 // The glTF extensions the project reads.
 const std::vector<std::string>& supported_extensions();

@@ -85,8 +85,10 @@ class Loader {
         if (m.textures[t].image >= 0 && d.shows_as_color(int(t))) color[std::size_t(m.textures[t].image)] = 1;
     for (std::size_t i = 0; i < m.images.size(); ++i) {
       if (!shown[i]) continue;
-      gltf::decode_image(doc_, m, i);
-      if (options_.take_image) options_.take_image(i, m.images[i], color[i] != 0);
+      const bool is_color = color[i] != 0;
+      std::function<bool(ImageDesc&)> found;
+      if (options_.find_image) found = [&](ImageDesc& image) { return options_.find_image(i, image, is_color); };
+      if (gltf::decode_image(doc_, m, i, found) && options_.take_image) options_.take_image(i, m.images[i], is_color);
     }
     doc_.images.clear();
     scene_.images = std::move(m.images);

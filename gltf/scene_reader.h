@@ -48,6 +48,11 @@ struct LoadOptions {
   // the pixels away (out-of-core textures, render/texture_tiles.h), leaving the size and channels:
   // then the decoded images are never all in memory at once.
   std::function<void(std::size_t index, ImageDesc& image, bool color)> take_image;
+  // Called for each image a texture shows before it is decoded, its encoded bytes' digest set
+  // (ImageDesc::encoded_digest): when it returns true the callee has the texels elsewhere (out-of-core
+  // textures found from an earlier load) and set the size and channels, and the image is neither
+  // decoded nor given to take_image.
+  std::function<bool(std::size_t index, ImageDesc& image, bool color)> find_image;
 };
 
 Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options = {});

@@ -251,7 +251,7 @@ std::string choose_texel_grid(const MaterialDesc& m, const std::vector<const Tex
   for (const TexelInput* in : slots) {
     const TextureRef& r = *in->texture;
     if ((&r == &m.normal_texture || &r == &m.clearcoat_normal_texture) &&
-        textures.image(r, false).channels < 3)
+        textures.channels(r) < 3)
       return in->name + " has fewer than three channels";
     const glm::ivec2 size = textures.size(r);
     largest = std::max(largest, std::size_t(size.x) * std::size_t(size.y));

@@ -6,6 +6,10 @@
 #include <span>
 
 #include "base/sha256.h"
+#include "render/image_file_description.h"
+#include "render/mip_cache_key.h"
+
+#include <OpenImageIO/oiioversion.h>
 
 #include <tbb/parallel_for.h>
 
@@ -130,12 +134,18 @@ TextureSet::~TextureSet() = default;
 
 namespace {
 
-// The name of a texture cache file: what the texels are (the image's content, its size and which
-// form) and, for a linearized copy, the color config that made it.
-std::string tile_key(const Sha256Digest& content, const Image& image, const std::string& form) {
-  return to_hex(sha256("svbrdf texture tiles 1|" + to_hex(content) + "|" + std::to_string(image.width) + "x" +
-                       std::to_string(image.height) + "x" + std::to_string(image.channels) + "|" + form));
+// The name of a texture cache file: what the texels are (the image's content and which form) and
+// what made them of the content: the decoder, this code (the MIP code's identity covers textures/ and
+// this file) and, for a linearized copy, the color config. The content fixes the size: a render that
+// has only the encoded bytes finds the file (find()).
+std::string tile_key(const Sha256Digest& content, const std::string& form) {
+  return to_hex(sha256(std::string("svbrdf texture tiles 2|") + mip_code_identity() + "|OpenImageIO " +
+                       OIIO_VERSION_STRING + "|" + to_hex(content) + "|" + form));
 }
+// The forms: the 8-bit codes (with the linear table of `config` when a color slot shows the image),
+// the image's floats, and its linearized copy's floats.
+std::string codes_form(bool color, const ColorConfig& config) { return color ? "codes|linear|" + config.identity() : "codes"; }
+std::string linear_form(const ColorConfig& config) { return "linear|" + config.identity(); }
 
 // The image's texels as RGBA floats (texel()'s expansion: what a nearest lookup returns).
 std::vector<float> rgba_floats(const Image& image) {
@@ -150,17 +160,45 @@ std::vector<float> rgba_floats(const Image& image) {
   return out;
 }
 
+// The description of the image file of `key` when one is there, whole, holding `format` and
+// described as the key's form says (`codes`, with a linear table when `linear`). One there that is not
+// is refused (a warning) and left for store() to write again.
+std::optional<ImageFileDescription> found_file(TextureTiles& tiles, const std::string& key, PixelFormat format, bool codes,
+                                               bool linear) {
+  std::string why;
+  const std::optional<TextureTiles::FoundImage> file = tiles.inspect_image(key, format, &why);
+  std::optional<ImageFileDescription> d;
+  if (file) {
+    d = parse_image_file_description(file->description, key, &why);
+    if (d && (d->width != file->width || d->height != file->height || d->codes != codes || d->linear != linear)) {
+      why = "its description does not describe its texels";
+      d.reset();
+    }
+  }
+  if (!why.empty()) tiles.refuse(key, why);
+  return d;
+}
+
 }  // namespace
 
 void TextureSet::store(std::size_t index, ImageDesc& desc, bool color, const ColorConfig& config, TextureTiles& tiles) {
   Image& raw = desc.pixels;
   if (raw.width <= 0 || raw.height <= 0 || raw.channels < 1) return;
-  // An image made in memory has no encoded bytes: its floats are its content (as for the MIP cache's key).
-  if (!desc.encoded_digest) desc.encoded_digest = sha256(std::as_bytes(std::span(raw.pixels)));
+  // An image made in memory has no encoded bytes: its shape and floats are its content (as for the
+  // MIP cache's key, render/mip_cache_key.cpp).
+  if (!desc.encoded_digest) {
+    Sha256 h;
+    const int shape[3] = {raw.width, raw.height, raw.channels};
+    h.update(std::as_bytes(std::span(shape)));
+    h.update(std::as_bytes(std::span(raw.pixels)));
+    desc.encoded_digest = h.digest();
+  }
   const Sha256Digest& content = *desc.encoded_digest;
   TiledImage t;
   t.width = raw.width, t.height = raw.height, t.channels = raw.channels;
   t.linear = color;
+  ImageFileDescription d;
+  d.width = raw.width, d.height = raw.height, d.channels = raw.channels;
   Image linear;
   if (color) {
     linear = raw;
@@ -169,15 +207,58 @@ void TextureSet::store(std::size_t index, ImageDesc& desc, bool color, const Col
   if (const std::unique_ptr<Packed> k = pack(raw, color ? &linear : nullptr)) {
     t.codes = true;
     t.raw_table = k->raw, t.linear_table = k->linear;
-    t.raw_file = t.linear_file = tiles.add(tile_key(content, raw, "codes"), raw.width, raw.height, PixelFormat::uint8, k->codes.data());
+    d.key = tile_key(content, codes_form(color, config));
+    d.codes = true, d.linear = color;
+    d.raw_table = k->raw, d.linear_table = k->linear;
+    t.raw_file = t.linear_file = tiles.add(d.key, raw.width, raw.height, PixelFormat::uint8, k->codes.data(), describe(d));
   } else {
-    t.raw_file = tiles.add(tile_key(content, raw, "raw"), raw.width, raw.height, PixelFormat::float32, rgba_floats(raw).data());
-    if (color)
-      t.linear_file = tiles.add(tile_key(content, raw, "linear|" + config.identity()), raw.width, raw.height,
-                                PixelFormat::float32, rgba_floats(linear).data());
+    d.key = tile_key(content, "raw");
+    t.raw_file = tiles.add(d.key, raw.width, raw.height, PixelFormat::float32, rgba_floats(raw).data(), describe(d));
+    if (color) {
+      d.key = tile_key(content, linear_form(config));
+      t.linear_file = tiles.add(d.key, raw.width, raw.height, PixelFormat::float32, rgba_floats(linear).data(), describe(d));
+    }
   }
   tiles.set_image(index, t);
+  tiles.count_image(false);
   std::vector<float>().swap(raw.pixels);  // the size and channels stay: TextureSet::size, the MIP key
+}
+
+bool TextureSet::find(std::size_t index, ImageDesc& desc, bool color, const ColorConfig& config, TextureTiles& tiles) {
+  if (!desc.encoded_digest) return false;
+  const Sha256Digest& content = *desc.encoded_digest;
+  TiledImage t;
+  t.linear = color;
+  const std::string codes = tile_key(content, codes_form(color, config));
+  if (const std::optional<ImageFileDescription> d = found_file(tiles, codes, PixelFormat::uint8, true, color)) {
+    t.width = d->width, t.height = d->height, t.channels = d->channels;
+    t.codes = true;
+    t.raw_table = d->raw_table, t.linear_table = d->linear_table;
+    t.raw_file = t.linear_file = tiles.open_image(codes, t.width, t.height, PixelFormat::uint8);
+  } else {
+    // No 8-bit file: the image's values are not 256 codes a channel (store() wrote its floats), or
+    // it has not been written.
+    const std::string raw_key = tile_key(content, "raw"), linear_key = tile_key(content, linear_form(config));
+    const std::optional<ImageFileDescription> raw = found_file(tiles, raw_key, PixelFormat::float32, false, false);
+    if (!raw) return false;
+    if (color) {
+      const std::optional<ImageFileDescription> linear = found_file(tiles, linear_key, PixelFormat::float32, false, false);
+      if (!linear) return false;
+      if (linear->width != raw->width || linear->height != raw->height || linear->channels != raw->channels) {
+        tiles.refuse(linear_key, "its image's size is not that of the image's own file");
+        return false;
+      }
+    }
+    t.width = raw->width, t.height = raw->height, t.channels = raw->channels;
+    t.raw_file = tiles.open_image(raw_key, t.width, t.height, PixelFormat::float32);
+    if (color) t.linear_file = tiles.open_image(linear_key, t.width, t.height, PixelFormat::float32);
+  }
+  tiles.set_image(index, t);
+  tiles.count_image(true);
+  // The size and channels a decode would have given, and no pixels (as store() leaves them).
+  desc.pixels = Image();
+  desc.pixels.width = t.width, desc.pixels.height = t.height, desc.pixels.channels = t.channels;
+  return true;
 }
 
 struct TextureSet::ReadBack {

@@ -15,7 +15,10 @@
 // Out of core (`--texture-cache`, render/texture_tiles.h): store() writes each image as the loader
 // decodes it — the same 8-bit codes and tables, or the same floats (RGBA) of the image and of its
 // linearized copy — to the texture cache's files and drops its pixels; lookups then read the texel
-// of the same index from the cache's tiles, so they return the same values bit for bit.
+// of the same index from the cache's tiles, so they return the same values bit for bit. The files are
+// named by the encoded bytes and their descriptions hold the size, channels and code tables
+// (render/image_file_description.h), so a later load finds them (find()) and decodes nothing: what the
+// render reads of the image (lookups, the whole image for a MIP build: image()) comes from the files.
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -41,6 +44,13 @@ class TextureSet {
   // or its floats, and with `color` those of its copy linearized by `config`; then frees its pixels.
   // Throws svbrdf::Error (environment) when the files cannot be written.
   static void store(std::size_t index, ImageDesc& image, bool color, const ColorConfig& config, TextureTiles& tiles);
+  // Before image `index` is decoded (LoadOptions::find_image): when `tiles` holds its files whole for
+  // its encoded bytes (image.encoded_digest), as store() wrote them for `color` and `config`, takes
+  // them instead of a decode: its size and channels, and its code tables, from the files. Then true,
+  // and the image keeps its size and channels and no pixels, as store() leaves it. A file there that
+  // is not whole or not described as store() describes it is refused with one warning (store() writes
+  // it again after the decode). Throws svbrdf::Error (environment) when a file found cannot be opened.
+  static bool find(std::size_t index, ImageDesc& image, bool color, const ColorConfig& config, TextureTiles& tiles);
 
   // The slot's texture at `uv` (the primitive's TEXCOORD_n, before the slot's transform); RGBA with
   // gray expanded and a missing alpha read as 1. `color` selects the linearized copy.
@@ -106,6 +116,9 @@ class TextureSet {
   // Rows of an image that the 8-bit form is made of at a time, in parallel (each band with its own
   // tables, merged in order): enough texels a band to repay a task, bands enough for every core.
   static constexpr int kPackBandRows = 32;
+
+  // The decoded image's channels (without reading an out-of-core image back).
+  int channels(const TextureRef& ref) const { return textures_[static_cast<std::size_t>(ref.texture)].raw->channels; }
 
   // Texture size in texels (for footprints and the MIP-level AOV).
   glm::ivec2 size(const TextureRef& ref) const {

@@ -66,24 +66,63 @@ TextureTiles::~TextureTiles() {
   OIIO::ImageCache::destroy(cache_);
 }
 
-// Whether the file at `path` is one this class wrote for an image of this size and format.
-bool TextureTiles::usable(const fs::path& path, int width, int height, PixelFormat format) const {
+std::optional<TextureTiles::FoundImage> TextureTiles::inspect_image(const std::string& key, PixelFormat format,
+                                                                    std::string* why) const {
+  const fs::path path = path_of(key);
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) return false;
+  if (!fs::is_regular_file(path, ec)) return std::nullopt;
+  const auto say = [&](const std::string& what) -> std::optional<FoundImage> {
+    if (why) *why = what;
+    return std::nullopt;
+  };
   const auto in = OIIO::ImageInput::open(path.string());
-  if (!in) {
-    (void)OIIO::geterror();  // a bad file is written again; its error is not ours to keep
-    return false;
+  if (!in) return say("not a file OpenImageIO reads (" + OIIO::geterror() + ")");
+  const OIIO::ImageSpec s = in->spec();
+  if (s.width <= 0 || s.height <= 0 || s.nchannels != 4 || s.format != type_of(format) || s.channelformats.size() > 0 ||
+      s.tile_width != kTileSide || s.tile_height != kTileSide || s.tile_depth > 1 || s.depth > 1 || s.x != 0 ||
+      s.y != 0 || s.z != 0 || in->seek_subimage(0, 1) || in->seek_subimage(1, 0)) {
+    (void)in->geterror();
+    return say("it is not laid out as the texture cache writes an image");
   }
-  const OIIO::ImageSpec& s = in->spec();
-  return s.width == width && s.height == height && s.nchannels == 4 && s.format == type_of(format) &&
-         s.tile_width == kTileSide && s.tile_height == kTileSide && s.tile_depth <= 1 && s.x == 0 && s.y == 0 &&
-         !in->seek_subimage(0, 1) && !in->seek_subimage(1, 0);
+  // add() writes the tiles in order, so the last tile's bytes end the file: a file cut short cannot
+  // read it. One tile of the format's bytes.
+  const int x = (s.width - 1) / kTileSide * kTileSide, y = (s.height - 1) / kTileSide * kTileSide;
+  std::vector<std::byte> tile(std::size_t(kTileSide) * kTileSide * 4 * type_of(format).size());
+  (void)in->geterror();  // the seeks past the one level above
+  if (!in->seek_subimage(0, 0) ||
+      !in->read_tiles(0, 0, x, s.width, y, s.height, 0, 1, 0, 4, type_of(format), tile.data()))
+    return say("its last tile does not read: the file is not whole (" + in->geterror() + ")");
+  return FoundImage{s.width, s.height, std::string(s.get_string_attribute("ImageDescription"))};
 }
 
-int TextureTiles::add(const std::string& key, int width, int height, PixelFormat format, const void* rgba) {
+int TextureTiles::open_image(const std::string& key, int width, int height, PixelFormat format) {
   const fs::path path = path_of(key);
-  if (!usable(path, width, height, format)) {
+  touch(path);
+  const int file = open_file(path, kTileSide, {Level{width, height, 4, std::size_t(format == PixelFormat::uint8 ? 4 : 16)}});
+  // What the cache opened is what was inspected (another render may have replaced it since with a
+  // file of the same key: then the same content).
+  OIIO::ImageSpec s;
+  if (!cache_->get_imagespec(files_.back().handle, nullptr, s, 0, 0) || s.width != width || s.height != height ||
+      s.nchannels != 4 || s.format != type_of(format) || s.tile_width != kTileSide)
+    throw environment_error(path.string(), "the texture cache's file changed under it");
+  return file;
+}
+
+void TextureTiles::refuse(const std::string& key, const std::string& why) {
+  if (std::find(refused_.begin(), refused_.end(), key) != refused_.end()) return;
+  refused_.push_back(key);
+  warnings_.push_back("the texture cache's file " + path_of(key).string() + ": " + why + "; it is written again");
+}
+
+int TextureTiles::add(const std::string& key, int width, int height, PixelFormat format, const void* rgba,
+                      const std::string& description) {
+  const fs::path path = path_of(key);
+  std::string why;
+  const std::optional<FoundImage> there = inspect_image(key, format, &why);
+  if (there && (there->width != width || there->height != height || there->description != description))
+    why = "it does not hold the image its key names";
+  if (!why.empty()) refuse(key, why);
+  if (!there || !why.empty()) {
     create_folder(folder_);
     const fs::path tmp = temp_path_for(path);
     auto out = OIIO::ImageOutput::create(path.string());
@@ -91,12 +130,10 @@ int TextureTiles::add(const std::string& key, int width, int height, PixelFormat
     OIIO::ImageSpec spec(width, height, 4, type_of(format));
     spec.tile_width = spec.tile_height = kTileSide;
     spec.attribute("compression", "zip");
+    spec.attribute("ImageDescription", description);
     finish(*out, out->open(tmp.string(), spec) && out->write_image(type_of(format), rgba), tmp, path);
-  } else {
-    touch(path);
   }
-  return open_file(path, kTileSide,
-                   {Level{width, height, 4, std::size_t(format == PixelFormat::uint8 ? 4 : 16)}});
+  return open_image(key, width, height, format);
 }
 
 int TextureTiles::open_file(const fs::path& path, int tile_side, std::vector<Level> levels) {

@@ -16,9 +16,10 @@
 // which counts them in its size and evicts them as it does its entries. A file is written to a
 // temporary beside it and renamed into place (base/atomic_file.h), so concurrent renders that share
 // the folder see a whole file or none; one that is there with the expected size and layout is
-// reused, not written again. Each file is opened when added and stays open (the cache's limit on
-// open files is raised to hold them all), so an eviction by another render cannot pull it from
-// under this one.
+// reused, not written again: an image file must hold its description (render/image_file_description.h),
+// which names its key, and read to its last tile; one that does not gets one warning and is written
+// again. Each file is opened when added and stays open (the cache's limit on open files is raised to
+// hold them all), so an eviction by another render cannot pull it from under this one.
 //
 // Lookups: a per-thread table of pinned tiles (ImageCache::get_tile), direct-mapped by file, level and
 // tile, so that a lookup whose tile a recent lookup of the same thread read costs a hash and a
@@ -100,10 +101,38 @@ class TextureTiles {
 
   const std::filesystem::path& folder() const { return folder_; }
 
-  // The file of `key` (64 hexadecimal digits) holding `rgba` (width · height · 4 values, rows from
-  // the top, uint8 or float32 as `format` says), written unless a whole one is there; its index for
-  // texel(). Throws svbrdf::Error (environment) when it can be neither found nor written.
-  int add(const std::string& key, int width, int height, PixelFormat format, const void* rgba);
+  // The image file of `key` (64 hexadecimal digits) holding `rgba` (width · height · 4 values, rows
+  // from the top, uint8 or float32 as `format` says) with `description` (its ImageDescription: render/
+  // image_file_description.h), written unless a whole one with that description is there (one that is
+  // not is refused: refuse()); its index for texel(). Throws svbrdf::Error (environment) when it can
+  // be neither found nor written.
+  int add(const std::string& key, int width, int height, PixelFormat format, const void* rgba,
+          const std::string& description);
+  // An image file there: its size and its description.
+  struct FoundImage {
+    int width = 0, height = 0;
+    std::string description;
+  };
+  // The image file of `key` when one is there laid out as add() writes one of `format` (RGBA, 64²
+  // tiles, one level) and whole: its last tile, the last bytes add() wrote, reads, so a file cut short
+  // is refused at once rather than failing the render at its first lookup there. nullopt when there is
+  // none, or, with `why` set, when the one there is refused. Reads one tile, decodes no image.
+  std::optional<FoundImage> inspect_image(const std::string& key, PixelFormat format, std::string* why) const;
+  // Opens the image file of `key` that inspect_image found, for texel(); its index. Throws
+  // svbrdf::Error (environment) when it cannot be opened as inspected.
+  int open_image(const std::string& key, int width, int height, PixelFormat format);
+
+  // A file of `key` that is there but not to be trusted (`why`): one warning a file, whoever refuses
+  // it first (a render that finds it, then the writer that replaces it). The warnings, in order.
+  void refuse(const std::string& key, const std::string& why);
+  const std::vector<std::string>& warnings() const { return warnings_; }
+
+  // The scene images decoded and written here, and those whose files were found here (not decoded).
+  struct ImageCounts {
+    int decoded = 0, found = 0;
+  };
+  void count_image(bool found) { ++(found ? image_counts_.found : image_counts_.decoded); }
+  ImageCounts image_counts() const { return image_counts_; }
 
   // The record file of `key` as `path_of` names it: the layout that file holds (nullopt: none, or
   // not one this class wrote: `why` says what is wrong with one that is there).
@@ -187,13 +216,15 @@ class TextureTiles {
     std::array<Pin, kPinnedTiles> slots{};
   };
   void refill(Pins& pins, Pin& pin, int file, std::uint64_t key) const;
-  bool usable(const std::filesystem::path& path, int width, int height, PixelFormat format) const;
 
   std::filesystem::path folder_;
   OIIO::ImageCache* cache_ = nullptr;
   std::vector<File> files_;  // complete before the first lookup
   std::vector<std::byte> zero_tile_;  // what a tile that cannot be read reads as: the largest tile's bytes
   std::vector<std::unique_ptr<TiledImage>> images_;
+  std::vector<std::string> warnings_;
+  std::vector<std::string> refused_;  // the keys refuse() warned of
+  ImageCounts image_counts_;
   mutable tbb::enumerable_thread_specific<Pins, tbb::cache_aligned_allocator<Pins>, tbb::ets_key_per_instance> pins_;
   mutable std::mutex mutex_;  // guards failure_
   mutable std::string failure_;

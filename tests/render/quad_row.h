@@ -1,10 +1,12 @@
 #pragma once
-// A glTF scene of textured quads for the out-of-core tests (texture_cache_test.cpp, mip_tiles_test.cpp).
+// GlTF scenes of textured quads for the out-of-core tests (texture_cache_test.cpp, mip_tiles_test.cpp,
+// texture_cache_warm_test.cpp).
 #include <filesystem>
 #include <string>
 
 #include "base/json.h"
 #include "gltf/writer.h"
+#include "scenes/texture_set.h"
 #include "textures/image.h"
 
 namespace svbrdf::testing {
@@ -47,6 +49,16 @@ inline std::filesystem::path quads(const std::filesystem::path& dir, int count, 
   const std::filesystem::path path = dir / (textured ? "textured.gltf" : "plain.gltf");
   w.write(path);
   return path;
+}
+
+// A baked material on a quad, 64² texels, seed 3: metal-tray's textures are 16-bit (the cache's float
+// files), sandstone's base colour 8-bit (its codes and their tables).
+inline std::filesystem::path baked_quad(const std::filesystem::path& dir, const std::string& preset) {
+  MaterialRecipe r;
+  r.preset = preset;
+  r.size = 64;
+  r.seed = 3;
+  return bake_material(r, dir / preset).gltf;
 }
 
 }  // namespace svbrdf::testing

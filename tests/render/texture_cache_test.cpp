@@ -13,7 +13,6 @@
 
 #include "base/json.h"
 #include "gltf/writer.h"
-#include "scenes/texture_set.h"
 #include "tests/common/temp_dir.h"
 #include "tests/render/quad_row.h"
 #include "tests/render/render_child.h"
@@ -25,26 +24,17 @@ namespace {
 namespace fs = std::filesystem;
 
 using testing::Child;
+using testing::baked_quad;
 using testing::expect_same_pixels;
 
 Child render(const std::vector<std::string>& args, const fs::path& dir) {
   return testing::render_child(args, dir);
 }
 
-// A baked material on a quad: metal-tray's textures are 16-bit (the float files), sandstone's base
-// colour is 8-bit (the codes and their tables).
-fs::path baked(const fs::path& dir, const std::string& preset) {
-  MaterialRecipe r;
-  r.preset = preset;
-  r.size = 64;
-  r.seed = 3;
-  return bake_material(r, dir / preset).gltf;
-}
-
 TEST(TextureCache, RendersEqualTheInMemoryRenderBitForBit) {
   const testing::TempDir dir;
   for (const std::string preset : {"metal-tray", "sandstone"}) {
-    const fs::path scene = baked(dir.path(), preset);
+    const fs::path scene = baked_quad(dir.path(), preset);
     for (const std::string filter : {"level0", "param", "brdf"}) {
       const std::vector<std::string> common = {scene.string(), "--res", "40x32", "--spp", "4", "--filter", filter,
                                                "--float", "--aov", "-q", "--mip-cache", (dir.path() / "cache").string()};
@@ -71,7 +61,7 @@ TEST(TextureCache, RendersEqualTheInMemoryRenderBitForBit) {
 // keeps reading the ones it holds open, and its image is still the in-memory render's.
 TEST(TextureCache, TheMipCacheLimitEvictsTheFilesWithoutTakingThemFromTheRender) {
   const testing::TempDir dir;
-  const fs::path scene = baked(dir.path(), "sandstone");
+  const fs::path scene = baked_quad(dir.path(), "sandstone");
   const std::vector<std::string> common = {scene.string(), "--res", "40x32", "--spp", "4", "--float", "-q"};
   std::vector<std::string> memory = common, tiles = common;
   memory.insert(memory.end(), {"--mip-cache", (dir.path() / "memory").string(), "-o", (dir.path() / "a.exr").string()});
@@ -128,7 +118,7 @@ TEST(TextureCache, ResidentSetStaysUnderTheCapPlusTheStatedOverhead) {
 
 TEST(TextureCache, BadValuesAreRefusedInOneLine) {
   const testing::TempDir dir;
-  const fs::path scene = baked(dir.path(), "sandstone");
+  const fs::path scene = baked_quad(dir.path(), "sandstone");
   for (const std::string bad : {"x", "5", "0", "-20", "nan", "inf", "1e10", "20MB"}) {
     const Child r = render({scene.string(), "--texture-cache", bad, "-q", "-o", (dir.path() / "x.exr").string()}, dir.path());
     SCOPED_TRACE(bad);
