@@ -127,45 +127,45 @@ void strip_description(const fs::path& file) {
   fs::rename(tmp, file);
 }
 
+// The three ways in one render, one file each: sandstone's files are its base colour's codes (with a
+// linear table), its metal-roughness image's codes and its normal map's floats.
 TEST(TextureCacheWarm, AFileCutShortOrBadlyDescribedIsWrittenAgainWithOneWarning) {
   const testing::TempDir dir;
   const fs::path scene = baked_quad(dir.path(), "sandstone"), cache = dir.path() / "cache";
   const Child first = render(scene, "level0", cache, dir.path() / "cold.exr", dir.path());
   ASSERT_EQ(first.status, 0) << first.err;
-  // The 8-bit base colour's file: its description holds the code tables.
-  fs::path file;
-  for (const fs::path& f : image_files(cache))
-    if (bytes_of(f).find("\nform codes\n") != std::string::npos) file = f;
-  ASSERT_FALSE(file.empty());
-  const std::string whole = bytes_of(file);
-  const int images = decoded_cold(first.err);
-  ASSERT_GT(images, 0) << first.err;
-  const auto expect_written_again = [&](const std::string& what) {
-    SCOPED_TRACE(what);
-    const fs::path out = dir.path() / (what + ".exr");
-    const Child c = render(scene, "level0", cache, out, dir.path());
-    ASSERT_EQ(c.status, 0) << c.err;
-    EXPECT_EQ(occurrences(c.err, "warning:"), 1) << c.err;
-    EXPECT_NE(c.err.find("warning: the texture cache's file " + file.string() + ": "), std::string::npos) << c.err;
-    EXPECT_NE(c.err.find("written again"), std::string::npos) << c.err;
-    EXPECT_NE(c.err.find(image_counts(1, images - 1)), std::string::npos) << c.err;
-    expect_same_pixels(dir.path() / "cold.exr", out);
-    EXPECT_EQ(fs::file_size(file), whole.size());
-  };
-  // Cut short by a byte: the header and the tiles but the last are whole.
-  fs::resize_file(file, whole.size() - 1);
-  expect_written_again("cut-short");
-  // The code table garbled, its length kept: every code read as 1.
+  ASSERT_EQ(decoded_cold(first.err), 3) << first.err;
+  fs::path color, data, floats;
+  for (const fs::path& f : image_files(cache)) {
+    const std::string bytes = bytes_of(f);
+    (bytes.find("\nform floats\n") != std::string::npos ? floats
+     : bytes.find("\nlinear ") != std::string::npos     ? color
+                                                        : data) = f;
+  }
+  ASSERT_FALSE(color.empty() || data.empty() || floats.empty());
+  const std::uintmax_t sizes[3] = {fs::file_size(color), fs::file_size(data), fs::file_size(floats)};
+  // The base colour's code table garbled, its length kept: every code would read as 1.
   {
-    std::string garbled = whole;
+    std::string garbled = bytes_of(color);
     const std::size_t at = garbled.find("\nraw ");
     ASSERT_NE(at, std::string::npos);
     for (std::size_t k = 0; k < 4 * 256; ++k) garbled.replace(at + 5 + 8 * k, 8, "3f800000");
-    write_bytes(file, garbled);
+    write_bytes(color, garbled);
   }
-  expect_written_again("garbled-tables");
-  strip_description(file);
-  expect_written_again("no-description");
+  strip_description(data);
+  // Cut short by a byte: the header and every tile but the last are whole.
+  fs::resize_file(floats, sizes[2] - 1);
+  const Child c = render(scene, "level0", cache, dir.path() / "warm.exr", dir.path());
+  ASSERT_EQ(c.status, 0) << c.err;
+  EXPECT_EQ(occurrences(c.err, "warning:"), 3) << c.err;
+  for (const fs::path& f : {color, data, floats})
+    EXPECT_EQ(occurrences(c.err, "warning: the texture cache's file " + f.string() + ": "), 1) << f << "\n" << c.err;
+  EXPECT_EQ(occurrences(c.err, "; it is written again"), 3) << c.err;
+  EXPECT_NE(c.err.find(image_counts(3, 0)), std::string::npos) << c.err;
+  expect_same_pixels(dir.path() / "cold.exr", dir.path() / "warm.exr");
+  EXPECT_EQ(fs::file_size(color), sizes[0]);
+  EXPECT_EQ(fs::file_size(data), sizes[1]);
+  EXPECT_EQ(fs::file_size(floats), sizes[2]);
 }
 
 }  // namespace
