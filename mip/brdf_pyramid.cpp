@@ -231,6 +231,7 @@ RadialGrid build_corrections(const MaterialTexels& m, std::vector<BrdfLevel>& le
 
 BrdfPyramid BrdfPyramid::build(const MaterialTexels& m, const BrdfBuildOptions& options,
                                std::vector<BrdfLevelStats>* stats) {
+  refuse_anisotropy(m, "BRDF pyramid");
   BrdfPyramid p;
   p.level0_ = {m.width, m.height};
   p.max_lobes_ = std::clamp(options.reduction.max_lobes, 1, kMaxLobes);

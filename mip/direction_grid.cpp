@@ -52,8 +52,9 @@ void accumulate(const Lobe& lobe, double scale, std::span<glm::dvec3> table, con
   const LobeShape<T> shape = lobe_shape<T>(lobe);
   if (!shape.valid) return;
   constexpr int nd = DirectionGrid::kDirections;
-  if (shape.alpha2_hi > 0 || shape.ggx != T(1)) {
-    // Mixture shapes (lobe.h): V depends on the pair through the mixture's α², so nothing hoists.
+  if (shape.alpha2_hi > 0 || shape.ggx != T(1) || shape.stretched) {
+    // Mixture shapes (lobe.h): V depends on the pair through the mixture's α², so nothing hoists;
+    // nor through a stretch (V's roots depend on each direction's azimuth to it, D's on the pair's).
     for (int pr = 0; pr < DirectionGrid::kPairs; ++pr) {
       const PairTerms<T>* pt;
       if constexpr (std::is_same_v<T, double>)

@@ -16,9 +16,15 @@
 
 namespace svbrdf {
 
-// The level-0 lobe of texel k of a material (exactly f_eff of that texel).
+// The MIP's merged and stored lobes carry no stretch (lobe.h, "Stretched shapes", holds it at level 0
+// only): a pyramid build refuses an anisotropic material rather than drop its stretch. `what` names
+// the build in the error.
+void refuse_anisotropy(const MaterialTexels& m, const char* what);
+
+// The level-0 lobe of texel k of a material (exactly f_eff of that texel, its anisotropy included).
 inline Lobe level0_lobe(const MaterialTexels& m, std::size_t k) {
-  Lobe l = lobe_from_texel(m.base_color[k], m.metallic[k], m.roughness[k], m.normal[k], 1.0f, m.specular_layer(k));
+  Lobe l = lobe_from_texel(m.base_color[k], m.metallic[k], m.roughness[k], m.normal[k], 1.0f, m.specular_layer(k),
+                           m.anisotropy_layer(k));
   if (m.has_coat()) l.coat = std::clamp(m.coat_layer(k).weight, 0.0f, 1.0f);
   if (m.has_sheen()) l.sheen = sheen_share(m.sheen_layer(k));
   return l;

@@ -46,6 +46,23 @@
 // E[n_x]·wi is the exact mean of the texels' cosine factors while no normal is below the light's
 // horizon (the diffuse term is then exact, the design notes' E[ρ·n]); the specular part keeps the
 // same factor so the lobe reflects the same flux as its texels.
+//
+// Stretched shapes. Every shape above is a density of the microfacets' slopes m = −(h_t, h_b)/(n·h)
+// that depends on |m|² = tan²θ only, divided by cos⁴θ. A lobe with a stretch (direction t in n̂'s
+// tangent plane, b = n̂ × t, ratio r ≥ 1) takes the same density of the stretched slopes
+// S^(−1/2)·m, S = diag(r, 1/r) in (t, b): |m|² becomes (h_t²/r + h_b²·r)/(n·h)², and det S = 1
+// keeps every shape normalized. This is the anisotropic GGX of Heitz 2014 ("Understanding the
+// Masking-Shadowing Function in Microfacet-Based BRDFs", §5.3, eq. 85 and 86: the slope stretch) with
+// α_t = α·√r and α_b = α/√r, so α² stays the geometric mean α_t·α_b and the slopes' second moments
+// are α²·S (the isotropic lobe's α²·I stretched). Its Smith Λ stretches the same way: for a direction
+// w at cos θ = c to n̂, α²·(1 − c²) = α²·(w_t² + w_b²) under V's roots becomes α²·(r·w_t² + w_b²/r).
+// KHR_materials_anisotropy's lobe (α along its direction mix(α, 1, strength²), α across it, the
+// renderer's appearance/gltf_surface_bsdf.h) is the GGX atom with r = α_t/α_b and α² = α_t·α_b
+// (lobe_from_texel), exactly. The direction t is the lobe's stretch_dir (a direction of the geometric
+// tangent frame's x–y plane, as the glTF tangent and bitangent span it) projected orthogonally onto
+// n̂'s tangent plane, as the renderer expresses the anisotropy direction in a normal-mapped shading
+// frame (render/surface.cpp); the normals' spread (the horizons below) stays isotropic. A lobe with
+// r = 1 takes none of this: its arithmetic is that of the isotropic shapes, bit for bit.
 #include <algorithm>
 #include <cmath>
 #include <type_traits>
@@ -81,6 +98,11 @@ struct Lobe {
   float alpha2_hi = 0.0f;   // > alpha2: a roughness mixture's upper end
   float skirt = 1.0f;       // c ≥ 1: a spread core's Beckmann share is at c·alpha2 (its skirt); a roughness
                             // mixture's upper part: 1 the band [alpha2, alpha2_hi], 0 an atom at alpha2_hi
+  // A slope stretch (the shapes' anisotropy, "Stretched shapes" below): the direction of the wider
+  // slopes, a unit vector in the geometric tangent frame's x–y plane, projected onto n̂'s tangent plane,
+  // and the ratio r ≥ 1 of the slopes' widths along it and across it; r = 1 is isotropic.
+  glm::vec2 stretch_dir{1.0f, 0.0f};
+  float stretch = 1.0f;
 };
 
 // The glTF layering of KHR_materials_specular (its "fresnel_mix", appearance/gltf.h gltf_layers):
@@ -99,13 +121,23 @@ inline float dielectric_f0(float ior) {
 // The level-0 lobe of a texel with glTF parameters (linear base color, metallic, perceptual
 // roughness), a unit shading normal and its specular layer: α = max(roughness², 1e-3) as brdf-models.md
 // defines.
+// With an anisotropy (KHR_materials_anisotropy) the GGX atom is stretched: α_t = mix(α, 1, strength²)
+// along its direction and α across it, as the renderer computes them, make α² = α_t·α and r = α_t/α
+// ("Stretched shapes" above).
 inline Lobe lobe_from_texel(const glm::vec3& base_color, float metallic, float roughness, const glm::vec3& normal,
-                            float weight = 1.0f, const SpecularLayer& layer = {}) {
+                            float weight = 1.0f, const SpecularLayer& layer = {}, const AnisotropyLayer& aniso = {}) {
   const float alpha = gltf_alpha(roughness);
   Lobe l;
   l.weight = weight;
   l.normal = normal;
   l.alpha2 = alpha * alpha;
+  const float strength = std::clamp(aniso.strength, 0.0f, 1.0f);
+  if (strength > 0.0f) {
+    const float alpha_t = alpha + (1.0f - alpha) * (strength * strength);
+    l.alpha2 = alpha_t * alpha;
+    l.stretch = alpha_t / alpha;
+    l.stretch_dir = aniso.direction;
+  }
   if (layer.plain()) {
     // The plain layer in its own arithmetic, so that its lobes stay bit for bit what they always were.
     l.diffuse = (1.0f - metallic) * base_color;
@@ -187,6 +219,10 @@ struct LobeShape {
   T lmean = 0;                 // its band's logarithmic mean L(l, h) (0: no band)
   T node_a2[3] = {0, 0, 0};    // the band's 3-point Gauss–Legendre nodes in ln α², for V (lobe_brdf)
   bool two_point = false;      // a roughness mixture whose upper part is an atom at alpha2_hi
+  // The stretch ("Stretched shapes" at the top): its frame in n̂'s tangent plane and r, 1/r.
+  bool stretched = false;
+  glm::vec<3, T> st{1, 0, 0}, sb{0, 1, 0};
+  T r = 1, inv_r = 1;
   bool valid = false;
 };
 
@@ -203,6 +239,18 @@ LobeShape<T> lobe_shape(const Lobe& lobe, bool with_nodes = true) {
   const T var = s.len < T(1) ? (T(1) - s.len) * inv_len : T(0);
   s.sigma = var > T(1e-7) ? std::sqrt(var) : T(0);
   s.alpha2 = T(lobe.alpha2);
+  if (lobe.stretch > 1.0f) {
+    // stretch_dir projected onto n̂'s tangent plane; a direction along n̂ itself (n̂ in the x–y plane,
+    // no lobe a texel makes) takes the plane's direction across z.
+    const glm::vec<3, T> d(T(lobe.stretch_dir.x), T(lobe.stretch_dir.y), T(0));
+    glm::vec<3, T> t = d - s.n * glm::dot(s.n, d);
+    if (!(glm::dot(t, t) > T(1e-12))) t = glm::cross(s.n, glm::vec<3, T>(0, 0, 1));
+    s.st = glm::normalize(t);
+    s.sb = glm::cross(s.n, s.st);
+    s.r = T(lobe.stretch);
+    s.inv_r = T(1) / s.r;
+    s.stretched = true;
+  }
   s.ggx = std::clamp(T(lobe.ggx), T(0), T(1));
   s.skirt = std::max(T(1), T(lobe.skirt));
   if (lobe.alpha2_hi > lobe.alpha2 * 1.0001f) {
@@ -283,10 +331,27 @@ LobeSide<T> lobe_wo_side(const LobeShape<T>& s, T c) {
 //   its log-uniform mixture: ∫ α²/(α² + t)² dα²/α² over [l, h] / ln(h/l) = (1/(l + t) − 1/(h + t))/ln(h/l)
 //   with t = tan²θ, which is L(l, h)/((l + t)(h + t)) (÷ π·cos⁴θ)
 //   D_Beckmann = exp(−tan²θ/α²) / (π·α²·cos⁴θ), tan²θ = |n×h|²/(n·h)²   (Walter et al. 2007, eq. 25)
+// The |n×h|² the shapes take: (h·t)²/r + (h·b)²·r for a stretched lobe, with h·t = (n×h)·b and
+// h·b = −(n×h)·t (n̂ unit), which keep their precision at the peak as |n×h|² does.
 template <class T>
-T lobe_d(const LobeShape<T>& s, T ch, const glm::vec<3, T>& nxh) {
+T shape_sin2(const LobeShape<T>& s, const glm::vec<3, T>& nxh) {
+  if (!s.stretched) return glm::dot(nxh, nxh);
+  const T ht = glm::dot(nxh, s.sb), hb = glm::dot(nxh, s.st);
+  return ht * ht * s.inv_r + hb * hb * s.r;
+}
+
+// α²·(1 − c²) under the roots of V for a direction w: α²·(r·(w·t)² + (w·b)²/r) stretched.
+template <class T>
+T stretched_tangent2(const LobeShape<T>& s, const glm::vec<3, T>& w) {
+  const T wt = glm::dot(w, s.st), wb = glm::dot(w, s.sb);
+  return wt * wt * s.r + wb * wb * s.inv_r;
+}
+
+// lobe_d below with |n×h|² given as shape_sin2 makes it.
+template <class T>
+T lobe_d_sin2(const LobeShape<T>& s, T ch, T sin2) {
   if (!(ch > 0)) return T(0);
-  const T a2 = s.alpha2, sin2 = glm::dot(nxh, nxh);
+  const T a2 = s.alpha2;
   const T denom = sin2 + ch * ch * a2;
   if (s.alpha2_hi > 0) {
     // A roughness mixture: its atom at l, and its band or its atom at h.
@@ -312,30 +377,44 @@ T lobe_d(const LobeShape<T>& s, T ch, const glm::vec<3, T>& nxh) {
   return d;
 }
 
+template <class T>
+T lobe_d(const LobeShape<T>& s, T ch, const glm::vec<3, T>& nxh) {
+  return lobe_d_sin2(s, ch, shape_sin2(s, nxh));
+}
+
 // The glTF terms of a lobe for one pair, given its two sides: (0.96·(1 − w)·ρ + w·ρ90)/π + D·V·(F0 + (F90 − F0)·w).
 // spec_scale multiplies the specular term (a coarse texel's radial correction, radial_correction.h).
 template <class T>
 glm::vec<3, T> lobe_brdf(const Lobe& lobe, const LobeShape<T>& s, const PairTerms<T>& p, T ci, T co, T spec_scale = T(1)) {
   using V3 = glm::vec<3, T>;
   const T ch = glm::dot(s.n, p.h);
-  const glm::vec<3, T> nxh = glm::cross(s.n, p.h);
-  const T d = lobe_d(s, ch, nxh);
-  // Height-correlated Smith visibility of glTF (brdf-models.md, `gltf`) at α² = a2.
-  const auto visibility = [&](T a2) { return smith_ggx_visibility(a2, ci, co); };
+  const T sin2 = shape_sin2(s, glm::cross(s.n, p.h));
+  const T d = lobe_d_sin2(s, ch, sin2);
+  // Height-correlated Smith visibility of glTF (brdf-models.md, `gltf`) at α² = a2; stretched, each
+  // root's α²·(1 − c²) is α²·q (stretched_tangent2).
+  T qi = 0, qo = 0;
+  if (s.stretched) qi = stretched_tangent2(s, p.wi), qo = stretched_tangent2(s, p.wo);
+  const auto visibility = [&](T a2) {
+    if (!s.stretched) return smith_ggx_visibility(a2, ci, co);
+    return T(0.5) / (co * std::sqrt(ci * ci + a2 * qi) + ci * std::sqrt(co * co + a2 * qo));
+  };
   T vis;
   if (s.two_point && ch > 0) {
     // A two-point mixture: each atom's V weighted by its share of D at this half vector.
-    const T t = glm::dot(nxh, nxh) / (ch * ch), al = s.alpha2, ah = s.alpha2_hi;
+    const T t = sin2 / (ch * ch), al = s.alpha2, ah = s.alpha2_hi;
     const T dl = (T(1) - s.ggx) * al / ((al + t) * (al + t)), dh = s.ggx * ah / ((ah + t) * (ah + t));
     vis = (dl * visibility(al) + dh * visibility(ah)) / (dl + dh);
   } else if (s.lmean > 0 && ch > 0) {
     // A roughness mixture: V of each component weighted by its share of D at this half vector,
     // ∫ D_a·V_a da/a / ∫ D_a da/a over log-uniform a = α², by 3-point Gauss–Legendre in ln a, and
     // the atom at l with its share 1 − β.
-    const T t = glm::dot(nxh, nxh) / (ch * ch);
+    const T t = sin2 / (ch * ch);
     constexpr T kW[3] = {T(5) / T(18), T(8) / T(18), T(5) / T(18)};
+    bool lanes = false;  // whether the four lanes below took it (isotropic lobes, in float)
 #if defined(__SSE2__)
     if constexpr (std::is_same_v<T, float>) {
+      if (!s.stretched) {
+      lanes = true;
       // The three nodes side by side (the renderer's eval: 2 square roots and 2 divisions of four
       // lanes instead of 6 and 6); the fourth lane is the atom at l (weight 0 without one). It is
       // smith_ggx_visibility (microfacet_core.h) over four lanes, each weighted by its share of D.
@@ -353,9 +432,10 @@ glm::vec<3, T> lobe_brdf(const Lobe& lobe, const LobeShape<T>& s, const PairTerm
       _mm_store_ps(n4, num);
       _mm_store_ps(d4, dk);
       vis = (n4[0] + n4[1] + n4[2] + n4[3]) / (d4[0] + d4[1] + d4[2] + d4[3]);
-    } else
+      }
+    }
 #endif
-    {
+    if (!lanes) {
       T num = 0, den = 0;
       for (int k = 0; k < 3; ++k) {
         const T a = s.node_a2[k], dk = s.ggx * kW[k] * a / ((a + t) * (a + t));

@@ -9,6 +9,7 @@
 
 #include "base/error.h"
 #include "mip/coat_layer.h"
+#include "mip/exact_reference.h"
 #include "mip/sheen_layer.h"
 
 namespace svbrdf {
@@ -158,6 +159,7 @@ ParamPyramid ParamPyramid::build(const MaterialTexels& m) {
 }
 
 ParamPyramid ParamPyramid::level0_only(const MaterialTexels& m) {
+  refuse_anisotropy(m, "parameter pyramid");
   ParamPyramid p;
   p.level0_ = {m.width, m.height};
   if (level_count(p.level0_) == 0) return p;

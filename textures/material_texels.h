@@ -41,6 +41,15 @@ struct SheenLayer {
   float roughness = 0.0f;
 };
 
+// The anisotropy at a texel (KHR_materials_anisotropy): its strength (anisotropyStrength ·
+// anisotropyTexture.b) and the unit direction of increased roughness in the geometric tangent frame's
+// x–y plane (the glTF tangent and bitangent): (cos, sin) of anisotropyRotation, or the texture's RG
+// mapped to [−1, 1], normalized and turned by it. Strength 0 is isotropic.
+struct AnisotropyLayer {
+  float strength = 0.0f;
+  glm::vec2 direction{1.0f, 0.0f};
+};
+
 struct MaterialTexels {
   int width = 0;
   int height = 0;
@@ -68,6 +77,12 @@ struct MaterialTexels {
   std::vector<float> sheen_roughness;
   glm::vec3 sheen_color_factor{0.0f};
   float sheen_roughness_factor = 0.0f;
+  // The anisotropy, per texel where a texture makes it vary (as the sheen): `anisotropy` and
+  // `anisotropy_direction` are empty where the factor and the rotation's direction hold.
+  std::vector<float> anisotropy;
+  std::vector<glm::vec2> anisotropy_direction;  // unit, tangent space
+  float anisotropy_factor = 0.0f;
+  glm::vec2 anisotropy_direction_factor{1.0f, 0.0f};
 
   MaterialTexels() = default;
   MaterialTexels(int w, int h)
@@ -101,6 +116,12 @@ struct MaterialTexels {
   bool has_sheen() const {
     return sheen_color_factor.r > 0.0f || sheen_color_factor.g > 0.0f || sheen_color_factor.b > 0.0f;
   }
+  // Texel k's anisotropy, and whether the material has any.
+  AnisotropyLayer anisotropy_layer(std::size_t k) const {
+    return {anisotropy.empty() ? anisotropy_factor : anisotropy[k],
+            anisotropy_direction.empty() ? anisotropy_direction_factor : anisotropy_direction[k]};
+  }
+  bool has_anisotropy() const { return anisotropy_factor > 0.0f; }
   bool plain_specular() const {
     return specular.empty() && specular_color.empty() &&
            SpecularLayer{specular_factor, specular_color_factor, ior}.plain();
