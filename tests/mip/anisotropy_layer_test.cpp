@@ -6,7 +6,6 @@
 // the metric's pairs against its evaluation.
 #include <gtest/gtest.h>
 
-#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -29,6 +28,7 @@ using gltf_transcription::anisotropic_vd;
 using gltf_transcription::anisotropic_vd_alphas;
 using gltf_transcription::kPi;
 using testing_directions::expect_coarse_exact_is_the_mean;
+using testing_directions::expect_exact_table_is_its_evaluation;
 using testing_directions::random_above;
 
 // A texel's parameters, each exactly a float (the texel arrays hold floats).
@@ -236,16 +236,7 @@ TEST(AnisotropyLayer, ExactTableIsItsEvaluation) {
   Rng rng(66, 1);
   std::vector<Texel> ts;
   for (int k = 0; k < 16; ++k) ts.push_back(random_texel(rng, 0.1));
-  const MaterialTexels m = texels_of(ts, 4);
-  const ExactReference exact(m);
-  const DirectionGrid& g = DirectionGrid::get();
-  for (const auto& [level, i, j] : {std::array{0, 1, 2}, std::array{0, 3, 0}, std::array{2, 0, 0}}) {
-    const BrdfTable t = exact.table(level, i, j);
-    for (int p = 0; p < DirectionGrid::kPairs; p += 7) {
-      const glm::dvec3 want = exact.eval(level, i, j, g.direction(DirectionGrid::wi_index(p)), g.direction(DirectionGrid::wo_index(p)));
-      for (int c = 0; c < 3; ++c) EXPECT_NEAR(t[static_cast<std::size_t>(p)][c], want[c], 1e-12 + 1e-9 * want[c]) << "pair " << p;
-    }
-  }
+  expect_exact_table_is_its_evaluation(texels_of(ts, 4));
 }
 
 // The pyramids' merged and stored lobes carry no stretch: their builds refuse an anisotropic

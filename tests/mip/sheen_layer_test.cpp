@@ -26,6 +26,7 @@ namespace {
 using gltf_transcription::ggx_vd;
 using gltf_transcription::kPi;
 using testing_directions::expect_coarse_exact_is_the_mean;
+using testing_directions::expect_exact_table_is_its_evaluation;
 using testing_directions::random_above;
 
 // A texel's parameters.
@@ -179,16 +180,7 @@ TEST(SheenLayer, ExactTableIsItsEvaluation) {
   Rng rng(53, 1);
   for (const bool coated : {false, true}) {
     const std::vector<Texel> ts = random_texels(rng, 16, coated);
-    const MaterialTexels m = texels_of(ts, 4, coated);
-    const ExactReference exact(m);
-    const DirectionGrid& g = DirectionGrid::get();
-    for (const auto& [level, i, j] : {std::array{0, 1, 2}, std::array{1, 1, 0}, std::array{2, 0, 0}}) {
-      const BrdfTable t = exact.table(level, i, j);
-      for (int p = 0; p < DirectionGrid::kPairs; p += 7) {
-        const glm::dvec3 want = exact.eval(level, i, j, g.direction(DirectionGrid::wi_index(p)), g.direction(DirectionGrid::wo_index(p)));
-        for (int c = 0; c < 3; ++c) EXPECT_NEAR(t[static_cast<std::size_t>(p)][c], want[c], 1e-12 + 1e-9 * want[c]) << "pair " << p;
-      }
-    }
+    expect_exact_table_is_its_evaluation(texels_of(ts, 4, coated));
   }
 }
 
