@@ -54,29 +54,31 @@ inline Error creation_error(const std::string& where, const std::string& what, i
                            : environment_error(where, what + ": " + errno_text(error));
 }
 
-// The temporary beside `path`: ".STEM.tmpPID.EXT". It keeps the target's extension, so writers that
-// choose a format by extension (OpenImageIO) see the right one; the process id lets the next run
-// tell a stale temporary of a killed run from one being written now (is_stale_temp_of).
-inline std::filesystem::path temp_path_for(const std::filesystem::path& path) {
+// The file beside `path` that this process owns under `tag`: ".STEM" TAG "PID.EXT". The temporary a
+// writer renames into place has the tag ".tmp" (temp_path_for); it keeps the target's extension, so
+// writers that choose a format by extension (OpenImageIO) see the right one; the process id lets the
+// next run tell a stale one of a killed run from one in use now (is_stale_temp_of).
+inline std::filesystem::path process_path_for(const std::filesystem::path& path, const char* tag) {
   namespace fs = std::filesystem;
   const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
   // Appended piece by piece: GCC 12 warns falsely (-Wrestrict, PR 105651) on "." + std::string.
   std::string name = ".";
   name += path.stem().string();
-  name += ".tmp";
+  name += tag;
   name += std::to_string(::getpid());
   name += path.extension().string();
   return dir / name;
 }
+inline std::filesystem::path temp_path_for(const std::filesystem::path& path) { return process_path_for(path, ".tmp"); }
 
-// Whether `name` is ".STEM.tmpPID.EXT" for `path` (temp_path_for's pattern) with PID a process that
-// no longer exists. A PID that exists may be an unrelated process that reused it; such a file is
-// left alone rather than risk removing a file another run is writing.
-inline bool is_stale_temp_of(const std::string& name, const std::filesystem::path& path) {
+// Whether `name` is ".STEM" TAG "PID.EXT" for `path` (process_path_for's pattern; the tag ".tmp" by
+// default) with PID a process that no longer exists. A PID that exists may be an unrelated process
+// that reused it; such a file is left alone rather than risk removing a file another run is using.
+inline bool is_stale_temp_of(const std::string& name, const std::filesystem::path& path, const char* tag = ".tmp") {
   // Appended piece by piece: GCC 12 warns falsely (-Wrestrict, PR 105651) on "." + std::string.
   std::string prefix = ".";
   prefix += path.stem().string();
-  prefix += ".tmp";
+  prefix += tag;
   const std::string suffix = path.extension().string();
   if (name.size() <= prefix.size() + suffix.size() || name.compare(0, prefix.size(), prefix) != 0 ||
       name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)

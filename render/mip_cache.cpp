@@ -25,12 +25,13 @@ bool is_entry_name(const std::string& name) {
   return (exr || tx) && name.find_first_not_of("0123456789abcdef") == 64;
 }
 
-// A temporary left by a writer that was killed (".KEY.tmpPID.exr" or ".tx" whose process is gone).
+// A temporary left by a writer that was killed (".KEY.tmpPID.exr" or ".tx" whose process is gone), or
+// a texture cache file's link held by a render that was (".KEY.heldPID.tx", render/texture_tiles.h).
 bool is_stale_temporary(const fs::path& folder, const std::string& name) {
-  const std::size_t tmp = name.find(".tmp");
-  if (name.empty() || name[0] != '.' || tmp == std::string::npos) return false;
-  const std::string key = name.substr(1, tmp - 1);
-  return is_stale_temp_of(name, folder / (key + ".exr")) || is_stale_temp_of(name, folder / (key + ".tx"));
+  if (name.empty() || name[0] != '.') return false;
+  const std::string key = name.substr(1, std::min<std::size_t>(64, name.size() - 1));
+  return is_stale_temp_of(name, folder / (key + ".exr")) || is_stale_temp_of(name, folder / (key + ".tx")) ||
+         is_stale_temp_of(name, folder / (key + ".tx"), kHeldTag);
 }
 
 std::string megabytes(std::uint64_t bytes) {

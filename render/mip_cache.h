@@ -14,8 +14,8 @@
 //
 // Size: at most max_bytes of entries, the least recently used (by modification time, which a hit
 // renews) removed first after each store. The texture cache's files in the folder
-// (render/texture_tiles.h) count and go the same way; a render holds its own open, so removing them
-// under it takes nothing from it.
+// (render/texture_tiles.h) count and go the same way; a render reads its own through links of its own,
+// so removing them under it takes nothing from it.
 //
 // Concurrent renders may share a folder: an entry is written to a temporary beside it (the process
 // id in its name, base/atomic_file.h) and renamed into place, so a reader sees a whole entry or none;
@@ -32,6 +32,10 @@
 #include "mip/mip_file.h"
 
 namespace svbrdf {
+
+// The tag of the links through which a render reads the texture cache's files (render/texture_tiles.h):
+// ".KEY.heldPID.tx", removed by the eviction once that process is gone.
+inline constexpr char kHeldTag[] = ".held";
 
 class MipCache {
  public:

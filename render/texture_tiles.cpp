@@ -12,6 +12,7 @@
 
 #include "base/atomic_file.h"
 #include "base/error.h"
+#include "render/mip_cache.h"
 
 namespace svbrdf {
 
@@ -64,6 +65,11 @@ TextureTiles::~TextureTiles() {
       if (pin.tile) cache_->release_tile(pin.tile);
   pins_.clear();
   OIIO::ImageCache::destroy(cache_);
+  for (const File& f : files_)
+    if (f.held) {
+      std::error_code ec;
+      fs::remove(f.read_path, ec);  // best effort: a link left behind is removed by a later eviction
+    }
 }
 
 std::optional<TextureTiles::FoundImage> TextureTiles::inspect_image(const std::string& key, PixelFormat format,
@@ -138,7 +144,19 @@ int TextureTiles::add(const std::string& key, int width, int height, PixelFormat
 
 int TextureTiles::open_file(const fs::path& path, int tile_side, std::vector<Level> levels) {
   File f;
+  // Read through a hard link of this process's own (".KEY.heldPID.tx"): an eviction of the folder,
+  // this render's or another's, removes the file's name, not the link, so the texels stay readable
+  // whether OpenImageIO keeps the file open or opens it again, and read_all can open it. The link is
+  // removed when this ends (a killed render's by a later eviction, render/mip_cache.h). Where the
+  // folder takes no hard links the file is read by its name.
+  const fs::path held = process_path_for(path, kHeldTag);
+  std::error_code ec;
+  fs::remove(held, ec);  // this process's link of an earlier opening of the same file
+  ec.clear();
+  fs::create_hard_link(path, held, ec);
+  f.held = !ec;
   f.path = path;
+  f.read_path = f.held ? held : path;
   f.tile_shift = std::countr_zero(unsigned(tile_side));
   f.levels = std::move(levels);
   std::size_t tile_bytes = 0;
@@ -147,7 +165,7 @@ int TextureTiles::open_file(const fs::path& path, int tile_side, std::vector<Lev
   if (zero_tile_.size() < tile_bytes) zero_tile_.assign(tile_bytes, std::byte{0});
   // Opened now and kept open (see the header): one more file than are added is always allowed.
   cache_->attribute("max_open_files", std::max(100, int(files_.size()) + 16));
-  f.handle = cache_->get_image_handle(OIIO::ustring(path.string()));
+  f.handle = cache_->get_image_handle(OIIO::ustring(f.read_path.string()));
   OIIO::ImageSpec spec;
   if (!f.handle || !cache_->get_imagespec(f.handle, nullptr, spec, 0, 0))
     throw environment_error(path.string(), "the texture cache cannot open its file: " + cache_->geterror());
@@ -276,7 +294,7 @@ std::vector<std::byte> TextureTiles::read_all(int file) const {
   const File& f = files_[std::size_t(file)];
   const Level& l = f.levels[0];
   std::vector<std::byte> out(l.texel_bytes * std::size_t(l.width) * std::size_t(l.height));
-  const auto in = OIIO::ImageInput::open(f.path.string());
+  const auto in = OIIO::ImageInput::open(f.read_path.string());
   if (!in || !in->read_image(0, 0, 0, 4, l.texel_bytes == 4 ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::FLOAT,
                              out.data()))
     throw environment_error(f.path.string(), "the texture cache cannot read its file: " +

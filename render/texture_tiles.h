@@ -18,8 +18,11 @@
 // the folder see a whole file or none; one that is there with the expected size and layout is
 // reused, not written again: an image file must hold its description (render/image_file_description.h),
 // which names its key, and read to its last tile; one that does not gets one warning and is written
-// again. Each file is opened when added and stays open (the cache's limit on open files is raised to
-// hold them all), so an eviction by another render cannot pull it from under this one.
+// again. Each file is read through a hard link that this process makes beside it when it adds it
+// (".KEY.heldPID.tx") and removes at the end: an eviction (this render's, after each material it
+// builds, or another's) removes the file's name, not the link, so it cannot pull the file from under
+// the render, whether OpenImageIO keeps it open or opens it again. A link left by a killed render is
+// removed by a later eviction (render/mip_cache.h).
 //
 // Lookups: a per-thread table of pinned tiles (ImageCache::get_tile), direct-mapped by file, level and
 // tile, so that a lookup whose tile a recent lookup of the same thread read costs a hash and a
@@ -189,7 +192,9 @@ class TextureTiles {
     std::size_t texel_bytes = 0;  // an image's 4 (uint8) or 16 (float); a record's 4 a word
   };
   struct File {
-    std::filesystem::path path;
+    std::filesystem::path path;       // its name in the folder (what messages name)
+    std::filesystem::path read_path;  // what it is read by: this process's link of it, or its name (open_file)
+    bool held = false;
     OIIO::pvt::ImageCacheFile* handle = nullptr;
     int tile_shift = kTileShift;
     std::vector<Level> levels;  // an image's one

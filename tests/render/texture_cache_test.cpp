@@ -3,16 +3,19 @@
 // resident set of a render whose textures are 4× the cap stays under the cap plus the stated
 // overhead; bad values are refused in one line.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
 #include "base/json.h"
 #include "gltf/writer.h"
+#include "tests/common/spawn.h"
 #include "tests/common/temp_dir.h"
 #include "tests/render/quad_row.h"
 #include "tests/render/render_child.h"
@@ -57,12 +60,16 @@ TEST(TextureCache, RendersEqualTheInMemoryRenderBitForBit) {
 }
 
 // The texture cache's files live in the MIP cache's folder and count in its size: a limit smaller
-// than any file removes them all after the brdf build is stored, while the render that wrote them
-// keeps reading the ones it holds open, and its image is still the in-memory render's.
+// than any file removes them all after each material's brdf build is stored, while the render that
+// wrote them keeps reading them through its links. Three materials, so that the second and third
+// builds read back images whose files the first one's eviction removed; the image is still the
+// in-memory render's. Afterwards the folder holds neither the files nor the render's links, and an
+// eviction removes a link that a killed render left.
 TEST(TextureCache, TheMipCacheLimitEvictsTheFilesWithoutTakingThemFromTheRender) {
   const testing::TempDir dir;
-  const fs::path scene = baked_quad(dir.path(), "sandstone");
-  const std::vector<std::string> common = {scene.string(), "--res", "40x32", "--spp", "4", "--float", "-q"};
+  const fs::path scene = testing::quads(dir.path(), 3, 32, true, /*unlit=*/false);
+  const std::vector<std::string> common = {scene.string(), "--res", "48x16", "--spp", "4", "--float", "-q",
+                                           "--filter", "brdf"};
   std::vector<std::string> memory = common, tiles = common;
   memory.insert(memory.end(), {"--mip-cache", (dir.path() / "memory").string(), "-o", (dir.path() / "a.exr").string()});
   tiles.insert(tiles.end(), {"--mip-cache", (dir.path() / "tiles").string(), "--mip-cache-size", "0.001", "--texture-cache",
@@ -72,7 +79,17 @@ TEST(TextureCache, TheMipCacheLimitEvictsTheFilesWithoutTakingThemFromTheRender)
   const Child t = render(tiles, dir.path());
   ASSERT_EQ(t.status, 0) << t.err;
   expect_same_pixels(dir.path() / "a.exr", dir.path() / "b.exr");
-  for (const auto& e : fs::directory_iterator(dir.path() / "tiles")) EXPECT_NE(e.path().extension(), ".tx") << e.path();
+  for (const auto& e : fs::directory_iterator(dir.path() / "tiles")) ADD_FAILURE() << "left in the folder: " << e.path();
+
+  // A killed render's link (its process gone) goes at the next eviction; a live process's stays.
+  const std::string key(64, 'a');
+  const fs::path dead = dir.path() / "tiles" / ("." + key + ".held" + std::to_string(testing::dead_pid()) + ".tx");
+  const fs::path live = dir.path() / "tiles" / ("." + key + ".held" + std::to_string(::getppid()) + ".tx");
+  for (const fs::path& p : {dead, live}) std::ofstream(p) << "a link";
+  const Child again = render(tiles, dir.path());
+  ASSERT_EQ(again.status, 0) << again.err;
+  EXPECT_FALSE(fs::exists(dead));
+  EXPECT_TRUE(fs::exists(live));
 }
 
 // The cap's bound: what the render may hold beyond the cap and beyond a render of the same quads
