@@ -10,7 +10,13 @@
 #   bench/render/texture_cache_setup.sh BUILD SCENE.gltf [ROUNDS=2] [OTHER_BUILD] -- [render options...]
 set -euo pipefail
 build=$1 scene=$2 rounds=${3:-2} other=${4:-}
-shift $(($# < 4 ? $# : 4))
+# The render options follow the first "--" (OTHER_BUILD may be left out before it).
+if [ "$other" = -- ]; then
+  other=
+  shift $(($# < 3 ? $# : 3))
+else
+  shift $(($# < 4 ? $# : 4))
+fi
 [ "${1:-}" = -- ] && shift
 out=$(mktemp -d /tmp/svbrdf-texture-cache-setup.XXXXXX)
 trap 'rm -rf "$out"' EXIT
