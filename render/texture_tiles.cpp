@@ -51,7 +51,8 @@ void finish(OIIO::ImageOutput& out, bool ok, const fs::path& tmp, const fs::path
 
 TextureTiles::TextureTiles(fs::path folder, double megabytes) : folder_(std::move(folder)) {
   cache_ = OIIO::ImageCache::create(/*shared=*/false);
-  cache_->attribute("max_memory_MB", float(megabytes));
+  // The cap is in 10^6 bytes (the option's MB); OpenImageIO's max_memory_MB counts 2^20 bytes.
+  cache_->attribute("max_memory_MB", float(megabytes * 1e6 / 1048576.0));
   // Tiles as the files store them (8-bit stays 8-bit), no tiling made up for untiled files, and no
   // sharing of tiles between files found equal: each file is ours and tiled.
   cache_->attribute("forcefloat", 0);
