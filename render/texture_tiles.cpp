@@ -2,9 +2,13 @@
 
 #include <fcntl.h>
 #include <sys/stat.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 #include <algorithm>
 #include <bit>
+#include <chrono>
 #include <memory>
 
 #include <OpenImageIO/imagecache.h>
@@ -274,6 +278,7 @@ void TextureTiles::refill(Pins& pins, Pin& pin, int file, std::uint64_t key) con
   const int level = int((key >> kLevelShift) & 31);
   const int x = int(key & 0x1FFFFF) << f.tile_shift, y = int((key >> 21) & 0x1FFFFF) << f.tile_shift;
   OIIO::ImageCache::Tile* tile = cache_->get_tile(f.handle, pins.info, level, 0, x, y, 0);
+  return_freed_pages();
   OIIO::TypeDesc format;
   const void* pixels = tile ? cache_->tile_pixels(tile, format) : nullptr;
   // The tile's bytes per texel: the cache's channels are the file's (checked when it was opened).
@@ -289,6 +294,25 @@ void TextureTiles::refill(Pins& pins, Pin& pin, int file, std::uint64_t key) con
     return;
   }
   pin.key = key, pin.tile = tile, pin.pixels = static_cast<const std::byte*>(pixels);
+}
+
+// glibc's malloc_trim(0) releases every whole free page of every arena (MADV_DONTNEED; glibc manual,
+// "Memory Allocation Tunables" and malloc_trim(3): since 2.8 not only the top of the heap), which
+// the cache's eviction leaves behind. It walks the free lists under each arena's lock; at most once
+// every kReturnInterval, and only while tiles are read (a miss is what frees and allocates), its cost
+// stays a small share of the render (bench/results/render.md). Elsewhere the allocator keeps them.
+void TextureTiles::return_freed_pages() const {
+#ifdef __GLIBC__
+  constexpr std::int64_t kReturnInterval = 100'000'000;  // ns
+  const std::int64_t now = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                               std::chrono::steady_clock::now().time_since_epoch())
+                               .count();
+  std::int64_t last = last_return_ns_.load(std::memory_order_relaxed);
+  if (now - last < kReturnInterval ||
+      !last_return_ns_.compare_exchange_strong(last, now, std::memory_order_relaxed))
+    return;  // not yet, or another thread does it now
+  ::malloc_trim(0);
+#endif
 }
 
 std::vector<std::byte> TextureTiles::read_all(int file) const {

@@ -29,6 +29,12 @@
 // compare, not a call into the cache (bench/results/render.md). A thread pins at most kPinnedTiles
 // tiles; the cache's own bookkeeping counts them, so they are inside the cap.
 //
+// The cap counts tile bytes; the process holds what its allocator keeps too. A tile evicted leaves a
+// hole in the heap that libtiff's and zlib's buffers of each later read split, so the heap grows past
+// the tiles it holds (by 30-65 % of a 100-400 MB cap on the random family, bench/results/render.md);
+// return_freed_pages() gives the holes' whole pages back to the system, so the resident set follows
+// the cache.
+//
 // A tile that cannot be read (the disk failed, a corrupt file) reads as zeros and is recorded:
 // failure() says so after the render, which then fails (exit 1) rather than pass an image with holes.
 #include <array>
@@ -221,6 +227,8 @@ class TextureTiles {
     std::array<Pin, kPinnedTiles> slots{};
   };
   void refill(Pins& pins, Pin& pin, int file, std::uint64_t key) const;
+  // Hands the pages of freed tiles back to the system, at most once a kReturnInterval (see the .cpp).
+  void return_freed_pages() const;
 
   std::filesystem::path folder_;
   OIIO::ImageCache* cache_ = nullptr;
@@ -234,6 +242,7 @@ class TextureTiles {
   mutable std::mutex mutex_;  // guards failure_
   mutable std::string failure_;
   mutable std::atomic<bool> failed_{false};
+  mutable std::atomic<std::int64_t> last_return_ns_{0};  // steady clock, when pages were last handed back
 };
 
 }  // namespace svbrdf
