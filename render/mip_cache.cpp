@@ -133,14 +133,25 @@ void MipCache::evict() {
   std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
     return a.used.tv_sec != b.used.tv_sec ? a.used.tv_sec < b.used.tv_sec : a.used.tv_nsec < b.used.tv_nsec;
   });
+  bool removed_in_use = false;
   for (const Entry& e : entries) {
     if (total <= max_bytes_) break;
     std::error_code rm;
     fs::remove(e.path, rm);  // gone already (another render's eviction): counted out all the same
     total -= e.bytes;
+    removed_in_use = removed_in_use || fs::exists(process_path_for(e.path, kHeldTag), rm);
     if (&e == &entries.back())
       warn("the MIP cache entry " + e.path.string() + " (" + megabytes(e.bytes) + ") is larger than the cache's limit of " +
            megabytes(max_bytes_) + " (--mip-cache-size); it was not kept");
+  }
+  if (removed_in_use) {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      if (std::exchange(below_use_said_, true)) return;
+    }
+    warn("the MIP cache's limit of " + megabytes(max_bytes_) + " (--mip-cache-size) is below the files this render "
+         "uses: it removed some of them (the render still reads them), so the next render builds them again; a "
+         "larger limit keeps them");
   }
 }
 

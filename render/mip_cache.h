@@ -68,7 +68,9 @@ class MipCache {
   std::vector<std::string> take_warnings();
 
   // Removes the least recently used entries until the folder is within the size limit (store() does
-  // after each entry; a writer of the texture cache's files after each of those).
+  // after each entry; a writer of the texture cache's files after each of those). Removing a file
+  // this process reads through its link (render/texture_tiles.h) leaves the render whole but the
+  // next one cold: a warning, once, says the limit is below what the render uses.
   void evict();
 
  private:
@@ -79,6 +81,7 @@ class MipCache {
   std::mutex mutex_;  // guards the members below; entries are files, shared with other processes
   std::vector<std::string> warnings_;
   bool unwritable_ = false;  // a store failed for the folder's sake: later stores are skipped
+  bool below_use_said_ = false;  // an eviction removed a file this process reads (said once)
 };
 
 }  // namespace svbrdf

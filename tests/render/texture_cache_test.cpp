@@ -79,6 +79,12 @@ TEST(TextureCache, TheMipCacheLimitEvictsTheFilesWithoutTakingThemFromTheRender)
   const Child t = render(tiles, dir.path());
   ASSERT_EQ(t.status, 0) << t.err;
   expect_same_pixels(dir.path() / "a.exr", dir.path() / "b.exr");
+  // The render is whole, but the next one starts cold: said once, with the option to raise.
+  const std::string below = "(--mip-cache-size) is below the files this render uses";
+  const std::size_t at = t.err.find(below);
+  EXPECT_NE(at, std::string::npos) << t.err;
+  EXPECT_EQ(t.err.find(below, at + 1), std::string::npos) << "said more than once:\n" << t.err;
+  EXPECT_EQ(m.err.find(below), std::string::npos) << m.err;
   for (const auto& e : fs::directory_iterator(dir.path() / "tiles")) ADD_FAILURE() << "left in the folder: " << e.path();
 
   // A killed render's link (its process gone) goes at the next eviction; a live process's stays.
