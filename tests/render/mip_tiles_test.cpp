@@ -192,10 +192,11 @@ TEST(MipTiles, ResidentSetStaysUnderTheCapPlusTheStatedOverhead) {
   ASSERT_EQ(record_files(dir.path() / "cache").size(), std::size_t(kCount));
   const Child run = testing::render_child(with(textured, cached), dir.path());
   ASSERT_EQ(run.status, 0) << run.err;
-  const double overhead_mb = 20.0;
+  // The stated overhead (README, docs/design-notes.md): 20 MB and 5 % of the cap.
+  const double overhead_mb = 20.0 + 0.05 * kCapMb;
   const double above_mb = double(run.peak_kb - base.peak_kb) * 1024 / 1e6;
   std::printf(
-      "resident above the untextured render: %.1f MB (cap %.0f MB + %.0f MB); the writing render's: %.1f "
+      "resident above the untextured render: %.1f MB (cap %.0f MB + %.1f MB); the writing render's: %.1f "
       "MB\n",
       above_mb, kCapMb, overhead_mb, double(first.peak_kb - base.peak_kb) * 1024 / 1e6);
   EXPECT_LT(above_mb, kCapMb + overhead_mb)
