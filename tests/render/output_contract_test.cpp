@@ -191,10 +191,13 @@ TEST(OutputContract, ASigkillWhileWritingLeavesEachFileWholeAndTheNextRunRemoves
     if (caught) ::kill(pid, SIGKILL);
     const testing::ProgramEnd end = testing::wait_program(pid, 60);
     ASSERT_FALSE(end.timed_out) << testing::slurp(dir.path() / "stderr.txt");
-    if (end.signal != SIGKILL)  // the write ended before a temporary was seen or before the kill landed
+    if (end.signal != SIGKILL) {  // the write ended before a temporary was seen or before the kill landed
       ASSERT_TRUE(end.exited && end.code == 0) << testing::slurp(dir.path() / "stderr.txt");
+    }
     left_temporaries = !test::temp_files(dir.path()).empty();
-    if (left_temporaries) EXPECT_EQ(end.signal, SIGKILL) << "only a killed run leaves its temporaries";
+    if (left_temporaries) {
+      EXPECT_EQ(end.signal, SIGKILL) << "only a killed run leaves its temporaries";
+    }
     for (const auto& [path, bytes] : previous) {
       ASSERT_TRUE(fs::exists(path)) << path << " vanished";
       if (testing::slurp(path) == bytes) continue;
