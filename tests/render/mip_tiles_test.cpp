@@ -147,7 +147,8 @@ TEST(MipTiles, RendersEqualTheInMemoryRenderBitForBit) {
 // texture, whose MIP data (the records of both pyramids: level 0's 32 bytes a texel, the coarse
 // levels' lobes, slots and corrections) are about 95 MB, more than 4× the 10 MB cap; a footprint scale
 // of 1/8 makes the filter read level 0 (52 MB of records), each quad's every tile. What the render
-// may hold beyond the cap and beyond a render of the same quads without textures is 20 MB:
+// may hold beyond the cap and beyond a render of the same quads without textures is 20 MB and 10 %
+// of the cap (21 MB here):
 // OpenImageIO's bookkeeping beyond the tile bytes it counts against the cap (a tile's entry, its
 // hash slot) and the state of the 128 files it keeps open (the textures' and the records', their
 // TIFF directories and zip streams), the threads' pinned tiles (TextureTiles::kPinnedTiles: 64 tiles
@@ -192,8 +193,8 @@ TEST(MipTiles, ResidentSetStaysUnderTheCapPlusTheStatedOverhead) {
   ASSERT_EQ(record_files(dir.path() / "cache").size(), std::size_t(kCount));
   const Child run = testing::render_child(with(textured, cached), dir.path());
   ASSERT_EQ(run.status, 0) << run.err;
-  // The stated overhead (README, docs/design-notes.md): 20 MB and 5 % of the cap.
-  const double overhead_mb = 20.0 + 0.05 * kCapMb;
+  // The stated overhead (README, docs/design-notes.md): 20 MB and 10 % of the cap.
+  const double overhead_mb = 20.0 + 0.10 * kCapMb;
   const double above_mb = double(run.peak_kb - base.peak_kb) * 1024 / 1e6;
   std::printf(
       "resident above the untextured render: %.1f MB (cap %.0f MB + %.1f MB); the writing render's: %.1f "

@@ -99,8 +99,9 @@ TEST(TextureCache, TheMipCacheLimitEvictsTheFilesWithoutTakingThemFromTheRender)
 }
 
 // The cap's bound: what the render may hold beyond the cap and beyond a render of the same quads
-// without textures is 20 MB — OpenImageIO's bookkeeping beyond the tile bytes it counts against the
-// cap, the buffers of the 64 files it keeps open, the threads' pinned tiles (TextureTiles), and the
+// without textures is 20 MB and 10 % of the cap (21 MB here) — OpenImageIO's bookkeeping beyond the
+// tile bytes it counts against the cap, the buffers of the 64 files it keeps open, the threads'
+// pinned tiles (TextureTiles), what the allocator cannot give back (render/texture_tiles.h), and the
 // loader's one image in flight (its floats, their linearized copy and its codes: 36 bytes a texel,
 // 9.4 MB at 512², a transient below the baseline's own peak). Measured 21–25 MB in all, against 72
 // MB with the cap ignored (2 threads, EPYC).
@@ -129,8 +130,8 @@ TEST(TextureCache, ResidentSetStaysUnderTheCapPlusTheStatedOverhead) {
   ASSERT_EQ(render(with(textured, cached), dir.path()).status, 0);
   const Child run = render(with(textured, cached), dir.path());
   ASSERT_EQ(run.status, 0) << run.err;
-  // The stated overhead (README, docs/design-notes.md): 20 MB and 5 % of the cap.
-  const double overhead_mb = 20.0 + 0.05 * kCapMb;
+  // The stated overhead (README, docs/design-notes.md): 20 MB and 10 % of the cap.
+  const double overhead_mb = 20.0 + 0.10 * kCapMb;
   const double above_mb = double(run.peak_kb - base.peak_kb) * 1024 / 1e6;
   std::printf("resident above the untextured render: %.1f MB (cap %.0f MB + %.1f MB)\n", above_mb, kCapMb, overhead_mb);
   EXPECT_LT(above_mb, kCapMb + overhead_mb) << "peak " << run.peak_kb << " kB against " << base.peak_kb
