@@ -296,9 +296,8 @@ void TextureTiles::refill(Pins& pins, Pin& pin, int file, std::uint64_t key) con
   pin.key = key, pin.tile = tile, pin.pixels = static_cast<const std::byte*>(pixels);
 }
 
-// glibc's malloc_trim(0) releases every whole free page of every arena (MADV_DONTNEED; glibc manual,
-// "Memory Allocation Tunables" and malloc_trim(3): since 2.8 not only the top of the heap), which
-// the cache's eviction leaves behind. It walks the free lists under each arena's lock; at most once
+// glibc's malloc_trim(0) releases every whole free page of every arena, not only the top of the heap
+// (malloc_trim(3): glibc 2.8 and later), which the cache's eviction leaves behind. It walks the free lists under each arena's lock; at most once
 // every kReturnInterval, and only while tiles are read (a miss is what frees and allocates), its cost
 // stays a small share of the render (bench/results/render.md). Elsewhere the allocator keeps them.
 void TextureTiles::return_freed_pages() const {

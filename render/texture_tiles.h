@@ -30,10 +30,10 @@
 // tiles; the cache's own bookkeeping counts them, so they are inside the cap.
 //
 // The cap counts tile bytes; the process holds what its allocator keeps too. A tile evicted leaves a
-// hole in the heap that libtiff's and zlib's buffers of each later read split, so the heap grows past
-// the tiles it holds (by 30-65 % of a 100-400 MB cap on the random family, bench/results/render.md);
-// return_freed_pages() gives the holes' whole pages back to the system, so the resident set follows
-// the cache.
+// hole in the heap that libtiff's and libdeflate's buffers of each later read split, so new tiles
+// grow the heap past the tiles it holds (at a 100 MB cap, 60 MiB of free chunks beside the tiles,
+// bench/results/render.md); return_freed_pages() gives the holes' whole pages back to the system, so
+// the resident set follows the cache within the overhead README states.
 //
 // A tile that cannot be read (the disk failed, a corrupt file) reads as zeros and is recorded:
 // failure() says so after the render, which then fails (exit 1) rather than pass an image with holes.
