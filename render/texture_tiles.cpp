@@ -297,10 +297,10 @@ void TextureTiles::refill(Pins& pins, Pin& pin, int file, std::uint64_t key) con
 }
 
 // glibc's malloc_trim(0) releases every whole free page of every arena, not only the top of the heap
-// (malloc_trim(3): glibc 2.8 and later), which the cache's eviction leaves behind. It walks the free lists under each arena's lock; at most once
-// every kReturnInterval, and only while tiles are read (a miss is what frees and allocates), it costs
-// about 1 % of a render's CPU, 6 % where a full cache churns (bench/results/render.md). Elsewhere
-// the allocator keeps them.
+// (malloc_trim(3): glibc 2.8 and later), which the cache's eviction leaves behind. It walks the free
+// lists under each arena's lock: run at most every kReturnInterval, and only while tiles are read (a
+// miss is what frees and allocates), it costs about 1 % of a render's CPU, 6 % where a full cache
+// churns (bench/results/render.md). Elsewhere the allocator keeps the pages.
 void TextureTiles::return_freed_pages() const {
 #ifdef __GLIBC__
   constexpr std::int64_t kReturnInterval = 100'000'000;  // ns
