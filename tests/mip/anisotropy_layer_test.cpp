@@ -152,6 +152,16 @@ StretchFrame frame_of(const Lobe& l) {
   return {n, t, glm::cross(n, t)};
 }
 
+// A random orientation of `l`: its mean normal within 0.4 rad of z, its stretch direction any, its
+// stretch in [1, 1 + max_extra].
+void orient_randomly(Lobe& l, Rng& rng, float max_extra) {
+  const float tilt = 0.4f * rng.next_float(), phi = 6.2831853f * rng.next_float();
+  l.normal = glm::vec3(std::sin(tilt) * std::cos(phi), std::sin(tilt) * std::sin(phi), std::cos(tilt));
+  const float psi = 6.2831853f * rng.next_float();
+  l.stretch_dir = glm::vec2(std::cos(psi), std::sin(psi));
+  l.stretch = 1.0f + max_extra * rng.next_float();
+}
+
 // Every shape of lobe.h, stretched, is its isotropic shape at the unstretched slopes: with slopes
 // m = (h·t, h·b)/(h·n), D_r(h)·(n·h)⁴ = D_1(h')·(n·h')⁴ where h' has slopes (m_t/√r, m_b·√r) — the
 // slope density of the stretch S = diag(r, 1/r), det S = 1 (Heitz 2014, §5.3).
@@ -168,11 +178,7 @@ TEST(AnisotropyLayer, StretchedShapesAreTheIsotropicShapesOfStretchedSlopes) {
   for (Lobe shape : {atom, band, two_point, core}) {
     shape.weight = 1.0f;
     for (int trial = 0; trial < 400; ++trial) {
-      const float tilt = 0.4f * rng.next_float(), phi = 6.2831853f * rng.next_float();
-      shape.normal = glm::vec3(std::sin(tilt) * std::cos(phi), std::sin(tilt) * std::sin(phi), std::cos(tilt));
-      const float psi = 6.2831853f * rng.next_float();
-      shape.stretch_dir = glm::vec2(std::cos(psi), std::sin(psi));
-      shape.stretch = 1.0f + 30.0f * rng.next_float();
+      orient_randomly(shape, rng, 30.0f);
       Lobe iso = shape;
       iso.stretch = 1.0f;
       const StretchFrame f = frame_of(shape);
@@ -203,11 +209,7 @@ TEST(AnisotropyLayer, StretchedTwoPointMixtureIsItsAtoms) {
   l.f0 = glm::vec3(1.0f);  // F = 1, ρ = 0: the specular term alone
   l.alpha2 = 0.01f, l.alpha2_hi = 0.2f, l.ggx = 0.35f, l.skirt = 0.0f;
   for (int trial = 0; trial < 500; ++trial) {
-    const float tilt = 0.4f * rng.next_float(), phi = 6.2831853f * rng.next_float();
-    l.normal = glm::vec3(std::sin(tilt) * std::cos(phi), std::sin(tilt) * std::sin(phi), std::cos(tilt));
-    const float psi = 6.2831853f * rng.next_float();
-    l.stretch_dir = glm::vec2(std::cos(psi), std::sin(psi));
-    l.stretch = 1.0f + 20.0f * rng.next_float();
+    orient_randomly(l, rng, 20.0f);
     const glm::dvec3 wi = random_above(rng), wo = random_above(rng);
     const glm::dvec3 n = glm::normalize(glm::dvec3(l.normal));
     const double ci = glm::dot(n, wi);
