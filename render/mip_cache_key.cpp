@@ -38,8 +38,8 @@ class KeyWriter {
   Sha256 hash_;
 };
 
-// The image's content: the digest of its encoded bytes, or of its decoded floats when it was made in
-// memory (nothing was encoded).
+}  // namespace
+
 Sha256Digest image_content(const ImageDesc& image) {
   if (image.encoded_digest) return *image.encoded_digest;
   Sha256 h;
@@ -48,8 +48,6 @@ Sha256Digest image_content(const ImageDesc& image) {
   h.update(std::as_bytes(std::span(image.pixels.pixels)));
   return h.digest();
 }
-
-}  // namespace
 
 std::string mip_cache_key(const Scene& scene, const TextureSet& textures, const MaterialDesc& material, Extent grid,
                           const std::string& color_identity, bool tint, std::span<const double> grid_mappings) {

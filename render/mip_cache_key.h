@@ -33,4 +33,9 @@ std::string mip_cache_key(const Scene& scene, const TextureSet& textures, const 
 // The generated identity of the code (cmake/CodeIdentity.cmake): 64 hexadecimal digits.
 const char* mip_code_identity();
 
+// An image's content: the digest of its encoded bytes, or, for an image made in memory (nothing was
+// encoded), of its shape and decoded floats. The MIP cache's key and the texture cache's file names
+// (render/texture_set.cpp) both name images by it.
+Sha256Digest image_content(const ImageDesc& image);
+
 }  // namespace svbrdf

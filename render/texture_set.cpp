@@ -184,15 +184,8 @@ std::optional<ImageFileDescription> found_file(TextureTiles& tiles, const std::s
 void TextureSet::store(std::size_t index, ImageDesc& desc, bool color, const ColorConfig& config, TextureTiles& tiles) {
   Image& raw = desc.pixels;
   if (raw.width <= 0 || raw.height <= 0 || raw.channels < 1) return;
-  // An image made in memory has no encoded bytes: its shape and floats are its content (as for the
-  // MIP cache's key, render/mip_cache_key.cpp).
-  if (!desc.encoded_digest) {
-    Sha256 h;
-    const int shape[3] = {raw.width, raw.height, raw.channels};
-    h.update(std::as_bytes(std::span(shape)));
-    h.update(std::as_bytes(std::span(raw.pixels)));
-    desc.encoded_digest = h.digest();
-  }
+  // An image made in memory has no encoded bytes: its shape and floats are its content.
+  if (!desc.encoded_digest) desc.encoded_digest = image_content(desc);
   const Sha256Digest& content = *desc.encoded_digest;
   TiledImage t;
   t.width = raw.width, t.height = raw.height, t.channels = raw.channels;
