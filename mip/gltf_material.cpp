@@ -102,6 +102,12 @@ MaterialImages material_images(const MaterialDesc& d, const std::function<SlotIm
     in.sheen_roughness_name = sheen + "sheenRoughnessTexture";
     in.sheen_roughness_factor = d.sheen_roughness;
   }
+  if (d.anisotropy_strength > 0.0f) {
+    in.anisotropy = image(d.anisotropy_texture, false);
+    in.anisotropy_name = at + ".extensions.KHR_materials_anisotropy.anisotropyTexture";
+    in.anisotropy_strength = d.anisotropy_strength;
+    in.anisotropy_rotation = d.anisotropy_rotation;
+  }
   return in;
 }
 

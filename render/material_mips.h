@@ -10,7 +10,7 @@
 // KHR_materials_transmission/diffuse_roughness at their defaults and not unlit — and that have at least
 // one of the textures their texels read (render/texel_inputs.h: base color, metallic-roughness, normal,
 // specular, specular color, with a coat its weight, roughness and normal, with a sheen its colour and
-// roughness). Every other material is shaded by
+// roughness, with anisotropy its strength and direction). Every other material is shaded by
 // SurfaceBsdf with level0 lookups under every filter (an untextured one has nothing to filter); a
 // textured one that is left out gets one warning saying why.
 //

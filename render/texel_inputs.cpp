@@ -59,12 +59,21 @@ std::vector<TexelInput> texel_inputs(const MaterialDesc& m) {
     };
     in.insert(in.end(), sheen.begin(), sheen.end());
   }
+  // KHR_materials_anisotropy (MaterialTexels::anisotropy_layer): likewise only where it has a strength.
+  if (m.anisotropy_strength > 0.0f) {
+    const std::vector<TexelInput> anisotropy{
+        {"anisotropyStrength", nullptr, false, {m.anisotropy_strength}},
+        {"anisotropyRotation", nullptr, false, {m.anisotropy_rotation}},
+        {"anisotropyTexture", &m.anisotropy_texture, false, {}},
+    };
+    in.insert(in.end(), anisotropy.begin(), anisotropy.end());
+  }
   return in;
 }
 
 bool same_texels(const MaterialDesc& a, const MaterialDesc& b) {
   const std::vector<TexelInput> x = texel_inputs(a), y = texel_inputs(b);
-  if (x.size() != y.size()) return false;  // one has a coat or a sheen, the other none
+  if (x.size() != y.size()) return false;  // one has a coat, a sheen or anisotropy, the other none
   for (std::size_t i = 0; i < x.size(); ++i) {
     if (x[i].texture && !same_ref(*x[i].texture, *y[i].texture)) return false;
     if (x[i].values != y[i].values) return false;

@@ -41,6 +41,8 @@ MaterialTexels decode_material_texels(const MaterialImages& in, const ColorConfi
   if (!std::isfinite(in.clearcoat_normal_scale)) throw input_error("clearcoat normal scale", "must be finite");
   for (int c = 0; c < 3; ++c) check_factor(in.sheen_color_factor[c], true, "sheen color factor");
   check_factor(in.sheen_roughness_factor, true, "sheen roughness factor");
+  check_factor(in.anisotropy_strength, true, "anisotropy strength");
+  if (!std::isfinite(in.anisotropy_rotation)) throw input_error("anisotropy rotation", "must be finite");
   if (!std::isfinite(in.ior) || in.ior < 0.0f) throw input_error("ior", "must be finite and ≥ 0, got " + std::to_string(in.ior));
 
   // The common size: the first present image sets it, every other must match it.
@@ -75,6 +77,9 @@ MaterialTexels decode_material_texels(const MaterialImages& in, const ColorConfi
     take(in.sheen_color, in.sheen_color_name);
     take(in.sheen_roughness, in.sheen_roughness_name);
   }
+  // The anisotropy's likewise, only where it has a strength (the extension's "isotropic").
+  const bool anisotropy = in.anisotropy_strength > 0.0f;
+  if (anisotropy) take(in.anisotropy, in.anisotropy_name);
   for (const auto& [img, name] : {std::pair{in.normal, &in.normal_name}, std::pair{coat ? in.clearcoat_normal : nullptr, &in.clearcoat_normal_name}})
     if (img && img->channels < 3)
       throw input_error(*name, "a normal map needs RGB channels, this image has " + std::to_string(img->channels));
@@ -158,6 +163,29 @@ MaterialTexels decode_material_texels(const MaterialImages& in, const ColorConfi
         for (int i = 0; i < out.width; ++i)
           out.sheen_roughness[out.index(i, j)] =
               std::clamp(texel(*in.sheen_roughness, i, j).a, 0.0f, 1.0f) * in.sheen_roughness_factor;
+      });
+    }
+  }
+
+  // The anisotropy: per texel only where its texture makes it vary. The texture's RG is a direction in
+  // the tangent frame, turned by the rotation (KHR_materials_anisotropy, "anisotropyTexture"); an RG of
+  // (0.5, 0.5) has none to normalize, and reads as (1, 0) as render/surface.cpp reads it.
+  if (anisotropy) {
+    const float c = std::cos(in.anisotropy_rotation), s = std::sin(in.anisotropy_rotation);
+    out.anisotropy_factor = in.anisotropy_strength;
+    out.anisotropy_direction_factor = glm::vec2(c, s);
+    if (in.anisotropy) {
+      out.anisotropy.resize(out.size());
+      out.anisotropy_direction.resize(out.size());
+      for_rows(out.height, out.width, [&](int j) {
+        for (int i = 0; i < out.width; ++i) {
+          const glm::vec4 a = texel(*in.anisotropy, i, j);
+          const glm::vec2 rg(2.0f * a.r - 1.0f, 2.0f * a.g - 1.0f);
+          const float len = glm::length(rg);
+          const glm::vec2 t = len > 0.0f && std::isfinite(len) ? rg / len : glm::vec2(1.0f, 0.0f);
+          out.anisotropy[out.index(i, j)] = std::clamp(a.b, 0.0f, 1.0f) * in.anisotropy_strength;
+          out.anisotropy_direction[out.index(i, j)] = glm::vec2(c * t.x - s * t.y, s * t.x + c * t.y);
+        }
       });
     }
   }

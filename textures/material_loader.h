@@ -5,8 +5,8 @@
 //   metallic   = metallicRoughnessTexture.b · metallicFactor       (glTF: metal in B)
 //   roughness  = metallicRoughnessTexture.g · roughnessFactor      (glTF: roughness in G)
 //   normal     = normalize((2·normalTexture.rgb − 1)·(s, s, 1)), s = normalTexture.scale
-// the specular layer of KHR_materials_specular and _ior, the clear coat of KHR_materials_clearcoat and
-// the sheen of KHR_materials_sheen (MaterialImages below).
+// the specular layer of KHR_materials_specular and _ior, the clear coat of KHR_materials_clearcoat, the
+// sheen of KHR_materials_sheen and the anisotropy of KHR_materials_anisotropy (MaterialImages below).
 // A missing texture contributes its factor alone (normal: (0, 0, 1)). All present textures must
 // have the same size, which is the result's size (1×1 when there is none). Texels are read at
 // their own (i, j): no filtering, no texture transform (the level-0 texel grid is the image's).
@@ -70,6 +70,15 @@ struct MaterialImages {
   const Image* sheen_roughness = nullptr;
   std::string sheen_roughness_name = "sheen roughness texture";
   float sheen_roughness_factor = 0.0f;
+  // KHR_materials_anisotropy (MaterialTexels::anisotropy_layer), read only where the strength is not 0,
+  // as render/surface.cpp shades it (θ = anisotropy_rotation, radians counter-clockwise from the tangent):
+  //   strength  = anisotropyTexture.b · anisotropyStrength, B clamped to [0, 1]
+  //   direction = R(θ)·normalize(2·anisotropyTexture.rg − 1), or R(θ)·(1, 0) without the texture
+  //               (and where its RG is (0.5, 0.5): no direction to normalize, the renderer's choice)
+  const Image* anisotropy = nullptr;
+  std::string anisotropy_name = "anisotropy texture";
+  float anisotropy_strength = 0.0f;
+  float anisotropy_rotation = 0.0f;
 };
 
 // Throws svbrdf::Error naming the image for different sizes or a normal map with fewer than three

@@ -1,6 +1,7 @@
 // The MIP cache's key (render/mip_cache_key.h) covers what enters a material's texels: here the clear
-// coat's inputs (KHR_materials_clearcoat), each of which the texels read (textures/material_loader.h),
-// so a change of any one must give another key; a material without a coat does not read them.
+// coat's inputs (KHR_materials_clearcoat) and the anisotropy's (KHR_materials_anisotropy), each of
+// which the texels read (textures/material_loader.h), so a change of any one must give another key; a
+// material without a coat or without an anisotropy strength does not read them.
 #include <gtest/gtest.h>
 
 #include <functional>
@@ -95,6 +96,42 @@ TEST(MipCacheKey, AnUnweightedCoatIsNotPartOfTheKey) {
   plain.base_color_texture = ref(0);
   MaterialDesc unused = coated();
   unused.clearcoat = 0.0f;
+  EXPECT_EQ(key_of(scene, unused), key_of(scene, plain));
+}
+
+// An anisotropic material: base colour on texture 0, the anisotropy's strength and direction on texture 1.
+MaterialDesc anisotropic() {
+  MaterialDesc m;
+  m.base_color_texture = ref(0);
+  m.anisotropy_strength = 0.6f;
+  m.anisotropy_rotation = 0.4f;
+  m.anisotropy_texture = ref(1);
+  return m;
+}
+
+TEST(MipCacheKey, EachAnisotropyInputChangesTheKey) {
+  const Scene scene = scene_with_images(5);
+  const std::string base = key_of(scene, anisotropic());
+  const std::vector<std::pair<std::string, std::function<void(MaterialDesc&)>>> changes{
+      {"anisotropyStrength", [](MaterialDesc& m) { m.anisotropy_strength = 0.3f; }},
+      {"anisotropyRotation", [](MaterialDesc& m) { m.anisotropy_rotation = -1.0f; }},
+      {"anisotropyTexture", [](MaterialDesc& m) { m.anisotropy_texture = ref(4); }},
+      {"anisotropyTexture absent", [](MaterialDesc& m) { m.anisotropy_texture = TextureRef{}; }},
+  };
+  for (const auto& [name, change] : changes) {
+    MaterialDesc m = anisotropic();
+    change(m);
+    EXPECT_NE(key_of(scene, m), base) << name;
+  }
+  EXPECT_EQ(key_of(scene, anisotropic()), base);
+  Scene changed = scene;
+  changed.images[1].pixels.pixels[5] += 0.25f;
+  EXPECT_NE(key_of(changed, anisotropic()), base) << "images[1]";
+  // Strength 0 is isotropic: the rotation and the texture are not read, and not part of the key.
+  MaterialDesc plain;
+  plain.base_color_texture = ref(0);
+  MaterialDesc unused = anisotropic();
+  unused.anisotropy_strength = 0.0f;
   EXPECT_EQ(key_of(scene, unused), key_of(scene, plain));
 }
 
