@@ -78,9 +78,12 @@ void albedo_figures(Extent e0, int level, Extent e, const std::vector<std::array
 }  // namespace
 
 SeedFigures measure_random_seed(std::uint64_t seed, int size, const BrdfBuildOptions& build) {
-  const RandomMaterialDraw draw = draw_random_material(seed);
+  return measure_random_draw(draw_random_material(seed), size, build);
+}
+
+SeedFigures measure_random_draw(const RandomMaterialDraw& draw, int size, const BrdfBuildOptions& build) {
   SeedFigures out;
-  out.seed = seed;
+  out.seed = draw.seed;
   out.summary = draw.summary();
   const MipData mip = build_mip(random_material_texels(draw, size), build);
   const MaterialTexels& m = mip.level0;
@@ -153,7 +156,8 @@ SeedFigures measure_random_seed(std::uint64_t seed, int size, const BrdfBuildOpt
                    [&](int i, int j, int a) {
                      const ParamLobes l = param_lobes(mip.param.texel(row.level, i, j), TextureFilter::param,
                                                       mip.param.specular(row.level, i, j), nullptr,
-                                                      mip.param.sheen(row.level, i, j));
+                                                      mip.param.sheen(row.level, i, j),
+                                                      mip.param.anisotropy(row.level, i, j));
                      return grey(directional_albedo(std::span<const Lobe>(&l.base, 1), l.sheen, incident(a), kAlbedoStrata));
                    },
                    f.param);

@@ -59,5 +59,7 @@ struct SeedFigures {
 
 // Builds seed's texture at size² and its pyramids (default options but `build`) and measures them.
 SeedFigures measure_random_seed(std::uint64_t seed, int size, const BrdfBuildOptions& build = {});
+// The same of a draw (a seed's, or one with an ingredient taken out).
+SeedFigures measure_random_draw(const RandomMaterialDraw& draw, int size, const BrdfBuildOptions& build = {});
 
 }  // namespace svbrdf

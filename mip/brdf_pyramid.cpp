@@ -53,10 +53,8 @@ int gather_children(Extent level0, int level, int i, int j, const BrdfLevel& fin
       }
       if (level == 1) {
         Lobe& l = out[static_cast<std::size_t>(n++)];
-        l = lobe_from_texel(m.base_color[t], m.metallic[t], m.roughness[t], m.normal[t], static_cast<float>(share),
-                            m.specular_layer(t));
-        if (m.has_coat()) l.coat = std::clamp(m.coat_layer(t).weight, 0.0f, 1.0f);
-        if (m.has_sheen()) l.sheen = sheen_share(m.sheen_layer(t));
+        l = level0_lobe(m, t);
+        l.weight = static_cast<float>(share);
         continue;
       }
       for (Lobe l : fine.texel_lobes(t)) {
@@ -231,7 +229,6 @@ RadialGrid build_corrections(const MaterialTexels& m, std::vector<BrdfLevel>& le
 
 BrdfPyramid BrdfPyramid::build(const MaterialTexels& m, const BrdfBuildOptions& options,
                                std::vector<BrdfLevelStats>* stats) {
-  refuse_anisotropy(m, "BRDF pyramid");
   BrdfPyramid p;
   p.level0_ = {m.width, m.height};
   p.max_lobes_ = std::clamp(options.reduction.max_lobes, 1, kMaxLobes);
@@ -243,7 +240,9 @@ BrdfPyramid BrdfPyramid::build(const MaterialTexels& m, const BrdfBuildOptions& 
   for (int level = 1; level < n; ++level)
     p.levels_.push_back(level_from_below(p.level0_, level, p.levels_.back(), m, options,
                                          stats ? &(*stats)[static_cast<std::size_t>(level)] : nullptr));
-  if (options.radial_correction && n > kFirstCorrectedLevel) p.grid_ = build_corrections(m, p.levels_, options.recentre);
+  // Stretched lobes take no radial correction: its premise, that the lobes' error lies in their radial
+  // profile about the normal, fails for lobes whose azimuthal shape is their own (radial_correction.h).
+  if (options.radial_correction && n > kFirstCorrectedLevel && !m.has_anisotropy()) p.grid_ = build_corrections(m, p.levels_, options.recentre);
   if (m.has_coat()) {
     // The coat lobes, reduced as the base's are (level 0's are the texels').
     p.coat_.push_back(level_zero(p.level0_));
@@ -262,7 +261,7 @@ BrdfPyramid BrdfPyramid::build(const MaterialTexels& m, const BrdfBuildOptions& 
 int BrdfPyramid::bytes_per_texel(int level) const {
   const BrdfLevel& l = this->level(level);
   return l.slots * (kBytesPerLobe + (l.specular_layer() ? kBytesPerSpecularLayer : 0) +
-                    (l.tint_layer() ? kBytesPerTintLayer : 0)) +
+                    (l.tint_layer() ? kBytesPerTintLayer : 0) + (l.stretch_layer() ? kBytesPerStretch : 0)) +
          (l.correction.empty() ? 0 : kBytesPerCorrection) + coat_bytes_per_texel(level) + sheen_bytes_per_texel(level);
 }
 

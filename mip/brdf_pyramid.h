@@ -72,6 +72,14 @@ struct BrdfLevel {
         if (l.f0_tint != glm::vec3(0.0f)) return true;
     return false;
   }
+  // Whether some lobe is stretched (lobe.h, "Stretched shapes"), which the MIP file then stores in
+  // kBytesPerStretch more bytes a slot.
+  bool stretch_layer() const {
+    for (std::size_t t = 0; t < counts.size(); ++t)
+      for (const Lobe& l : texel_lobes(t))
+        if (l.stretch != 1.0f) return true;
+    return false;
+  }
   // Makes room for `texels` texels, all empty.
   void reset(Extent e, std::size_t texels) {
     extent = e;

@@ -1,19 +1,11 @@
 #include "mip/exact_reference.h"
 
-#include <string>
-
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
-#include "base/error.h"
 #include "mip/sheen_layer.h"
 
 namespace svbrdf {
-
-void refuse_anisotropy(const MaterialTexels& m, const char* what) {
-  if (m.has_anisotropy())
-    throw Error(std::string(what) + ": KHR_materials_anisotropy (the MIP's merged and stored lobes are isotropic)");
-}
 
 glm::dvec3 level0_eval(const MaterialTexels& m, std::size_t k, const PairTerms<double>& p) {
   Lobe scratch;

@@ -16,11 +16,6 @@
 
 namespace svbrdf {
 
-// The MIP's merged and stored lobes carry no stretch (lobe.h, "Stretched shapes", holds it at level 0
-// only): a pyramid build refuses an anisotropic material rather than drop its stretch. `what` names
-// the build in the error.
-void refuse_anisotropy(const MaterialTexels& m, const char* what);
-
 // The level-0 lobe of texel k of a material (exactly f_eff of that texel, its anisotropy included).
 inline Lobe level0_lobe(const MaterialTexels& m, std::size_t k) {
   Lobe l = lobe_from_texel(m.base_color[k], m.metallic[k], m.roughness[k], m.normal[k], 1.0f, m.specular_layer(k),

@@ -49,7 +49,6 @@ std::string mip_unsupported(const MaterialDesc& m) {
   if (m.diffuse_roughness > 0.0f || m.diffuse_roughness_texture.present())
     return "KHR_materials_diffuse_roughness (the MIP lobes are Lambertian)";
   if (m.diffuse_transmission > 0.0f) return "KHR_materials_diffuse_transmission (the MIP lobes reflect only)";
-  if (m.anisotropy_strength > 0.0f) return "KHR_materials_anisotropy (the MIP's merged and stored lobes are isotropic)";
   if (m.iridescence > 0.0f) return "KHR_materials_iridescence (the MIP lobes' Fresnel is Schlick's)";
   return {};
 }

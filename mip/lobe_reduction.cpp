@@ -13,6 +13,7 @@
 #include "mip/lobe_fit.h"
 #include "mip/merge_cost.h"
 #include "mip/reduction_numerics.h"
+#include "mip/slope_stretch.h"
 
 namespace svbrdf {
 
@@ -91,13 +92,42 @@ Merged merge_union(std::span<const Member> u, const UnionTerms* terms, const Red
   if (!by_amp)
     for (const Member& x : u) K += x.sum->weight;
   const glm::dvec3& n = mb.summary.n;
+  // A union with a stretched member gets a stretch, and its moments below are taken in that stretch's
+  // frame (slope_stretch.h); a union of isotropic lobes takes none of this.
+  bool stretched = false;
+  for (const Member& x : u) stretched = stretched || x.sum->stretched;
+  Lobe stretch_of;  // the merged stretch, set on the merged lobe after its shape
+  Sym2 s_inv;       // S_m⁻¹
+  glm::dvec2 slope_m(0.0);
+  if (stretched) {
+    slope_m = normal_slope(n);
+    Sym2 spread{0, 0, 0};
+    for (const Member& x : u) {
+      const Summary& a = *x.sum;
+      const double k = (by_amp ? a.amp : a.weight) / K;
+      const glm::dvec2 tau = a.slope - slope_m;
+      spread.xx += k * (a.tail * a.stretch.xx + 2 * tau.x * tau.x);
+      spread.xy += k * (a.tail * a.stretch.xy + 2 * tau.x * tau.y);
+      spread.yy += k * (a.tail * a.stretch.yy + 2 * tau.y * tau.y);
+    }
+    set_stretch(stretch_of, spread);
+    s_inv = stretch_matrix(stretch_of).inverse_det1();
+  }
+  // A member's tan²θ to the merged normal in the merged stretch's frame (`own`: in its own stretch's,
+  // for its D there).
+  const auto tilt2 = [&](const Summary& a, bool own) {
+    const double t = tan2_between(a.n, n);
+    if (!stretched || !std::isfinite(t)) return t;
+    const glm::dvec2 tau = a.slope - slope_m;
+    return own ? a.stretch.inverse_det1().quad(tau) : s_inv.quad(tau);
+  };
   // The union's π·D at the merged normal, and its mass within slope radius² R² of it (each per unit of
   // K, as A and P below; lobe_fit.h).
   const auto union_centre = [&] {
     double centre = 0;
     for (const Member& x : u) {
       const Summary& a = *x.sum;
-      centre += (by_amp ? a.amp : a.weight) * kPiD * d_at_tan2(a.d_shape, tan2_between(a.n, n));
+      centre += (by_amp ? a.amp : a.weight) * kPiD * d_at_tan2(a.d_shape, tilt2(a, true));
     }
     return centre / K;
   };
@@ -116,8 +146,8 @@ Merged merge_union(std::span<const Member> u, const UnionTerms* terms, const Red
   for (const Member& x : u) {
     const Summary& a = *x.sum;
     const double k = by_amp ? a.amp : a.weight;
-    const double t = std::min(tan2_between(a.n, n), 1e3);
-    A += k * a.tail;
+    const double t = std::min(tilt2(a, false), 1e3);
+    A += k * a.tail * (stretched ? 0.5 * trace_of_product(s_inv, a.stretch) : 1.0);
     P_lean += k / (1.0 / a.peak + o.spread_scale * t);
   }
   double P = P_lean;
@@ -132,6 +162,8 @@ Merged merge_union(std::span<const Member> u, const UnionTerms* terms, const Red
   // fitted to the union's mass within the core (set_shape).
   Merged best{mb.lobe, mb.summary, 0};
   set_shape(best.lobe, A / K, P / K, &union_mass);
+  best.lobe.stretch = stretch_of.stretch;
+  best.lobe.stretch_dir = stretch_of.stretch_dir;
   best.summary = summarize(best.lobe);
   if (terms) best.cost = union_cost(u, terms->self, terms->horizon, best.summary, by_amp, peak_weight);
   return best;
@@ -190,7 +222,8 @@ std::pair<int, int> cheapest_pair(int n, M&& m) {
 bool near_duplicates(const Lobe& a, const Lobe& b) {
   const glm::vec3 d = a.normal - b.normal;
   return glm::dot(d, d) < 1e-12f && std::abs(a.alpha2 - b.alpha2) <= 1e-4f * std::min(a.alpha2, b.alpha2) &&
-         a.alpha2_hi == b.alpha2_hi && a.ggx == b.ggx && a.skirt == b.skirt;
+         a.alpha2_hi == b.alpha2_hi && a.ggx == b.ggx && a.skirt == b.skirt && a.stretch == b.stretch &&
+         (a.stretch == 1.0f || a.stretch_dir == b.stretch_dir);
 }
 
 }  // namespace
@@ -224,6 +257,7 @@ int reduce_lobes(std::span<Lobe> lobes, int n, const ReductionOptions& options) 
       MergeBase mb = merge_base(std::array<Member, 2>{Member{&L(dup), &sd}, Member{&L(i), &si}});
       mb.lobe.alpha2 = L(dup).alpha2, mb.lobe.alpha2_hi = L(dup).alpha2_hi, mb.lobe.ggx = L(dup).ggx;
       mb.lobe.skirt = L(dup).skirt;
+      mb.lobe.stretch = L(dup).stretch, mb.lobe.stretch_dir = L(dup).stretch_dir;
       L(dup) = mb.lobe;
     }
     else

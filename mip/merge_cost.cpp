@@ -83,6 +83,12 @@ Summary summarize(const Lobe& l) {
   s.d_shape = DShape::of(sh);
   s.d_z = d_at_z(sh);
   profile_of(s.d_shape, s.profile);
+  if (sh.stretched) {
+    s.stretched = true;
+    s.stretch = stretch_matrix(l);
+    s.stretch_log = stretch_log(l);
+    s.slope = normal_slope(s.n);
+  }
   return s;
 }
 
@@ -90,10 +96,10 @@ double union_spec_norm2(std::span<const Member> u) {
   double s = 0;
   for (std::size_t i = 0; i < u.size(); ++i) {
     const Summary& a = *u[i].sum;
-    s += a.amp * a.amp * spec_inner(a.alpha2, a.alpha2, 0);
+    s += a.amp * a.amp * spec_inner(a, a, 0);
     for (std::size_t j = i + 1; j < u.size(); ++j) {
       const Summary& b = *u[j].sum;
-      s += 2 * a.amp * b.amp * spec_inner(a.alpha2, b.alpha2, tan2_between(a.n, b.n));
+      s += 2 * a.amp * b.amp * spec_inner(a, b, tan2_between(a.n, b.n));
     }
   }
   return s;
@@ -132,10 +138,10 @@ double union_cost(std::span<const Member> u, double self, const HorizonSums& hs,
                   double peak_weight) {
   double Am = 0, peak = 0, width = 0, spec = self, W = 0;
   for (const Member& x : u) Am += x.sum->amp, W += x.sum->weight;
-  spec += Am * Am * spec_inner(m.alpha2, m.alpha2, 0);
+  spec += Am * Am * spec_inner(m, m, 0);
   for (const Member& x : u) {
     const Summary& a = *x.sum;
-    spec -= 2 * Am * a.amp * spec_inner(m.alpha2, a.alpha2, tan2_between(a.n, m.n));
+    spec -= 2 * Am * a.amp * spec_inner(m, a, tan2_between(a.n, m.n));
     peak += a.amp * a.d_z;
     width += a.amp * a.ggx * a.alpha2;
   }
@@ -187,7 +193,11 @@ double rough_distance(const Summary& a, const Summary& b) {
   const double rho = 0.5 * (a.rho + b.rho), f0 = 0.5 * (a.f0 + b.f0);
   const double horizon_amp = rho + f0 + 0.2 * (1.0 - f0);
   const double drho = a.rho - b.rho;
-  return ab * (amp * amp / (2.0 * width) * (0.25 * dl * dl + dn2 / width) + 0.4 * horizon_amp * horizon_amp * std::sqrt(dn2)) +
+  // Stretched lobes also differ in ln α² along each axis by uᵀ·Δ(ln S)·u, whose mean square over the
+  // axes u is |Δ stretch_log|²/2 (slope_stretch.h), weighted as the log-roughness.
+  const glm::dvec2 dv = a.stretch_log - b.stretch_log;
+  const double shape = 0.25 * dl * dl + 0.125 * glm::dot(dv, dv);
+  return ab * (amp * amp / (2.0 * width) * (shape + dn2 / width) + 0.4 * horizon_amp * horizon_amp * std::sqrt(dn2)) +
          (4.0 / 3.0) * ab * ab * drho * drho * dn2;
 }
 

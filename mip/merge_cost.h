@@ -15,6 +15,7 @@
 #include "base/math.h"
 #include "base/series_log.h"
 #include "mip/lobe.h"
+#include "mip/slope_stretch.h"
 
 namespace svbrdf::reduction {
 
@@ -64,6 +65,11 @@ struct Summary {
   DShape d_shape;     // its D's shape, for D away from its normal (merge_union)
   double flux = -1;   // its specular flux as keep_specular_flux measures it (< 0: not yet known)
   std::array<double, kProfileSteps> profile{};  // D about its own normal at tan²θ = 10^-6 … 10 (profile_of)
+  // Its stretch (slope_stretch.h): whether it has one, S, ln S as a vector, and its normal's slope.
+  bool stretched = false;
+  Sym2 stretch;
+  glm::dvec2 stretch_log{0.0};
+  glm::dvec2 slope{0.0};
 };
 
 // D of a lobe shape at tan²θ = t from its normal: lobe_d's shapes written in t (cos²θ = 1/(1 + t)), so
@@ -113,6 +119,23 @@ inline double spec_inner(double alpha2_a, double alpha2_b, double tan2) {
   // Nearly parallel normals (most pairs of a smooth surface): e^−x by its series (within 3e-9).
   const double g = x < 0.05 ? 1 - x * (1 - x * (0.5 - x * (1.0 / 6 - x * (1.0 / 24)))) : std::exp(-x);
   return g / (2.0 * s);
+}
+
+// spec_inner of two lobes: the form above unless one is stretched; then the same Gaussians with the
+// lobes' slope matrices, per-axis variances α²·S/2 (slope_stretch.h) and the blur's, whose centres lie
+// d = Δ(normal slope) apart: N(d; 0, M), M = (αa²·Sa + αb²·Sb + 2·α²_res·I)/2, is exp(−dᵀM⁻¹d/2)/(2π√det M)
+// and the isotropic form's normalization makes it exp(−dᵀM⁻¹d/2)/(4√det M) (M = (s/2)·I gives it back).
+// tan2: tan²θ between their normals, as the form above takes it.
+inline double spec_inner(const Summary& a, const Summary& b, double tan2) {
+  if (!a.stretched && !b.stretched) return spec_inner(a.alpha2, b.alpha2, tan2);
+  if (!std::isfinite(tan2)) return 0.0;
+  const Sym2 m{0.5 * (a.alpha2 * a.stretch.xx + b.alpha2 * b.stretch.xx) + kResolutionAlpha2,
+               0.5 * (a.alpha2 * a.stretch.xy + b.alpha2 * b.stretch.xy),
+               0.5 * (a.alpha2 * a.stretch.yy + b.alpha2 * b.stretch.yy) + kResolutionAlpha2};
+  const double det = m.det();
+  const glm::dvec2 d = a.slope - b.slope;
+  const Sym2 inv{m.yy / det, -m.xy / det, m.xx / det};
+  return std::exp(-0.5 * inv.quad(d)) / (4.0 * std::sqrt(det));
 }
 
 // The lobes of a union being merged: each lobe with its summary.

@@ -229,7 +229,14 @@ glm::dvec3 lobe_albedo(const Lobe& l, const glm::dvec3& wi, int strata, const F&
           tan2 = a2 * u1 / std::max(1e-300, 1 - u1);
         }
         const double ch = 1 / std::sqrt(1 + tan2), sh = std::sqrt(std::max(0.0, 1 - ch * ch)), phi = 2 * kPiD * u2;
-        const glm::dvec3 h = sh * std::cos(phi) * s + sh * std::sin(phi) * t + ch * n;
+        glm::dvec3 h = sh * std::cos(phi) * s + sh * std::sin(phi) * t + ch * n;
+        if (shape.stretched) {
+          // A stretched shape's slopes are the isotropic ones times S^(1/2) in its frame (lobe.h), a
+          // map of determinant 1: the same density D·(n·h) of its own half vectors.
+          const double tn = std::sqrt(tan2);
+          h = glm::normalize(tn * std::sqrt(shape.r) * std::cos(phi) * shape.st +
+                             tn * std::sqrt(shape.inv_r) * std::sin(phi) * shape.sb + n);
+        }
         wo = 2 * glm::dot(wi, h) * h - wi;
       }
       if (!(wo.z > 0)) continue;

@@ -1,7 +1,6 @@
 #include "mip/mip_file.h"
 
 #include <Imath/half.h>
-#include <OpenImageIO/hash.h>
 #include <OpenImageIO/imageio.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -23,6 +22,7 @@
 #include "base/error.h"
 #include "base/resource_limits.h"
 #include "mip/mip_file_channels.h"
+#include "mip/mip_file_checksum.h"
 #include "mip/stored_lobe.h"
 #include "mip/stored_normal.h"
 #include "textures/exr_header.h"
@@ -34,10 +34,10 @@ namespace {
 namespace fs = std::filesystem;
 
 using namespace mip_file_channels;
+using namespace mip_file_checksum;
 
 constexpr const char* kRadialInner = "svbrdf:radial_inner";
 constexpr const char* kRadialOuter = "svbrdf:radial_outer";
-constexpr const char* kChecksum = "svbrdf:checksum";
 constexpr const char* kCacheKey = "svbrdf:cache_key";
 std::string radial_channel(int node) { return "radial.R" + std::to_string(node); }
 std::string where(const fs::path& p) { return p.string(); }
@@ -51,48 +51,6 @@ int band_rows(int width, std::size_t stride) {
 // Texels a packing task takes: a band of kBandBytes holds 16 to 128 thousand texels (strides of 256 to
 // 32 bytes), so each band of a large level splits among at least 16 tasks.
 constexpr std::size_t kPackGrain = 1024;
-
-// The fingerprint of one band of pixels in name order. Fingerprint128 is fixed and portable (unlike
-// OpenImageIO's Hash128), so a file checks on any machine; it guards against corruption, not against
-// an adversary (the cache key is the SHA-256 one).
-void add_band(std::vector<std::uint64_t>& bands, std::span<const std::byte> name_ordered_pixels) {
-  const auto f = OIIO::farmhash::Fingerprint128(reinterpret_cast<const char*>(name_ordered_pixels.data()),
-                                                name_ordered_pixels.size());
-  bands.push_back(OIIO::farmhash::Uint128Low64(f));
-  bands.push_back(OIIO::farmhash::Uint128High64(f));
-}
-
-// A level's checksum (mip_file.h, svbrdf:checksum): the header values that give its pixels their
-// meaning, then its bands' fingerprints.
-std::string level_checksum(const OIIO::ImageSpec& s, int max_lobes, float radial_inner, float radial_outer,
-                           const std::vector<std::uint64_t>& bands) {
-  std::string header = "level " + std::to_string(s.get_int_attribute("svbrdf:level", -1)) + " " +
-                       std::to_string(s.width) + "x" + std::to_string(s.height) + " version " +
-                       std::to_string(s.get_int_attribute("svbrdf:mip_version", 0)) + " slots " +
-                       std::to_string(s.get_int_attribute("svbrdf:slots", -1)) + " max_lobes " +
-                       std::to_string(max_lobes);
-  std::uint32_t bits[2];
-  std::memcpy(&bits[0], &radial_inner, 4);
-  std::memcpy(&bits[1], &radial_outer, 4);
-  header += " radial " + std::to_string(bits[0]) + " " + std::to_string(bits[1]);
-  const float ior = s.get_float_attribute(kIor, 1.5f);
-  std::memcpy(&bits[0], &ior, 4);
-  header += " ior " + std::to_string(bits[0]);
-  header += " tint " + std::to_string(s.get_int_attribute(kTint, 0));
-  header += " coat_slots " + std::to_string(s.get_int_attribute(kCoatSlots, 0));
-  // Channels in name order, as the pixels: OpenImageIO lists a file's channels in an order of its own.
-  std::vector<std::string> channels;
-  for (int c = 0; c < s.nchannels; ++c)
-    channels.push_back(s.channelnames[static_cast<std::size_t>(c)] + ":" + std::string(s.channelformat(c).c_str()));
-  std::sort(channels.begin(), channels.end());
-  for (const std::string& c : channels) header += " " + c;
-  for (const std::uint64_t b : bands) header += " " + std::to_string(b);
-  const auto all = OIIO::farmhash::Fingerprint128(header.data(), header.size());
-  char hex[33];
-  std::snprintf(hex, sizeof hex, "%016llx%016llx", static_cast<unsigned long long>(OIIO::farmhash::Uint128High64(all)),
-                static_cast<unsigned long long>(OIIO::farmhash::Uint128Low64(all)));
-  return hex;
-}
 
 // The fewest bytes an OpenEXR file holding `spec`'s pixels can have, from the format (OpenEXR's
 // "Technical Introduction", file layout): an 8-byte offset-table entry and an 8-byte chunk header
@@ -122,10 +80,10 @@ namespace {
 // specular layer's, coat's and sheen's means), `slots` lobes of `lobe` channels each, the radial correction,
 // `coat_slots` coat lobes.
 struct LevelChannels {
-  bool specular = false, coat = false, sheen = false, radial = false;
+  bool specular = false, coat = false, sheen = false, anisotropy = false, radial = false;
   int slots = 0, coat_slots = 0;
   std::vector<LobeChannel> lobe;
-  std::size_t first_lobe() const { return 8 + (specular ? 4 : 0) + (coat ? 5 : 0) + (sheen ? 4 : 0); }
+  std::size_t first_lobe() const { return 8 + (specular ? 4 : 0) + (coat ? 5 : 0) + (sheen ? 4 : 0) + (anisotropy ? 3 : 0); }
   std::size_t first_radial() const { return first_lobe() + std::size_t(slots) * lobe.size(); }
   std::size_t first_coat_lobe() const { return first_radial() + (radial ? RadialGrid::kNodes : 0); }
 };
@@ -160,6 +118,7 @@ void pack_rows(const ParamPyramid& param, const BrdfPyramid& brdf, int level, co
   const auto specular = param.specular_level(level);
   const auto coat = param.coat_level(level);
   const auto sheen = param.sheen_level(level);
+  const auto aniso = param.anisotropy_level(level);
   const std::vector<LobeChannel> coat_channels = coat_lobe_channels();
   const std::size_t first = static_cast<std::size_t>(y0) * e.width, last = static_cast<std::size_t>(y1) * e.width;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(first, last, kPackGrain), [&](const tbb::blocked_range<std::size_t>& texels) {
@@ -182,6 +141,10 @@ void pack_rows(const ParamPyramid& param, const BrdfPyramid& brdf, int level, co
         const SheenLayer& c = sheen[t];
         for (const float v : {c.color.r, c.color.g, c.color.b, c.roughness}) put_float(px, layout, next++, v);
       }
+      if (ch.anisotropy) {
+        const AnisotropyLayer& a = aniso[t];
+        for (const float v : {a.strength, a.direction.x, a.direction.y}) put_float(px, layout, next++, v);
+      }
       if (level == 0) continue;
       const BrdfLevel& bl = brdf.level(level);
       put_lobes(px, layout, ch.first_lobe(), ch.slots, bl.texel_lobes(t), ch.lobe);
@@ -193,61 +156,6 @@ void pack_rows(const ParamPyramid& param, const BrdfPyramid& brdf, int level, co
     }
   });
 }
-
-// Checks a level's pixels against its svbrdf:checksum band by band as they are read (`native`: the
-// layout OpenImageIO reads them in): add() each band, then mismatch(), the error when they differ.
-// The constructor throws when the checksum is absent and `required`.
-class LevelCheck {
- public:
-  LevelCheck(const fs::path& path, const OIIO::ImageSpec& s, const NativeLayout& native, bool required)
-      : path_(path), spec_(s), native_(native), stored_(s.get_string_attribute(kChecksum, "")) {
-    if (stored_.empty() && required)
-      throw input_error(where(path), "level " + std::to_string(s.get_int_attribute("svbrdf:level", -1)) + " has no " + kChecksum);
-    std::vector<OIIO::TypeDesc> formats;
-    for (int c = 0; c < s.nchannels; ++c) formats.push_back(s.channelformat(c));
-    ordered_ = name_ordered(s.channelnames, formats);
-    for (const OIIO::TypeDesc& f : formats) sizes_.push_back(f.size());
-  }
-  void add(std::span<const std::byte> band) {
-    if (stored_.empty()) return;
-    if (ordered_.offsets == native_.offsets) return add_band(bands_, band);
-    // Not in name order: the band put in it first.
-    scratch_.resize(band.size());
-    const std::size_t texels = band.size() / native_.stride;
-    // A texel at a time (its bytes stay in cache), each channel copied with its size known to the
-    // compiler: a copy of a size known only at run time is a library call per texel and channel.
-    for (std::size_t t = 0; t < texels; ++t) {
-      std::byte* to = scratch_.data() + t * ordered_.stride;
-      const std::byte* from = band.data() + t * native_.stride;
-      for (std::size_t c = 0; c < sizes_.size(); ++c) {
-        std::byte* d = to + ordered_.offsets[c];
-        const std::byte* f = from + native_.offsets[c];
-        if (sizes_[c] == 2) std::memcpy(d, f, 2);
-        else if (sizes_[c] == 4) std::memcpy(d, f, 4);
-        else std::memcpy(d, f, sizes_[c]);
-      }
-    }
-    add_band(bands_, scratch_);
-  }
-  std::optional<Error> mismatch(int max_lobes, float radial_inner, float radial_outer) const {
-    if (stored_.empty()) return std::nullopt;
-    const std::string actual = level_checksum(spec_, max_lobes, radial_inner, radial_outer, bands_);
-    if (actual == stored_) return std::nullopt;
-    return input_error(where(path_), "level " + std::to_string(spec_.get_int_attribute("svbrdf:level", -1)) +
-                                         " does not match its " + kChecksum + " (" + stored_ + ", the texels give " + actual +
-                                         "): a corrupt file");
-  }
-
- private:
-  const fs::path& path_;
-  const OIIO::ImageSpec& spec_;
-  const NativeLayout& native_;
-  std::string stored_;
-  NativeLayout ordered_;
-  std::vector<std::size_t> sizes_;
-  std::vector<std::byte> scratch_;
-  std::vector<std::uint64_t> bands_;
-};
 
 }  // namespace
 
@@ -273,11 +181,12 @@ void write_mip_file(const fs::path& path, const ParamPyramid& param, const BrdfP
     c.specular = !param.specular_level(0).empty();
     c.coat = param.has_coat();
     c.sheen = param.has_sheen();
+    c.anisotropy = param.has_anisotropy();
     if (level == 0) continue;
     const BrdfLevel& bl = brdf.level(level);
     c.slots = bl.slots;
     c.radial = !bl.correction.empty();
-    c.lobe = lobe_channels(bl.specular_layer(), brdf.tintable() && bl.tint_layer(), c.coat, c.sheen);
+    c.lobe = lobe_channels(bl.specular_layer(), brdf.tintable() && bl.tint_layer(), c.coat, c.sheen, bl.stretch_layer());
     c.coat_slots = c.coat ? brdf.coat_level(level).slots : 0;
   }
   // Each level is packed twice a band of rows at a time, for its checksum (the headers come first) and
@@ -312,6 +221,8 @@ void write_mip_file(const fs::path& path, const ParamPyramid& param, const BrdfP
       for (const char* c : kParamCoatChannels) add(c, OIIO::TypeDesc::FLOAT);
     if (ch.sheen)
       for (const char* c : kParamSheenChannels) add(c, OIIO::TypeDesc::FLOAT);
+    if (ch.anisotropy)
+      for (const char* c : kParamAnisotropyChannels) add(c, OIIO::TypeDesc::FLOAT);
     for (int k = 0; k < ch.slots; ++k)
       for (const LobeChannel& c : ch.lobe) add("lobe" + std::to_string(k) + "." + c.suffix, c.format);
     if (ch.radial)
@@ -449,6 +360,7 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
   std::vector<std::vector<ParamSpecular>> specular_levels;
   std::vector<std::vector<ParamCoat>> coat_levels;
   std::vector<std::vector<SheenLayer>> sheen_levels;
+  std::vector<std::vector<AnisotropyLayer>> anisotropy_levels;
   std::vector<BrdfLevel> coarse, coarse_coat;
   for (int level = 0; level < levels; ++level) {
     const std::string at_level = "level " + std::to_string(level);
@@ -508,6 +420,13 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
                                          (sheen ? " but level 0 has none" : " but level 0 has"));
     if (sheen)
       for (const char* c : kParamSheenChannels) need(c);
+    // The anisotropy's: its means in every level or in none.
+    const bool anisotropy = index.count(kParamAnisotropyChannels[0]) > 0;
+    if (level > 0 && anisotropy != !anisotropy_levels.empty())
+      throw input_error(where(path), at_level + (anisotropy ? " has" : " has no") + " channel " +
+                                         kParamAnisotropyChannels[0] + (anisotropy ? " but level 0 has none" : " but level 0 has"));
+    if (anisotropy)
+      for (const char* c : kParamAnisotropyChannels) need(c);
     const int coat_slots = level > 0 && coat ? s.get_int_attribute(kCoatSlots, -1) : 0;
     if (coat_slots < 0 || coat_slots > kMaxLobes)
       throw input_error(where(path), at_level + " has " + std::to_string(coat_slots) + " coat lobe slots (" + kCoatSlots + ")");
@@ -517,7 +436,8 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
     if (tint_channels && s.get_int_attribute(kTint, 0) != 1)
       throw input_error(where(path), at_level + " has channel lobe0.F0tint.R but the file is not " + kTint + " 1");
     const std::vector<LobeChannel> lobe_ch =
-        lobe_channels(slots > 0 && index.count("lobe0.F90") > 0, tint_channels, coat, sheen);
+        lobe_channels(slots > 0 && index.count("lobe0.F90") > 0, tint_channels, coat, sheen,
+                      slots > 0 && index.count("lobe0.stretch") > 0);
     const std::vector<LobeChannel> coat_ch = coat_lobe_channels();
     const auto need_lobes = [&](const char* prefix, int n, const std::vector<LobeChannel>& channels) {
       for (int k = 0; k < n; ++k)
@@ -557,6 +477,7 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
     std::vector<ParamSpecular> specular(param_specular ? texels : 0);
     std::vector<ParamCoat> coat_means(coat ? texels : 0);
     std::vector<SheenLayer> sheen_means(sheen ? texels : 0);
+    std::vector<AnisotropyLayer> anisotropy_means(anisotropy ? texels : 0);
     for (std::size_t t = 0; t < texels; ++t) {
       const std::size_t row = t / std::size_t(e.width);
       if (t % (std::size_t(rows) * e.width) == 0) {  // the next band
@@ -579,7 +500,8 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
       std::size_t next = 8;
       if (param_specular) specular[t] = {value(8), {value(9), value(10), value(11)}}, next = 12;
       if (coat) coat_means[t] = {value(next), value(next + 1), {value(next + 2), value(next + 3), value(next + 4)}}, next += 5;
-      if (sheen) sheen_means[t] = {{value(next), value(next + 1), value(next + 2)}, value(next + 3)};
+      if (sheen) sheen_means[t] = {{value(next), value(next + 1), value(next + 2)}, value(next + 3)}, next += 4;
+      if (anisotropy) anisotropy_means[t] = {value(next), {value(next + 1), value(next + 2)}};
       if (level == 0) continue;
       // Texel t's lobes into `into`, from `n` slots of `channels` from `first` on.
       const auto read_lobes = [&](BrdfLevel& into, std::size_t first, int n, const std::vector<LobeChannel>& channels,
@@ -621,6 +543,7 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
     if (param_specular) specular_levels.push_back(std::move(specular));
     if (coat) coat_levels.push_back(std::move(coat_means));
     if (sheen) sheen_levels.push_back(std::move(sheen_means));
+    if (anisotropy) anisotropy_levels.push_back(std::move(anisotropy_means));
   }
   if (in->seek_subimage(levels, 0))
     throw input_error(where(path), "has more subimages than the " + std::to_string(levels) + " levels of its level 0");
@@ -628,7 +551,7 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
   // The BRDF pyramid reads the sheen means the parameter pyramid stores (brdf_pyramid.h).
   std::vector<std::vector<SheenLayer>> brdf_sheen = sheen_levels;
   mip.param = ParamPyramid::from_levels(level0, std::move(param_levels), std::move(specular_levels), ior,
-                                        std::move(coat_levels), std::move(sheen_levels));
+                                        std::move(coat_levels), std::move(sheen_levels), std::move(anisotropy_levels));
   // Level 0's texels are the parameter pyramid's (the same floats).
   mip.level0 = mip.param.level0_texels();
   mip.brdf = BrdfPyramid::from_levels(mip.level0, max_lobes, std::move(coarse),

@@ -23,6 +23,10 @@
 // pyramid's texels read too (sheen_layer.h):
 //   param.sheen.R/G/B           mean linear sheen colour                                 float
 //   param.sheen.roughness       mean sheen perceptual roughness                          float
+// and, in every level of an anisotropic material (KHR_materials_anisotropy), 12 bytes (level 0: the
+// texel's own; above, param_pyramid.h anisotropy_from_below):
+//   param.anisotropy            mean anisotropy strength                                 float
+//   param.anisotropy.X/Y        its unit direction in the tangent frame                  float
 // and, for L ≥ 1, for each lobe slot k = 0 .. S_L − 1 (lobe.h for the meaning), 26 bytes:
 //   lobeK.weight                fraction of the texel's area, times the lobe's specular-flux
 //                               factor (0: empty slot; slots are packed from 0)          half
@@ -52,6 +56,11 @@
 // and, in a level of a material with a sheen, 2 bytes more a slot (sheen_layer.h):
 //   lobeK.sheen                 the mean max(sheen colour) of the lobe's texels, its sheen
 //                               share                                                     half
+// and, in a level where some lobe is stretched (lobe.h, "Stretched shapes"), 6 bytes more a slot
+// (stored_lobe.h):
+//   lobeK.stretch               ln r of the stretch (0: none)                             half
+//   lobeK.stretch.dirHi/dirLo   the stretch direction's angle in [0, π) as a 20-bit code k
+//                               (φ = k·π/2^20), its high and low 10 bits as integers      half
 // and, for L ≥ kFirstCorrectedLevel (4), 24 bytes (radial_correction.h):
 //   radial.R0 .. radial.R11     the texel's radial correction: the ratio of its true radial
 //                               profile of reflected light to its lobes' (gated beyond 10°)
@@ -87,7 +96,7 @@
 
 namespace svbrdf {
 
-inline constexpr int kMipFileVersion = 13;
+inline constexpr int kMipFileVersion = 14;
 
 // Throws svbrdf::Error naming the file when it cannot be written. A non-empty `cache_key` is stored as
 // svbrdf:cache_key.

@@ -34,6 +34,9 @@ inline constexpr const char* kParamCoatChannels[5] = {"param.coat", "param.coat.
 // The sheen's means, in every level of a material with a sheen (mip_file.h).
 inline constexpr const char* kParamSheenChannels[4] = {"param.sheen.R", "param.sheen.G", "param.sheen.B",
                                                        "param.sheen.roughness"};
+// The anisotropy's means, in every level of an anisotropic material (mip_file.h).
+inline constexpr const char* kParamAnisotropyChannels[3] = {"param.anisotropy", "param.anisotropy.X",
+                                                            "param.anisotropy.Y"};
 // The attribute (int, on every subimage ≥ 1 of a coated material's file) of a level's coat lobe slots.
 inline constexpr const char* kCoatSlots = "svbrdf:coat_slots";
 
@@ -46,6 +49,7 @@ enum class Role {
   f0_tint_r, f0_tint_g, f0_tint_b,             // the tint layer's (kTintLobeChannels)
   coat,                                         // the coat layer's (kCoatShareChannels)
   sheen,                                        // the sheen's (kSheenShareChannels)
+  stretch, stretch_dir_hi, stretch_dir_lo,      // the stretch's (kStretchLobeChannels)
   count
 };
 struct LobeChannel {
@@ -93,6 +97,14 @@ constexpr LobeChannel kCoatShareChannels[] = {
 constexpr LobeChannel kSheenShareChannels[] = {
     {"sheen", Role::sheen, kHalf},
 };
+// A lobe's channels of its stretch, 6 bytes (kBytesPerStretch), in levels where some lobe is stretched:
+// ln r as stored_lobe.h codes it, and the direction's 20-bit code (stored_lobe.h) in two halves of 10
+// bits each (integers to 1023, exact in a half), so that a lobe's channels stay halves.
+constexpr LobeChannel kStretchLobeChannels[] = {
+    {"stretch", Role::stretch, kHalf},
+    {"stretch.dirHi", Role::stretch_dir_hi, kHalf},
+    {"stretch.dirLo", Role::stretch_dir_lo, kHalf},
+};
 // A coat lobe's channels, 14 bytes (kBytesPerCoatLobe), named "coatK.<suffix>": a lobe's without its
 // colours, which the extension fixes (stored_lobe.h set_coat_colours).
 constexpr LobeChannel kCoatLobeChannels[] = {
@@ -106,12 +118,13 @@ constexpr LobeChannel kCoatLobeChannels[] = {
 // The attribute (int 1, on every subimage) of a tintable pyramid's file (brdf_pyramid.h tintable).
 inline constexpr const char* kTint = "svbrdf:tint";
 // The channels of a level's lobe slots, with the layers' it has.
-inline std::vector<LobeChannel> lobe_channels(bool specular, bool tint, bool coat, bool sheen) {
+inline std::vector<LobeChannel> lobe_channels(bool specular, bool tint, bool coat, bool sheen, bool stretch) {
   std::vector<LobeChannel> c(std::begin(kLobeChannels), std::end(kLobeChannels));
   if (specular) c.insert(c.end(), std::begin(kSpecularLobeChannels), std::end(kSpecularLobeChannels));
   if (tint) c.insert(c.end(), std::begin(kTintLobeChannels), std::end(kTintLobeChannels));
   if (coat) c.insert(c.end(), std::begin(kCoatShareChannels), std::end(kCoatShareChannels));
   if (sheen) c.insert(c.end(), std::begin(kSheenShareChannels), std::end(kSheenShareChannels));
+  if (stretch) c.insert(c.end(), std::begin(kStretchLobeChannels), std::end(kStretchLobeChannels));
   return c;
 }
 inline std::vector<LobeChannel> coat_lobe_channels() {
@@ -144,6 +157,9 @@ inline LobeValues pack_lobe(const Lobe& l) {
   out[Role::alpha] = std::sqrt(l.alpha2);  // exact: a stored α² is the square of a half (round_to_stored)
   out[Role::shape] = lobe_shape_code(l);
   out[Role::skirt] = lobe_skirt_code(l);
+  out[Role::stretch] = lobe_stretch_code(l);
+  const std::uint32_t dir = lobe_stretch_direction_code(l);
+  out[Role::stretch_dir_hi] = static_cast<float>(dir >> 10), out[Role::stretch_dir_lo] = static_cast<float>(dir & 1023u);
   return out;
 }
 inline Lobe unpack_lobe(const LobeValues& in) {
@@ -160,6 +176,9 @@ inline Lobe unpack_lobe(const LobeValues& in) {
   l.alpha2 = in[Role::alpha] * in[Role::alpha];
   set_lobe_shape_code(l, in[Role::shape]);
   set_lobe_skirt_code(l, in[Role::skirt]);
+  // Codes outside 0..1023 (a corrupt file) are clamped into it: some direction, never undefined.
+  const auto ten_bits = [](float v) { return static_cast<std::uint32_t>(std::clamp(v, 0.0f, 1023.0f)); };
+  set_lobe_stretch_code(l, in[Role::stretch], (ten_bits(in[Role::stretch_dir_hi]) << 10) | ten_bits(in[Role::stretch_dir_lo]));
   return l;
 }
 

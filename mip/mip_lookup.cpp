@@ -176,29 +176,31 @@ LobeMixtureBsdf lookup_brdf(const MipData& mip, const Footprint& footprint, floa
 }
 
 ParamTexel filter_params(const ParamPyramid& pyramid, const Footprint& footprint, WrapModes wrap, int max_probes,
-                         SpecularLayer* specular, ParamCoat* coat, SheenLayer* sheen) {
-  const ParamStore store{pyramid.level0(),   pyramid.levels(),
-                         pyramid.ior(),      !pyramid.specular_level(0).empty(),
-                         pyramid.has_coat(), pyramid.has_sheen()};
+                         SpecularLayer* specular, ParamCoat* coat, SheenLayer* sheen, AnisotropyLayer* anisotropy) {
+  const ParamStore store{pyramid.level0(),   pyramid.levels(),  pyramid.ior(), !pyramid.specular_level(0).empty(),
+                         pyramid.has_coat(), pyramid.has_sheen(), pyramid.has_anisotropy()};
   return filter_params_of(
       store,
-      [&](int level, int i, int j, ParamSpecular* s, ParamCoat* c, SheenLayer* h) -> const ParamTexel& {
+      [&](int level, int i, int j, ParamSpecular* s, ParamCoat* c, SheenLayer* h,
+          AnisotropyLayer* a) -> const ParamTexel& {
         if (s) {
           const SpecularLayer l = pyramid.specular(level, i, j);
           *s = {l.specular, l.color};
         }
         if (c) *c = *pyramid.coat(level, i, j);
         if (h) *h = *pyramid.sheen(level, i, j);
+        if (a) *a = *pyramid.anisotropy(level, i, j);
         return pyramid.texel(level, i, j);
       },
-      footprint, wrap, max_probes, specular, coat, sheen);
+      footprint, wrap, max_probes, specular, coat, sheen, anisotropy);
 }
 
 Lobe lookup_param(const ParamPyramid& pyramid, const Footprint& footprint, TextureFilter filter, WrapModes wrap,
                   int max_probes) {
   SpecularLayer layer;
-  const ParamTexel t = filter_params(pyramid, footprint, wrap, max_probes, &layer);
-  return param_lobe(t, filter, layer);
+  AnisotropyLayer aniso;
+  const ParamTexel t = filter_params(pyramid, footprint, wrap, max_probes, &layer, nullptr, nullptr, &aniso);
+  return param_lobe(t, filter, layer, aniso);
 }
 
 }  // namespace svbrdf

@@ -68,11 +68,13 @@ LobeMixtureBsdf lookup_brdf(const MipData& mip, const Footprint& footprint, floa
 // (2) The trilinear-filtered parameters as one lobe (wrap it in LobeMixtureBsdf to shade).
 // With `specular`, also the same filter's mean of the specular layer (the material's when it is plain);
 // with `coat`, of the clear coat (ParamCoat{} for a material without one); with `sheen`, of the sheen
-// (SheenLayer{}, colour 0, for a material without one).
+// (SheenLayer{}, colour 0, for a material without one); with `anisotropy`, of the anisotropy as
+// param_pyramid.h anisotropy_from_below averages it (AnisotropyLayer{}, strength 0, for a material
+// without one).
 ParamTexel filter_params(const ParamPyramid& pyramid, const Footprint& footprint, WrapModes wrap = {},
                          int max_probes = kMaxProbes, SpecularLayer* specular = nullptr, ParamCoat* coat = nullptr,
-                         SheenLayer* sheen = nullptr);
-// The same over any store of a parameter pyramid's texels: `texel(level, i, j, specular, coat, sheen)`
+                         SheenLayer* sheen = nullptr, AnisotropyLayer* anisotropy = nullptr);
+// The same over any store of a parameter pyramid's texels: `texel(level, i, j, specular, coat, sheen, anisotropy)`
 // gives a ParamTexel and fills the layers asked for (not null); the pyramid's level 0, its level count
 // and ior, and which layers it has, given. filter_params is this over ParamPyramid; the out-of-core
 // texture (mip.h) reads records with it, so both sum the same values in the same order.
@@ -80,17 +82,18 @@ struct ParamStore {
   Extent level0{};
   int levels = 0;
   float ior = 1.5f;
-  bool specular = false, coat = false, sheen = false;
+  bool specular = false, coat = false, sheen = false, anisotropy = false;
 };
 template <class Texel>
 ParamTexel filter_params_of(const ParamStore& store, const Texel& texel, const Footprint& footprint,
                             WrapModes wrap, int max_probes, SpecularLayer* specular, ParamCoat* coat,
-                            SheenLayer* sheen) {
+                            SheenLayer* sheen, AnisotropyLayer* anisotropy = nullptr) {
   ParamTexel sum;
   sum.normal = glm::vec3(0.0f);
   if (specular) *specular = {1.0f, glm::vec3(1.0f), store.ior};
   if (coat) *coat = {};
   if (sheen) *sheen = {};
+  if (anisotropy) *anisotropy = {};
   if (store.levels == 0) return sum;
   const FilterTaps taps = filter_taps(store.level0, store.levels, footprint, wrap, max_probes);
   const bool layer = specular && store.specular;
@@ -98,13 +101,17 @@ ParamTexel filter_params_of(const ParamStore& store, const Texel& texel, const F
   const bool coated = coat && store.coat;
   if (coated) coat->normal = glm::vec3(0.0f);
   const bool sheened = sheen && store.sheen;
+  const bool stretched = anisotropy && store.anisotropy;
   ParamSpecular s;
   ParamCoat c;
   SheenLayer h;
+  AnisotropyLayer a;
+  glm::vec2 axial(0.0f);  // Σ weight·strength·(cos 2φ, sin 2φ)
   for (int k = 0; k < taps.count; ++k) {
     const FilterTap& t = taps.taps[static_cast<std::size_t>(k)];
     const ParamTexel& p =
-        texel(t.level, t.i, t.j, layer ? &s : nullptr, coated ? &c : nullptr, sheened ? &h : nullptr);
+        texel(t.level, t.i, t.j, layer ? &s : nullptr, coated ? &c : nullptr, sheened ? &h : nullptr,
+              stretched ? &a : nullptr);
     sum.base_color += t.weight * p.base_color;
     sum.metallic += t.weight * p.metallic;
     sum.roughness += t.weight * p.roughness;
@@ -121,6 +128,17 @@ ParamTexel filter_params_of(const ParamStore& store, const Texel& texel, const F
     if (sheened) {
       sheen->color += t.weight * h.color;
       sheen->roughness += t.weight * h.roughness;
+    }
+    if (stretched) {
+      const float x = a.direction.x, y = a.direction.y;
+      axial += (t.weight * a.strength) * glm::vec2(x * x - y * y, 2.0f * x * y);
+    }
+  }
+  if (stretched) {
+    const float len = glm::length(axial);
+    if (len > 0.0f) {
+      const float phi = 0.5f * std::atan2(axial.y, axial.x);
+      *anisotropy = {len, glm::vec2(std::cos(phi), std::sin(phi))};
     }
   }
   return sum;

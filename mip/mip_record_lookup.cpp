@@ -19,14 +19,15 @@ namespace {
 struct RecordParams {
   const MipRecords& r;
   mutable ParamTexel texel;
-  const ParamTexel& operator()(int level, int i, int j, ParamSpecular* s, ParamCoat* c, SheenLayer* h) const {
-    decode_params(r.layout, r.source->record(level, i, j), texel, s, c, h);
+  const ParamTexel& operator()(int level, int i, int j, ParamSpecular* s, ParamCoat* c, SheenLayer* h,
+                               AnisotropyLayer* a) const {
+    decode_params(r.layout, r.source->record(level, i, j), texel, s, c, h, a);
     return texel;
   }
 };
 
 ParamStore store_of(const MipRecordLayout& l) {
-  return {l.extent, l.levels, l.ior, l.specular, l.coat, l.sheen};
+  return {l.extent, l.levels, l.ior, l.specular, l.coat, l.sheen, l.anisotropy};
 }
 
 }  // namespace
@@ -46,11 +47,12 @@ std::span<const Lobe> MipTexture::record_lobes(const Choice& c, Scratch& scratch
   if (c.level < 0) {
     SpecularLayer layer;
     ParamCoat coat;
+    AnisotropyLayer aniso;
     ParamTexel t = filter_params_of(store_of(l), RecordParams{r, {}}, c.footprint, wrap(), kMaxProbes, &layer,
-                                    &coat, &scratch.sheen);
+                                    &coat, &scratch.sheen, &aniso);
     t.base_color *= c.tint;
-    const ParamLobes p =
-        param_lobes(t, c.filter, layer, l.coat ? &coat : nullptr, l.sheen ? &scratch.sheen : nullptr);
+    const ParamLobes p = param_lobes(t, c.filter, layer, l.coat ? &coat : nullptr, l.sheen ? &scratch.sheen : nullptr,
+                                     l.anisotropy ? &aniso : nullptr);
     scratch.lobe[0] = p.base;
     if (p.coated) scratch.coat = p.coat;
     return {scratch.lobe, 1};
@@ -59,7 +61,8 @@ std::span<const Lobe> MipTexture::record_lobes(const Choice& c, Scratch& scratch
   ParamTexel t;
   ParamSpecular specular;
   ParamCoat coat;
-  decode_params(l, record, t, &specular, &coat, &scratch.sheen);
+  AnisotropyLayer aniso;
+  decode_params(l, record, t, &specular, &coat, &scratch.sheen, &aniso);
   if (c.level >= 1) {
     const RecordTexel texel =
         decode_brdf(l, c.level, record, scratch.lobe, scratch.coat_lobe, scratch.correction);
@@ -72,7 +75,7 @@ std::span<const Lobe> MipTexture::record_lobes(const Choice& c, Scratch& scratch
   }
   // Level 0, as mip.cpp makes its lobe from the parameter pyramid's texel.
   scratch.lobe[0] = lobe_from_texel(t.base_color * c.tint, t.metallic, t.roughness, t.normal, 1.0f,
-                                    SpecularLayer{specular.specular, specular.color, l.ior});
+                                    SpecularLayer{specular.specular, specular.color, l.ior}, aniso);
   if (l.coat) {
     scratch.lobe[0].coat = std::clamp(coat.clearcoat, 0.0f, 1.0f);
     scratch.coat = coat_lobe(CoatLayer{coat.clearcoat, coat.roughness, coat.normal});

@@ -19,7 +19,7 @@ using mip_file_channels::Role;
 
 namespace {
 
-constexpr const char* kFormat = "svbrdf mip records 1";
+constexpr const char* kFormat = "svbrdf mip records 2";
 
 // The roles of a lobe's half channels, in the MIP file's order (its direction word comes first).
 std::vector<std::uint8_t> half_roles(const std::vector<LobeChannel>& channels) {
@@ -75,6 +75,7 @@ MipRecordLayout MipRecordLayout::of(const ParamPyramid& param, const BrdfPyramid
   o.specular = !param.specular_level(0).empty();
   o.coat = param.has_coat();
   o.sheen = param.has_sheen();
+  o.anisotropy = param.has_anisotropy();
   o.ior = param.ior();
   o.level.resize(static_cast<std::size_t>(o.levels));
   if (!brdf) {
@@ -91,6 +92,7 @@ MipRecordLayout MipRecordLayout::of(const ParamPyramid& param, const BrdfPyramid
     v.coat_slots = o.coat ? brdf->coat_level(l).slots : 0;
     v.lobe_specular = bl.specular_layer();
     v.lobe_tint = o.tint && bl.tint_layer();
+    v.lobe_stretch = bl.stretch_layer();
     v.radial = !bl.correction.empty();
     corrected |= v.radial;
   }
@@ -102,7 +104,7 @@ MipRecordLayout MipRecordLayout::of(const ParamPyramid& param, const BrdfPyramid
 void MipRecordLayout::find_roles() {
   roles.clear();
   for (const Level& v : level)
-    roles.push_back(half_roles(mip_file_channels::lobe_channels(v.lobe_specular, v.lobe_tint, coat, sheen)));
+    roles.push_back(half_roles(mip_file_channels::lobe_channels(v.lobe_specular, v.lobe_tint, coat, sheen, v.lobe_stretch)));
 }
 
 int MipRecordLayout::words(int l) const {
@@ -116,11 +118,11 @@ std::string MipRecordLayout::describe(const std::string& key) const {
   std::ostringstream s;
   s << kFormat << " key " << key << " extent " << extent.width << ' ' << extent.height << " levels " << levels
     << " brdf " << brdf << " tint " << tint << " specular " << specular << " coat " << coat << " sheen "
-    << sheen << " ior " << bits_of(ior) << " max_lobes " << max_lobes << " radial " << bits_of(radial_inner)
+    << sheen << " anisotropy " << anisotropy << " ior " << bits_of(ior) << " max_lobes " << max_lobes << " radial " << bits_of(radial_inner)
     << ' ' << bits_of(radial_outer);
   for (const Level& v : level)
     s << " level " << v.slots << ' ' << v.coat_slots << ' ' << v.lobe_specular << ' ' << v.lobe_tint << ' '
-      << v.radial;
+      << v.lobe_stretch << ' ' << v.radial;
   return s.str();
 }
 
@@ -146,7 +148,7 @@ std::optional<MipRecordLayout> MipRecordLayout::parse(const std::string& text, c
   bool ok = expect("key") && (s >> stored_key) && expect("extent") &&
             (s >> o.extent.width >> o.extent.height) && expect("levels") && (s >> o.levels) &&
             expect("brdf") && flag(o.brdf) && expect("tint") && flag(o.tint) && expect("specular") &&
-            flag(o.specular) && expect("coat") && flag(o.coat) && expect("sheen") && flag(o.sheen) &&
+            flag(o.specular) && expect("coat") && flag(o.coat) && expect("sheen") && flag(o.sheen) && expect("anisotropy") && flag(o.anisotropy) &&
             expect("ior") && (s >> ior) && expect("max_lobes") && (s >> o.max_lobes) && expect("radial") &&
             (s >> inner >> outer);
   if (!ok) return fail("its description is not a MIP record layout");
@@ -163,7 +165,7 @@ std::optional<MipRecordLayout> MipRecordLayout::parse(const std::string& text, c
   for (int l = 0; l < o.levels; ++l) {
     Level v;
     if (!expect("level") || !(s >> v.slots >> v.coat_slots) || !flag(v.lobe_specular) || !flag(v.lobe_tint) ||
-        !flag(v.radial))
+        !flag(v.lobe_stretch) || !flag(v.radial))
       return fail("its layout lists fewer levels than it has");
     const bool brdf_level = o.brdf && l > 0;
     if (v.slots < (brdf_level ? 1 : 0) || v.slots > (brdf_level ? kMaxLobes : 0) || v.coat_slots < 0 ||
@@ -205,6 +207,10 @@ void encode_records(const MipRecordLayout& layout, const ParamPyramid& param, co
         const SheenLayer& c = *param.sheen(l, i, j);
         for (const float x : {c.color.r, c.color.g, c.color.b, c.roughness}) *w++ = bits_of(x);
       }
+      if (layout.anisotropy) {
+        const AnisotropyLayer& a = *param.anisotropy(l, i, j);
+        for (const float x : {a.strength, a.direction.x, a.direction.y}) *w++ = bits_of(x);
+      }
       if (!lobes) continue;
       const std::span<const Lobe> texel = brdf->level(l).texel_lobes(t);
       const std::span<const Lobe> coat_texel =
@@ -226,7 +232,7 @@ void encode_records(const MipRecordLayout& layout, const ParamPyramid& param, co
 }
 
 void decode_params(const MipRecordLayout& layout, const std::uint32_t* w, ParamTexel& p,
-                   ParamSpecular* specular, ParamCoat* coat, SheenLayer* sheen) {
+                   ParamSpecular* specular, ParamCoat* coat, SheenLayer* sheen, AnisotropyLayer* anisotropy) {
   p.base_color = {float_of(w[0]), float_of(w[1]), float_of(w[2])};
   p.metallic = float_of(w[3]);
   p.roughness = float_of(w[4]);
@@ -240,7 +246,11 @@ void decode_params(const MipRecordLayout& layout, const std::uint32_t* w, ParamT
     if (coat) *coat = {float_of(w[0]), float_of(w[1]), {float_of(w[2]), float_of(w[3]), float_of(w[4])}};
     w += MipRecordLayout::kCoatWords;
   }
-  if (layout.sheen && sheen) *sheen = {{float_of(w[0]), float_of(w[1]), float_of(w[2])}, float_of(w[3])};
+  if (layout.sheen) {
+    if (sheen) *sheen = {{float_of(w[0]), float_of(w[1]), float_of(w[2])}, float_of(w[3])};
+    w += MipRecordLayout::kSheenWords;
+  }
+  if (layout.anisotropy && anisotropy) *anisotropy = {float_of(w[0]), {float_of(w[1]), float_of(w[2])}};
 }
 
 RecordTexel decode_brdf(const MipRecordLayout& layout, int l, const std::uint32_t* w, Lobe* lobes,

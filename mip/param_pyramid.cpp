@@ -37,9 +37,9 @@ MeanNormal mean_normal(const glm::vec3& mean, TextureFilter filter) {
 
 }  // namespace
 
-Lobe param_lobe(const ParamTexel& t, TextureFilter filter, const SpecularLayer& layer) {
+Lobe param_lobe(const ParamTexel& t, TextureFilter filter, const SpecularLayer& layer, const AnisotropyLayer& aniso) {
   const MeanNormal m = mean_normal(t.normal, filter);
-  Lobe l = lobe_from_texel(t.base_color, t.metallic, t.roughness, m.n, 1.0f, layer);
+  Lobe l = lobe_from_texel(t.base_color, t.metallic, t.roughness, m.n, 1.0f, layer, aniso);
   l.alpha2 = std::min(1.0f, l.alpha2 + m.widen);
   return l;
 }
@@ -52,9 +52,9 @@ Lobe param_coat_lobe(const ParamCoat& c, TextureFilter filter) {
 }
 
 ParamLobes param_lobes(const ParamTexel& t, TextureFilter filter, const SpecularLayer& layer, const ParamCoat* coat,
-                       const SheenLayer* sheen) {
+                       const SheenLayer* sheen, const AnisotropyLayer* aniso) {
   ParamLobes out;
-  out.base = param_lobe(t, filter, layer);
+  out.base = param_lobe(t, filter, layer, aniso ? *aniso : AnisotropyLayer{});
   if (sheen) {
     out.sheen = *sheen;
     out.base.sheen = sheen_share(*sheen);
@@ -152,6 +152,23 @@ std::vector<SheenLayer> sheen_from_below(Extent level0, int level, const std::ve
   });
 }
 
+std::vector<AnisotropyLayer> anisotropy_from_below(Extent level0, int level, const std::vector<AnisotropyLayer>& fine) {
+  return level_from_below(level0, level, fine, [](const auto& children) {
+    double total = 0;
+    glm::dvec2 v(0.0);
+    children([&](double w, const AnisotropyLayer& t) {
+      const double c = t.direction.x, s = t.direction.y;
+      total += w;
+      v += (w * t.strength) * glm::dvec2(c * c - s * s, 2 * c * s);
+    });
+    v /= total;
+    const double len = glm::length(v);
+    if (!(len > 0)) return AnisotropyLayer{};
+    const double phi = 0.5 * std::atan2(v.y, v.x);
+    return AnisotropyLayer{static_cast<float>(len), glm::vec2(static_cast<float>(std::cos(phi)), static_cast<float>(std::sin(phi)))};
+  });
+}
+
 ParamPyramid ParamPyramid::build(const MaterialTexels& m) {
   ParamPyramid p = level0_only(m);
   p.build_coarse_levels();
@@ -159,7 +176,6 @@ ParamPyramid ParamPyramid::build(const MaterialTexels& m) {
 }
 
 ParamPyramid ParamPyramid::level0_only(const MaterialTexels& m) {
-  refuse_anisotropy(m, "parameter pyramid");
   ParamPyramid p;
   p.level0_ = {m.width, m.height};
   if (level_count(p.level0_) == 0) return p;
@@ -186,6 +202,11 @@ ParamPyramid ParamPyramid::level0_only(const MaterialTexels& m) {
     p.coat_.push_back(std::move(coat));
   }
   if (m.has_sheen()) p.sheen_.push_back(sheen_level0(m));
+  if (m.has_anisotropy()) {
+    std::vector<AnisotropyLayer> aniso(m.size());
+    for (std::size_t k = 0; k < m.size(); ++k) aniso[k] = m.anisotropy_layer(k);
+    p.anisotropy_.push_back(std::move(aniso));
+  }
   return p;
 }
 
@@ -195,6 +216,7 @@ void ParamPyramid::build_coarse_levels() {
     if (!specular_.empty()) specular_.push_back(specular_from_below(level0_, level, specular_.back()));
     if (!coat_.empty()) coat_.push_back(coat_from_below(level0_, level, coat_.back()));
     if (!sheen_.empty()) sheen_.push_back(sheen_from_below(level0_, level, sheen_.back()));
+    if (!anisotropy_.empty()) anisotropy_.push_back(anisotropy_from_below(level0_, level, anisotropy_.back()));
   }
 }
 
@@ -236,13 +258,23 @@ MaterialTexels ParamPyramid::level0_texels() const {
     for (std::size_t k = 0; k < base.size(); ++k)
       m.sheen_color[k] = sheen_.front()[k].color, m.sheen_roughness[k] = sheen_.front()[k].roughness;
   }
+  if (!anisotropy_.empty()) {
+    // Every texel's own; the factor only says that the material has one (anisotropy_layer reads the
+    // texels').
+    m.anisotropy_factor = 1.0f;
+    m.anisotropy.resize(base.size());
+    m.anisotropy_direction.resize(base.size());
+    for (std::size_t k = 0; k < base.size(); ++k)
+      m.anisotropy[k] = anisotropy_.front()[k].strength, m.anisotropy_direction[k] = anisotropy_.front()[k].direction;
+  }
   return m;
 }
 
 ParamPyramid ParamPyramid::from_levels(Extent level0, std::vector<std::vector<ParamTexel>> levels,
                                        std::vector<std::vector<ParamSpecular>> specular, float ior,
                                        std::vector<std::vector<ParamCoat>> coat,
-                                       std::vector<std::vector<SheenLayer>> sheen) {
+                                       std::vector<std::vector<SheenLayer>> sheen,
+                                       std::vector<std::vector<AnisotropyLayer>> anisotropy) {
   if (static_cast<int>(levels.size()) != level_count(level0))
     throw Error("parameter pyramid: " + std::to_string(levels.size()) + " levels for a " +
                 std::to_string(level0.width) + "x" + std::to_string(level0.height) + " level 0 (expected " +
@@ -257,6 +289,8 @@ ParamPyramid ParamPyramid::from_levels(Extent level0, std::vector<std::vector<Pa
       throw Error("parameter pyramid: the coat's level " + std::to_string(l) + " has the wrong size");
     if (!sheen.empty() && (sheen.size() != levels.size() || sheen[l].size() != levels[l].size()))
       throw Error("parameter pyramid: the sheen's level " + std::to_string(l) + " has the wrong size");
+    if (!anisotropy.empty() && (anisotropy.size() != levels.size() || anisotropy[l].size() != levels[l].size()))
+      throw Error("parameter pyramid: the anisotropy's level " + std::to_string(l) + " has the wrong size");
   }
   ParamPyramid p;
   p.level0_ = level0;
@@ -264,6 +298,7 @@ ParamPyramid ParamPyramid::from_levels(Extent level0, std::vector<std::vector<Pa
   p.specular_ = std::move(specular);
   p.coat_ = std::move(coat);
   p.sheen_ = std::move(sheen);
+  p.anisotropy_ = std::move(anisotropy);
   p.ior_ = ior;
   return p;
 }

@@ -51,7 +51,10 @@ struct ParamCoat {
 // toksvig, vmf; texture_filter.h): f_eff of one glTF texel with the mean parameters and normal =
 // normalize(mean normal) (weight 1, unit normal), α widened for the engine baselines. Any other
 // filter reads as param (no widening). `layer` is the texel's specular layer (plain by default).
-Lobe param_lobe(const ParamTexel& t, TextureFilter filter, const SpecularLayer& layer = {});
+// `aniso` is the texel's mean anisotropy (none by default), whose stretch the lobe takes as a level-0
+// texel's (lobe.h lobe_from_texel), the filter's widening added to its α² as to an isotropic one's.
+Lobe param_lobe(const ParamTexel& t, TextureFilter filter, const SpecularLayer& layer = {},
+                const AnisotropyLayer& aniso = {});
 // The coat lobe (coat_layer.h) a parameter texel's mean coat stands for under the same filter: weight
 // the mean clearcoat, normal = normalize(mean coat normal), α from the mean roughness, widened as
 // param_lobe widens the base's from the coat normals' shortened mean. The base lobe's coat share
@@ -70,12 +73,20 @@ struct ParamLobes {
   bool coated = false;
   SheenLayer sheen;      // the mean sheen (colour 0: none)
 };
+// A material with an anisotropy (`aniso` not null) shades its mean (anisotropy_from_below).
 ParamLobes param_lobes(const ParamTexel& t, TextureFilter filter, const SpecularLayer& layer, const ParamCoat* coat,
-                       const SheenLayer* sheen = nullptr);
+                       const SheenLayer* sheen = nullptr, const AnisotropyLayer* aniso = nullptr);
 
 // The sheen means of level `level` ≥ 1 from those of level − 1: each the mean of its children's colours
 // and perceptual roughnesses weighted by the level-0 texels they cover, in double, as the parameters'.
 std::vector<SheenLayer> sheen_from_below(Extent level0, int level, const std::vector<SheenLayer>& fine);
+
+// The anisotropy's means of level `level` ≥ 1 from those of level − 1 (KHR_materials_anisotropy): the
+// direction is axial (φ and φ + π stretch alike), so the children's strengths s and angles φ average as
+// s·(cos 2φ, sin 2φ), weighted by the level-0 texels they cover; the mean's length is the strength and
+// half its angle the direction. Children stretched across each other cancel toward isotropy, as their
+// mean parameter should.
+std::vector<AnisotropyLayer> anisotropy_from_below(Extent level0, int level, const std::vector<AnisotropyLayer>& fine);
 
 class ParamPyramid {
  public:
@@ -93,7 +104,8 @@ class ParamPyramid {
   static ParamPyramid from_levels(Extent level0, std::vector<std::vector<ParamTexel>> levels,
                                   std::vector<std::vector<ParamSpecular>> specular = {}, float ior = 1.5f,
                                   std::vector<std::vector<ParamCoat>> coat = {},
-                                  std::vector<std::vector<SheenLayer>> sheen = {});
+                                  std::vector<std::vector<SheenLayer>> sheen = {},
+                                  std::vector<std::vector<AnisotropyLayer>> anisotropy = {});
 
   int levels() const { return static_cast<int>(levels_.size()); }
   Extent level0() const { return level0_; }
@@ -144,12 +156,26 @@ class ParamPyramid {
   }
   static constexpr int kBytesPerSheenTexel = 4 * 4;  // 4 floats, for a material with a sheen
 
+  // The anisotropy (KHR_materials_anisotropy), a pyramid of its means beside the parameters' for a
+  // material with one (empty otherwise): strength and unit direction (anisotropy_from_below); level 0's
+  // are the texels' own, which a level-0 lookup shades.
+  bool has_anisotropy() const { return !anisotropy_.empty(); }
+  std::span<const AnisotropyLayer> anisotropy_level(int level) const {
+    return anisotropy_.empty() ? std::span<const AnisotropyLayer>() : anisotropy_[static_cast<std::size_t>(level)];
+  }
+  const AnisotropyLayer* anisotropy(int level, int i, int j) const {
+    if (anisotropy_.empty()) return nullptr;
+    return &anisotropy_[static_cast<std::size_t>(level)][static_cast<std::size_t>(j) * extent(level).width + i];
+  }
+  static constexpr int kBytesPerAnisotropyTexel = 3 * 4;  // 3 floats, for an anisotropic material
+
  private:
   Extent level0_{};
   std::vector<std::vector<ParamTexel>> levels_;
   std::vector<std::vector<ParamSpecular>> specular_;  // empty: a plain layer (factors 1)
   std::vector<std::vector<ParamCoat>> coat_;          // empty: no coat
   std::vector<std::vector<SheenLayer>> sheen_;        // empty: no sheen
+  std::vector<std::vector<AnisotropyLayer>> anisotropy_;  // empty: isotropic
   float ior_ = 1.5f;
 };
 

@@ -70,6 +70,36 @@ void set_lobe_skirt_code(Lobe& lobe, float code) {
     lobe.skirt = code;
 }
 
+float lobe_stretch_code(const Lobe& lobe) {
+  const double ln_r = lobe.stretch > 1.0f ? std::log(double(lobe.stretch)) : 0.0;
+  return ln_r < kLeastStoredLnStretch ? 0.0f : to_half(static_cast<float>(ln_r));
+}
+
+namespace {
+constexpr double kStretchDirectionStep = 3.14159265358979323846 / double(1u << kStretchDirectionBits);
+}
+
+std::uint32_t lobe_stretch_direction_code(const Lobe& lobe) {
+  // The direction is axial (φ and φ + π stretch alike): φ in [0, π).
+  double phi = std::atan2(double(lobe.stretch_dir.y), double(lobe.stretch_dir.x));
+  if (phi < 0) phi += 3.14159265358979323846;
+  const auto k = static_cast<std::uint64_t>(std::llround(phi / kStretchDirectionStep));
+  return static_cast<std::uint32_t>(k % (std::uint64_t(1) << kStretchDirectionBits));
+}
+
+void set_lobe_stretch_code(Lobe& lobe, float code, std::uint32_t direction) {
+  if (!(code > 0.0f)) {
+    lobe.stretch = 1.0f;
+    lobe.stretch_dir = glm::vec2(1.0f, 0.0f);
+    return;
+  }
+  const double phi = double(direction) * kStretchDirectionStep;
+  // At most e^16 (no lobe a texel makes comes near it: r ≤ 1/α_min = 1000), so that a corrupt code
+  // gives a finite stretch.
+  lobe.stretch = static_cast<float>(std::exp(std::min(double(code), 16.0)));
+  lobe.stretch_dir = glm::vec2(static_cast<float>(std::cos(phi)), static_cast<float>(std::sin(phi)));
+}
+
 void round_to_stored(Lobe& lobe) {
   lobe.weight = to_half(lobe.weight);
   // α as a half (α ≥ 1e-3 is in its normal range): 2.4e-4 relative on α, and α·α is exact in a float.
@@ -85,6 +115,7 @@ void round_to_stored(Lobe& lobe) {
   lobe.coat = to_half(lobe.coat);
   lobe.sheen = to_half(lobe.sheen);
   lobe.normal = round_normal(lobe.normal);
+  set_lobe_stretch_code(lobe, lobe_stretch_code(lobe), lobe_stretch_direction_code(lobe));
   const float skirt_code = lobe_skirt_code(lobe);
   set_lobe_shape_code(lobe, lobe_shape_code(lobe));
   set_lobe_skirt_code(lobe, skirt_code);

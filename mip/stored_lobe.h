@@ -4,6 +4,8 @@
 // every lobe to this (round_to_stored), which is what makes the file's round trip bit-identical and
 // what its figures measure; the MIP file reads and writes the codes. A user of the pyramid needs none
 // of this.
+#include <cstdint>
+
 #include "mip/lobe.h"
 
 namespace svbrdf {
@@ -24,8 +26,20 @@ void set_lobe_shape_code(Lobe& lobe, float code);
 float lobe_skirt_code(const Lobe& lobe);
 void set_lobe_skirt_code(Lobe& lobe, float code);
 
+// A lobe's stretch (lobe.h, "Stretched shapes") as the file stores it: ln r as a half (5e-4 relative),
+// and the direction's angle φ in [0, π) (a stretch is axial) in steps of π/2^20 (3e-6 rad, so that a
+// stretch of r = 1000 turns its wide axis into the narrow one by 0.3 % of the narrow width) as an
+// integer channel. Stretches of ln r < kLeastStoredLnStretch (r < 1.001, a 0.05 % change of the slopes'
+// widths) store as none (code 0), which also keeps the code's round trip exact: ln of the float
+// e^code lies within 6e-8 of the code, and a half's spacing there is ≥ 9.5e-7.
+inline constexpr double kLeastStoredLnStretch = 1e-3;
+inline constexpr int kStretchDirectionBits = 20;
+float lobe_stretch_code(const Lobe& lobe);
+std::uint32_t lobe_stretch_direction_code(const Lobe& lobe);
+void set_lobe_stretch_code(Lobe& lobe, float code, std::uint32_t direction);
+
 // Rounds a lobe to what the MIP file stores: weight, colors (f0_tint among them), its coat share, α (the square root of
-// alpha2), shape code and skirt as half floats, the normal as stored_normal.h codes it.
+// alpha2), shape code and skirt as half floats, the normal as stored_normal.h codes it, its stretch as above.
 void round_to_stored(Lobe& lobe);
 
 // The same for a coat lobe (coat_layer.h), whose colours the file does not store: F0 = 0.04 and F90 = 1
@@ -43,5 +57,8 @@ inline constexpr int kBytesPerSpecularLayer = 4 * 2;
 // What the tint layer adds to a stored lobe (f0_tint as three halves), in pyramids built for tinted
 // lookups (brdf_pyramid.h BrdfBuildOptions::tint).
 inline constexpr int kBytesPerTintLayer = 3 * 2;
+// What the anisotropy adds to a stored lobe (its stretch: ln r as a half, the direction's code as a
+// 32-bit integer), in levels where some lobe is stretched.
+inline constexpr int kBytesPerStretch = 2 + 4;
 
 }  // namespace svbrdf

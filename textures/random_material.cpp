@@ -23,6 +23,7 @@ enum Stream : std::uint64_t {
   kColorStream = 4,
   kSpecularStream = 5,  // reserved: KHR_materials_specular / ior
   kSheenStream = 6,
+  kAnisotropyStream = 7,
 };
 
 constexpr float kMinRoughness = 0.02f, kMaxRoughness = 1.0f;
@@ -203,6 +204,19 @@ RandomMaterialDraw draw_random_material(std::uint64_t seed) {
       if (textured) d.sheen_share = share, d.sheen_feature = feature, d.sheen_roughness_variation = variation;
     }
   }
+  {
+    noise::Sequence s(seed, kAnisotropyStream);
+    const bool anisotropic = s.uniform() < 1.0f / 3.0f;
+    const float strength = s.uniform(0.2f, 1.0f), rotation = s.uniform(0.0f, 3.14159265f);
+    const bool textured = s.uniform() < 0.5f;
+    const float swirl = s.uniform(0.0f, 90.0f), feature = log_uniform(s, 4.0f, 32.0f), variation = s.uniform(0.0f, 0.5f);
+    if (anisotropic) {
+      d.anisotropy = strength;
+      d.anisotropy_rotation = rotation;
+      d.anisotropy_textured = textured;
+      if (textured) d.anisotropy_swirl_deg = swirl, d.anisotropy_feature = feature, d.anisotropy_variation = variation;
+    }
+  }
   // KHR_materials_specular / ior: noise::Sequence(seed, kSpecularStream) draws them here (specular
   // weight, specular colour, ior) once MaterialTexels has the fields.
   return d;
@@ -263,6 +277,23 @@ MaterialTexels random_material_texels(const RandomMaterialDraw& d, int size) {
       }
     }
   }
+  // Anisotropy: its factors, and for a textured one its direction turned and its strength varied per
+  // texel by smooth fields.
+  if (d.anisotropy > 0.0f) {
+    t.anisotropy_factor = d.anisotropy;
+    t.anisotropy_direction_factor = glm::vec2(std::cos(d.anisotropy_rotation), std::sin(d.anisotropy_rotation));
+    if (d.anisotropy_textured) {
+      const std::vector<float> turn = field(noise::hash(d.seed, kAnisotropyStream, 1), size, d.anisotropy_feature);
+      const std::vector<float> vary = field(noise::hash(d.seed, kAnisotropyStream, 2), size, float(kRoughnessVariationFeature));
+      t.anisotropy.resize(t.size());
+      t.anisotropy_direction.resize(t.size());
+      for (std::size_t k = 0; k < t.size(); ++k) {
+        const float phi = d.anisotropy_rotation + glm::radians(d.anisotropy_swirl_deg) * turn[k];
+        t.anisotropy[k] = std::clamp(d.anisotropy * (1.0f + d.anisotropy_variation * vary[k]), 0.0f, 1.0f);
+        t.anisotropy_direction[k] = glm::vec2(std::cos(phi), std::sin(phi));
+      }
+    }
+  }
   return t;
 }
 
@@ -314,6 +345,15 @@ std::string RandomMaterialDraw::summary() const {
     if (sheen_textured) {
       std::snprintf(buf, sizeof buf, " on %.0f%% (%.0f-texel patches) ±%.0f%%", 100.0 * sheen_share, sheen_feature,
                     100.0 * sheen_roughness_variation);
+      s += buf;
+    }
+  }
+  if (anisotropy > 0.0f) {
+    std::snprintf(buf, sizeof buf, "; anisotropy %.2f at %.0f°", anisotropy, glm::degrees(anisotropy_rotation));
+    s += buf;
+    if (anisotropy_textured) {
+      std::snprintf(buf, sizeof buf, " turned ±%.0f° on %.0f texels, strength ±%.0f%%", anisotropy_swirl_deg,
+                    anisotropy_feature, 100.0 * anisotropy_variation);
       s += buf;
     }
   }

@@ -25,6 +25,10 @@
 //                sheen covers U[0.2, 0.8] of the texture in patches U_log[3, 24] texels across (sharp
 //                edges; none elsewhere) and its roughness varies by noise of relative amplitude
 //                U[0, 0.3] on 16-texel features; otherwise its factors hold everywhere.
+//   anisotropy — with probability 1/3 a KHR_materials_anisotropy: strength U[0.2, 1], direction at
+//                U[0°, 180°); with probability 1/2 textured: the direction turned per texel by a smooth
+//                field of amplitude U[0°, 90°] on features U_log[4, 32] texels (brushing that swirls),
+//                the strength varied by noise of relative amplitude U[0, 0.5] on 16-texel features.
 // Every ingredient has its own random stream, so an ingredient added later (a stream of its own)
 // leaves every existing seed's texels unchanged.
 //
@@ -78,6 +82,15 @@ struct RandomMaterialDraw {
   float sheen_share = 1.0f;
   float sheen_feature = 0.0f;
   float sheen_roughness_variation = 0.0f;
+  // KHR_materials_anisotropy (strength 0: none): strength, direction angle (radians) in the tangent
+  // frame, and for a textured one the amplitude of its turn (degrees), the turn's feature size
+  // (texels) and the strength's relative variation.
+  float anisotropy = 0.0f;
+  float anisotropy_rotation = 0.0f;
+  bool anisotropy_textured = false;
+  float anisotropy_swirl_deg = 0.0f;
+  float anisotropy_feature = 0.0f;
+  float anisotropy_variation = 0.0f;
   // KHR_materials_specular / KHR_materials_ior (specular weight, specular colour, ior) are drawn in
   // draw_random_material's stream kSpecularStream once MaterialTexels carries them.
 

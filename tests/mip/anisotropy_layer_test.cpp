@@ -13,12 +13,9 @@
 #include "appearance/frame.h"
 #include "appearance/gltf_surface_bsdf.h"
 #include "appearance/rng.h"
-#include "base/error.h"
 #include "exact_mean_check.h"
 #include "gltf_transcription.h"
-#include "mip/brdf_pyramid.h"
 #include "mip/exact_reference.h"
-#include "mip/param_pyramid.h"
 #include "random_directions.h"
 
 namespace svbrdf {
@@ -244,25 +241,6 @@ TEST(AnisotropyLayer, ExactTableIsItsEvaluation) {
   std::vector<Texel> ts;
   for (int k = 0; k < 16; ++k) ts.push_back(random_texel(rng, 0.1));
   expect_exact_table_is_its_evaluation(texels_of(ts, 4));
-}
-
-// The pyramids' merged and stored lobes carry no stretch: their builds refuse an anisotropic
-// material, naming the extension, instead of dropping its stretch.
-TEST(AnisotropyLayer, PyramidsRefuseAnisotropicTexels) {
-  Rng rng(65, 1);
-  std::vector<Texel> ts;
-  for (int k = 0; k < 16; ++k) ts.push_back(random_texel(rng, 0.2));
-  const MaterialTexels m = texels_of(ts, 4);
-  const auto expect_refused = [](const auto& build) {
-    try {
-      build();
-      ADD_FAILURE() << "an anisotropic material was built";
-    } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find("KHR_materials_anisotropy"), std::string::npos) << e.what();
-    }
-  };
-  expect_refused([&] { BrdfPyramid::build(m); });
-  expect_refused([&] { ParamPyramid::build(m); });
 }
 
 }  // namespace

@@ -46,7 +46,7 @@ class Records final : public MipRecordSource {
 // (formulas of the texel index), so every part of a record is exercised.
 MaterialTexels layered(int size) {
   std::uint64_t seed = 1;
-  while (!draw_random_material(seed).sheen_textured) ++seed;
+  while (!draw_random_material(seed).sheen_textured || !draw_random_material(seed).anisotropy_textured) ++seed;
   MaterialTexels m = random_material_texels(draw_random_material(seed), size);
   m.specular.resize(m.size());
   m.specular_color.resize(m.size());
@@ -175,7 +175,7 @@ TEST(MipRecords, TheLayoutsTextRoundTripsAndParseRefusesOthers) {
     EXPECT_NE(w.find(reason), std::string::npos) << w;
   };
   refused(text, std::string(64, 'b'), "another key");
-  refused("svbrdf mip records 2" + text.substr(20), key, "not a MIP record layout");
+  refused("svbrdf mip records 1" + text.substr(20), key, "not a MIP record layout");
   const auto replaced = [&](const std::string& from, const std::string& to) {
     std::string t = text;
     t.replace(t.find(from), from.size(), to);
@@ -184,7 +184,7 @@ TEST(MipRecords, TheLayoutsTextRoundTripsAndParseRefusesOthers) {
   refused(replaced(" levels 5 ", " levels 6 "), key, "do not form a pyramid");
   refused(replaced(" level 0 0 ", " level 9 0 "), key, "slots it cannot have");
   refused(text.substr(0, text.rfind(" level ")), key, "fewer levels");
-  refused(text + " level 1 1 0 0 0", key, "more levels");
+  refused(text + " level 1 1 0 0 0 0", key, "more levels");
 }
 
 // A record whose counts are garbage reads its own slots and no further.

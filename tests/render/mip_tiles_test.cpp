@@ -33,7 +33,7 @@ const std::vector<std::string> kFilters = {"level0", "param", "toksvig", "vmf", 
 
 // The specular layer, clear coat and sheen, each textured; and a plain baked material (sandstone).
 fs::path layered() {
-  return fs::path(SVBRDF_SOURCE_DIR) / "fuzz/corpus/gltf/layered-specular-clearcoat-sheen.gltf";
+  return fs::path(SVBRDF_SOURCE_DIR) / "fuzz/corpus/gltf/layered-specular-clearcoat-sheen-anisotropy.gltf";
 }
 fs::path plain(const fs::path& dir) {
   MaterialRecipe r;
