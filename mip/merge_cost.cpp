@@ -83,11 +83,13 @@ Summary summarize(const Lobe& l) {
   s.d_shape = DShape::of(sh);
   s.d_z = d_at_z(sh);
   profile_of(s.d_shape, s.profile);
+  // The slope of every lobe's normal, not only a stretched one's: an isotropic lobe in a union with a
+  // stretched one is offset from the merged normal by it (lobe_reduction.cpp, merge_union).
+  s.slope = normal_slope(s.n);
   if (sh.stretched) {
     s.stretched = true;
     s.stretch = stretch_matrix(l);
     s.stretch_log = stretch_log(l);
-    s.slope = normal_slope(s.n);
   }
   return s;
 }

@@ -65,7 +65,7 @@ struct Summary {
   DShape d_shape;     // its D's shape, for D away from its normal (merge_union)
   double flux = -1;   // its specular flux as keep_specular_flux measures it (< 0: not yet known)
   std::array<double, kProfileSteps> profile{};  // D about its own normal at tan²θ = 10^-6 … 10 (profile_of)
-  // Its stretch (slope_stretch.h): whether it has one, S, ln S as a vector, and its normal's slope.
+  // Its normal's slope, and its stretch (slope_stretch.h): whether it has one, S, ln S as a vector.
   bool stretched = false;
   Sym2 stretch;
   glm::dvec2 stretch_log{0.0};
