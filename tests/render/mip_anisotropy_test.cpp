@@ -8,11 +8,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <cstdio>
 #include <string>
 
 #include "appearance/gltf_surface_bsdf.h"
 #include "mip_quad.h"
+#include "tests/common/test_paths.h"
+#include "gltf/scene_reader.h"
 #include "render/material_mips.h"
 
 namespace svbrdf {
@@ -71,6 +74,31 @@ TEST(MipAnisotropy, AnAnisotropicMaterialTakesPartInTheMipFilters) {
   Prepared p(anisotropy_quad());
   EXPECT_NE(p.mips->find(0), nullptr);
   EXPECT_TRUE(p.mips->warnings(TextureFilter::brdf).empty());
+}
+
+// A glTF material with every layer the BRDF pyramid carries (KHR_materials_specular, _ior, _clearcoat,
+// _sheen, _anisotropy; the fuzz corpus's layered material) is filtered, not left at level 0, and its
+// coarse texels hold stretched lobes.
+TEST(MipAnisotropy, AMaterialWithEveryLayerTakesPartInTheMipFilters) {
+  const std::filesystem::path file =
+      std::filesystem::path(SVBRDF_SOURCE_DIR) / "fuzz/corpus/gltf/layered-specular-clearcoat-sheen-anisotropy.gltf";
+  Prepared p(load_gltf(file));
+  ASSERT_EQ(p.scene.materials.size(), 1u);
+  const MaterialDesc& m = p.scene.materials[0];
+  ASSERT_GT(m.anisotropy_strength, 0.0f);
+  ASSERT_GT(m.clearcoat, 0.0f);
+  ASSERT_GT(max_channel(m.sheen_color), 0.0f);
+  ASSERT_NE(m.ior, 1.5f);
+  ASSERT_NE(p.mips->find(0), nullptr);
+  EXPECT_TRUE(p.mips->warnings(TextureFilter::brdf).empty()) << p.mips->warnings(TextureFilter::brdf).front();
+  p.mips->prepare(TextureFilter::brdf);
+  MipTexture::Scratch scratch;
+  const MipTexture& t = p.mips->find(0)->texture();
+  const MipTexture::Choice c = t.choose(TextureFilter::brdf, Footprint{{0.5f, 0.5f}, {0.25f, 0}, {0, 0.25f}}, Rgb(1.0f), 0.5f);
+  ASSERT_GE(c.level, 1);
+  bool stretched = false;
+  for (const Lobe& l : t.lobes(c, scratch)) stretched = stretched || l.stretch > 1.0f;
+  EXPECT_TRUE(stretched);
 }
 
 // brdf's render at level 3 against the closed form, head-on and from 65° at two azimuths: the 64
