@@ -17,9 +17,11 @@ float mean3(const glm::vec3& c) { return (c.x + c.y + c.z) * (1.0f / 3.0f); }
 // The density of the specular sampler of a lobe (GGX visible normals about n, Heitz 2018) for the
 // reflected direction, from the cosines alone: D_wo(h)/(4·(wo·h)) = G1(wo)·D(h)/(4·(n·wo)) with
 // G1 = 2/(1 + √(1 + α²·tan²θo)) and D = α²/(π·(|n×h|² + (n·h)²·α²)²) (Walter et al. 2007, eqs. 33, 34;
-// Heitz 2014, eq. 2). |n×h|² rather than 1 − (n·h)² keeps the peak of sharp lobes exact.
-float ggx_reflection_pdf(float alpha2, float co, float ch, float sin2h) {
-  const float t2o = std::max(0.0f, 1.0f - co * co) / (co * co);
+// Heitz 2014, eq. 2). |n×h|² rather than 1 − (n·h)² keeps the peak of sharp lobes exact. For a stretched
+// lobe (lobe.h) the same with its stretched |n×h|² (shape_sin2) and tan²θo (stretched_tangent2 / co²):
+// the anisotropic GGX of α_t = α·√r, α_b = α/√r (Heitz 2014, eqs. 85–86), whose visible normals the
+// sampler draws with those two α.
+float ggx_reflection_pdf(float alpha2, float co, float ch, float sin2h, float t2o) {
   const float g1 = 2.0f / (1.0f + std::sqrt(1.0f + alpha2 * t2o));
   const float q = sin2h + ch * ch * alpha2;
   return g1 * alpha2 * kInvPi / (q * q * 4.0f * co);
@@ -148,10 +150,11 @@ float LobeMixtureBsdf::pdf_with(const Choice& c, const glm::vec3& wi, const glm:
       const float co = glm::dot(sh.n, wo), ch = glm::dot(sh.n, h);
       if (co > 0 && ch > 0) {
         const glm::vec3 nxh = glm::cross(sh.n, h);
-        const float sin2h = glm::dot(nxh, nxh);
-        float vis = ggx_reflection_pdf(sh.alpha2, co, ch, sin2h);
+        const float sin2h = shape_sin2(sh, nxh);
+        const float t2o = (sh.stretched ? stretched_tangent2(sh, wo) : std::max(0.0f, 1.0f - co * co)) / (co * co);
+        float vis = ggx_reflection_pdf(sh.alpha2, co, ch, sin2h, t2o);
         // A roughness mixture is sampled half from each end of its range (sample below).
-        if (sh.alpha2_hi > 0) vis = 0.5f * (vis + ggx_reflection_pdf(sh.alpha2_hi, co, ch, sin2h));
+        if (sh.alpha2_hi > 0) vis = 0.5f * (vis + ggx_reflection_pdf(sh.alpha2_hi, co, ch, sin2h, t2o));
         p += (1.0f - c.diffuse[i]) * vis;
       }
     }
@@ -187,15 +190,18 @@ BsdfSample LobeMixtureBsdf::sample(const glm::vec3& wo, const SampleU& u) const 
     wi = sample_cosine_hemisphere(uv);
   } else {
     const std::size_t i = static_cast<std::size_t>(picked);
-    const Frame fr = Frame::from_normal(slot(picked).shape.n);
+    const LobeShape<float>& sh = slot(picked).shape;
+    // A stretched lobe's frame has its stretch direction for x (lobe.h); any frame about n otherwise.
+    const Frame fr = sh.stretched ? Frame{sh.st, sh.sb, sh.n} : Frame::from_normal(sh.n);
     if (ux < c.diffuse[i]) {
       wi = fr.to_world(sample_cosine_hemisphere(uv));
     } else {
       const glm::vec3 wo_l = fr.to_local(wo);
       // A roughness mixture (lobe.h) is sampled half from each end of its α² range.
-      const LobeShape<float>& sh = slot(picked).shape;
       const bool upper = sh.alpha2_hi > 0 && (ux - c.diffuse[i]) >= 0.5f * (1.0f - c.diffuse[i]);
-      const glm::vec3 h = sample_ggx_visible(std::sqrt(upper ? sh.alpha2_hi : sh.alpha2), wo_l, uv);
+      const float alpha = std::sqrt(upper ? sh.alpha2_hi : sh.alpha2);
+      const glm::vec2 axes = sh.stretched ? glm::vec2(alpha * std::sqrt(sh.r), alpha * std::sqrt(sh.inv_r)) : glm::vec2(alpha);
+      const glm::vec3 h = sample_ggx_visible(axes, wo_l, uv);
       wi = fr.to_world(2.0f * glm::dot(wo_l, h) * h - wo_l);
     }
   }
