@@ -6,6 +6,7 @@
 // every level ≥ 1, against the same materials without their anisotropy.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -16,6 +17,7 @@
 #include "mip/lobe_mixture_bsdf.h"
 #include "mip/lobe_reduction.h"
 #include "mip/mip_data.h"
+#include "mip/param_pyramid.h"
 #include "mip/stored_lobe.h"
 #include "tests/mip/level_figures.h"
 #include "tests/mip/random_directions.h"
@@ -127,6 +129,42 @@ TEST(AnisotropyPyramid, SamplingStretchedLobesMatchesItsPdfAndIntegral) {
     ASSERT_TRUE(stretched) << "level " << level;
     testing_sampling::expect_sampling_matches_pdf_and_integral(b, glm::normalize(glm::vec3(0.4f, -0.2f, 0.5f)));
   }
+}
+
+// The parameter pyramid's anisotropy means (param_pyramid.h anisotropy_from_below) are axial: each
+// child's strength s and angle φ average as s·(cos 2φ, sin 2φ). Children stretched across each other
+// (φ and φ + 90°) cancel; φ and φ + 180° are one direction; a 2 × 2 of angles 10°, 30°, 10°, 30° at
+// strengths 0.8, 0.4, 0.8, 0.4 is (0.8·(cos 20°, sin 20°) + 0.4·(cos 60°, sin 60°))/2 in doubled angles.
+// The parameter filters shade the mean (param_lobes), whose stretch is that of a texel of it.
+TEST(AnisotropyPyramid, TheParameterPyramidsMeanIsAxial) {
+  const auto level1 = [](const std::array<float, 4>& deg, const std::array<float, 4>& strength) {
+    MaterialTexels m(2, 2);
+    m.anisotropy_factor = 1.0f;
+    for (std::size_t k = 0; k < 4; ++k) {
+      const float a = glm::radians(deg[k]);
+      m.anisotropy.push_back(strength[k]);
+      m.anisotropy_direction.push_back({std::cos(a), std::sin(a)});
+    }
+    const ParamPyramid p = ParamPyramid::build(m);
+    EXPECT_TRUE(p.has_anisotropy());
+    return *p.anisotropy(1, 0, 0);
+  };
+  EXPECT_NEAR(level1({0, 90, 0, 90}, {0.6f, 0.6f, 0.6f, 0.6f}).strength, 0.0f, 1e-6f);
+  const AnisotropyLayer same = level1({20, 200, 20, 200}, {0.5f, 0.5f, 0.5f, 0.5f});
+  EXPECT_NEAR(same.strength, 0.5f, 1e-6f);
+  EXPECT_NEAR(std::abs(same.direction.x * std::sin(glm::radians(20.0f)) - same.direction.y * std::cos(glm::radians(20.0f))), 0.0f, 1e-6f);
+  const AnisotropyLayer mixed = level1({10, 30, 10, 30}, {0.8f, 0.4f, 0.8f, 0.4f});
+  const glm::dvec2 v = 0.5 * (0.8 * glm::dvec2(std::cos(kPi / 9), std::sin(kPi / 9)) + 0.4 * glm::dvec2(0.5, std::sqrt(0.75)));
+  EXPECT_NEAR(mixed.strength, glm::length(v), 1e-6);
+  EXPECT_NEAR(std::atan2(mixed.direction.y, mixed.direction.x), 0.5 * std::atan2(v.y, v.x), 1e-6);
+  // The parameter filter's lobe of the mean is the level-0 lobe of a texel with those parameters.
+  ParamTexel t{glm::vec3(0.7f), 1.0f, 0.3f, glm::vec3(0, 0, 1)};
+  const Lobe want = lobe_from_texel(t.base_color, t.metallic, t.roughness, t.normal, 1.0f, {}, mixed);
+  const Lobe got = param_lobes(t, TextureFilter::param, {}, nullptr, nullptr, &mixed).base;
+  EXPECT_EQ(got.stretch, want.stretch);
+  EXPECT_EQ(got.stretch_dir, want.stretch_dir);
+  EXPECT_EQ(got.alpha2, want.alpha2);
+  EXPECT_GT(got.stretch, 1.0f);
 }
 
 // The first `n` seeds from `from` on whose draw is anisotropic, textured or not as asked.
