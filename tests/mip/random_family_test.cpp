@@ -129,7 +129,9 @@ TEST(RandomFamily, FiveSeedsAt64MeetTheirBars) {
     check_seed(b);
 }
 
-// 100 seeds at 64² (ctest label `long`, SVBRDF_LONG=1): level 1 is near exact for every seed; flat
+// 100 seeds at 64² (ctest label `long`, SVBRDF_LONG=1): level 1 is near exact for every seed (its
+// albedo within 0.2 %, or within 0.6 % for an anisotropic seed, whose merged stretched lobes keep their
+// members' flux to the 0.6 % of the power mean of their widths, docs/mip-algorithm.md §4.5); flat
 // seeds meet the targets but e_mean; over the seeds, brdf's median e_log is a third of param's or
 // less and its median e_mean a tenth, and most seeds outside the glint regime meet the e_log target.
 TEST(RandomFamilyLong, HundredSeedsAt64) {
@@ -147,7 +149,8 @@ TEST(RandomFamilyLong, HundredSeedsAt64) {
         if (!std::isnan(b.erel_mean_other)) {
           EXPECT_LE(b.erel_mean_other, 0.02);
         }
-        for (std::size_t a = 0; a < 3; ++a) EXPECT_LE(std::abs(b.albedo_total[a]), 2e-3);
+        const double albedo = draw_random_material(f.seed).anisotropy > 0.0f ? 6e-3 : 2e-3;
+        for (std::size_t a = 0; a < 3; ++a) EXPECT_LE(std::abs(b.albedo_total[a]), albedo);
       }
       if (flat) {
         EXPECT_LE(b.elog_mean, 0.01);
