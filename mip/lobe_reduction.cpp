@@ -114,7 +114,8 @@ Merged merge_union(std::span<const Member> u, const UnionTerms* terms, const Red
     s_inv = stretch_matrix(stretch_of).inverse_det1();
   }
   // A member's tan²θ to the merged normal in the merged stretch's frame (`own`: in its own stretch's,
-  // for its D there).
+  // for its D there). The union's cone mass below (the skirt's and the atom's fits, lobe_fit.h) stays
+  // isotropic: the cone is the LOD camera's, round about the merged normal.
   const auto tilt2 = [&](const Summary& a, bool own) {
     const double t = tan2_between(a.n, n);
     if (!stretched || !std::isfinite(t)) return t;
