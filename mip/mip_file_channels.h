@@ -176,8 +176,9 @@ inline Lobe unpack_lobe(const LobeValues& in) {
   l.alpha2 = in[Role::alpha] * in[Role::alpha];
   set_lobe_shape_code(l, in[Role::shape]);
   set_lobe_skirt_code(l, in[Role::skirt]);
-  // Codes outside 0..1023 (a corrupt file) are clamped into it: some direction, never undefined.
-  const auto ten_bits = [](float v) { return static_cast<std::uint32_t>(std::clamp(v, 0.0f, 1023.0f)); };
+  // Codes outside 0..1023 (a corrupt file; NaN among them) are clamped into it: some direction, never
+  // an undefined conversion.
+  const auto ten_bits = [](float v) { return v >= 1.0f ? static_cast<std::uint32_t>(std::min(v, 1023.0f)) : 0u; };
   set_lobe_stretch_code(l, in[Role::stretch], (ten_bits(in[Role::stretch_dir_hi]) << 10) | ten_bits(in[Role::stretch_dir_lo]));
   return l;
 }

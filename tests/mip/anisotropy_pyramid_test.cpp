@@ -17,6 +17,7 @@
 #include "mip/lobe_mixture_bsdf.h"
 #include "mip/lobe_reduction.h"
 #include "mip/mip_data.h"
+#include "mip/mip_file_channels.h"
 #include "mip/param_pyramid.h"
 #include "mip/stored_lobe.h"
 #include "tests/mip/level_figures.h"
@@ -111,6 +112,22 @@ TEST(AnisotropyPyramid, TheStoredStretchRoundsOnce) {
     const double cross = l.stretch_dir.x * once.stretch_dir.y - l.stretch_dir.y * once.stretch_dir.x;
     ASSERT_LT(std::abs(cross), 3e-6) << "trial " << trial;
   }
+}
+
+// A corrupt file's stretch codes (NaN, negative, past the half's range) read as some finite stretch
+// and a unit direction, never an undefined conversion (mip_file_channels.h unpack_lobe).
+TEST(AnisotropyPyramid, CorruptStretchCodesReadAsAFiniteStretch) {
+  using mip_file_channels::Role;
+  const float nan = std::nanf("");
+  for (const float code : {nan, -3.0f, 0.5f, 65504.0f})
+    for (const float dir : {nan, -7.0f, 5.0f, 4096.0f, 65504.0f}) {
+      mip_file_channels::LobeValues v;
+      v[Role::weight] = 1.0f, v[Role::alpha] = 0.3f, v[Role::shape] = -1.0f, v[Role::skirt] = 1.0f, v[Role::f90] = 1.0f;
+      v[Role::stretch] = code, v[Role::stretch_dir_hi] = dir, v[Role::stretch_dir_lo] = dir;
+      const Lobe l = mip_file_channels::unpack_lobe(v);
+      EXPECT_TRUE(std::isfinite(l.stretch) && l.stretch >= 1.0f) << code << " " << dir;
+      EXPECT_NEAR(glm::length(l.stretch_dir), 1.0f, 1e-6f) << code << " " << dir;
+    }
 }
 
 // The mixture's sampler with stretched lobes (sampling_check.h: χ² of sample() against pdf(), the
