@@ -398,7 +398,7 @@ glm::vec<3, T> lobe_brdf(const Lobe& lobe, const LobeShape<T>& s, const PairTerm
     if (!s.stretched) return smith_ggx_visibility(a2, ci, co);
     return T(0.5) / (co * std::sqrt(ci * ci + a2 * qi) + ci * std::sqrt(co * co + a2 * qo));
   };
-  T vis;
+  T vis = 0;  // (every branch below sets it; clang cannot follow `lanes`)
   if (s.two_point && ch > 0) {
     // A two-point mixture: each atom's V weighted by its share of D at this half vector.
     const T t = sin2 / (ch * ch), al = s.alpha2, ah = s.alpha2_hi;
