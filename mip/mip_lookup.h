@@ -106,7 +106,7 @@ ParamTexel filter_params_of(const ParamStore& store, const Texel& texel, const F
   ParamCoat c;
   SheenLayer h;
   AnisotropyLayer a;
-  glm::vec2 axial(0.0f);  // Σ weight·strength·(cos 2φ, sin 2φ)
+  glm::dvec2 axial(0.0);  // Σ weight·axial_anisotropy (param_pyramid.h)
   for (int k = 0; k < taps.count; ++k) {
     const FilterTap& t = taps.taps[static_cast<std::size_t>(k)];
     const ParamTexel& p =
@@ -129,18 +129,9 @@ ParamTexel filter_params_of(const ParamStore& store, const Texel& texel, const F
       sheen->color += t.weight * h.color;
       sheen->roughness += t.weight * h.roughness;
     }
-    if (stretched) {
-      const float x = a.direction.x, y = a.direction.y;
-      axial += (t.weight * a.strength) * glm::vec2(x * x - y * y, 2.0f * x * y);
-    }
+    if (stretched) axial += double(t.weight) * axial_anisotropy(a);
   }
-  if (stretched) {
-    const float len = glm::length(axial);
-    if (len > 0.0f) {
-      const float phi = 0.5f * std::atan2(axial.y, axial.x);
-      *anisotropy = {len, glm::vec2(std::cos(phi), std::sin(phi))};
-    }
-  }
+  if (stretched) *anisotropy = from_axial_anisotropy(axial);
   return sum;
 }
 Lobe lookup_param(const ParamPyramid& pyramid, const Footprint& footprint,

@@ -157,15 +157,10 @@ std::vector<AnisotropyLayer> anisotropy_from_below(Extent level0, int level, con
     double total = 0;
     glm::dvec2 v(0.0);
     children([&](double w, const AnisotropyLayer& t) {
-      const double c = t.direction.x, s = t.direction.y;
       total += w;
-      v += (w * t.strength) * glm::dvec2(c * c - s * s, 2 * c * s);
+      v += w * axial_anisotropy(t);
     });
-    v /= total;
-    const double len = glm::length(v);
-    if (!(len > 0)) return AnisotropyLayer{};
-    const double phi = 0.5 * std::atan2(v.y, v.x);
-    return AnisotropyLayer{static_cast<float>(len), glm::vec2(static_cast<float>(std::cos(phi)), static_cast<float>(std::sin(phi)))};
+    return from_axial_anisotropy(v / total);
   });
 }
 

@@ -12,6 +12,7 @@
 //     that is α² += 2(1 − r)/r.
 //   `vmf` — the von Mises–Fisher fit that Filament ships: κ = (3r − r³)/(1 − r²) (Banerjee et al.
 //     2005), α² += 2/κ.
+#include <cmath>
 #include <span>
 #include <vector>
 
@@ -87,6 +88,18 @@ std::vector<SheenLayer> sheen_from_below(Extent level0, int level, const std::ve
 // half its angle the direction. Children stretched across each other cancel toward isotropy, as their
 // mean parameter should.
 std::vector<AnisotropyLayer> anisotropy_from_below(Extent level0, int level, const std::vector<AnisotropyLayer>& fine);
+// An anisotropy as the axial vector those means add, s·(cos 2φ, sin 2φ), and a mean of such vectors
+// (divided by its weight) back: its length the strength, half its angle the direction.
+inline glm::dvec2 axial_anisotropy(const AnisotropyLayer& a) {
+  const double c = a.direction.x, s = a.direction.y;
+  return double(a.strength) * glm::dvec2(c * c - s * s, 2 * c * s);
+}
+inline AnisotropyLayer from_axial_anisotropy(const glm::dvec2& v) {
+  const double len = glm::length(v);
+  if (!(len > 0)) return AnisotropyLayer{};
+  const double phi = 0.5 * std::atan2(v.y, v.x);
+  return AnisotropyLayer{static_cast<float>(len), glm::vec2(static_cast<float>(std::cos(phi)), static_cast<float>(std::sin(phi)))};
+}
 
 class ParamPyramid {
  public:

@@ -51,24 +51,11 @@ inline Sym2 stretch_matrix(const Lobe& l) {
 
 // The stretch's logarithm as a vector, ln r·(cos 2φ, sin 2φ) with φ the stretch direction's angle: the
 // matrix ln S is [[x, y], [y, −x]], so the distance between two of these is the stretches' log distance
-// (rough_distance), and it is what the MIP file stores of a stretch (stored_lobe.h).
+// (rough_distance).
 inline glm::dvec2 stretch_log(const Lobe& l) {
   if (!(l.stretch > 1.0f)) return glm::dvec2(0.0);
   const double c = l.stretch_dir.x, s = l.stretch_dir.y, n2 = c * c + s * s;
   return std::log(double(l.stretch)) * glm::dvec2((c * c - s * s) / n2, 2 * c * s / n2);
-}
-
-// Sets a lobe's stretch from its log vector (stretch_log's inverse); r = 1 for a null vector.
-inline void set_stretch_log(Lobe& l, const glm::dvec2& v) {
-  const double len = std::sqrt(v.x * v.x + v.y * v.y);
-  if (!(len > 0)) {
-    l.stretch = 1.0f;
-    l.stretch_dir = glm::vec2(1.0f, 0.0f);
-    return;
-  }
-  const double phi = 0.5 * std::atan2(v.y, v.x);
-  l.stretch = static_cast<float>(std::exp(len));
-  l.stretch_dir = glm::vec2(static_cast<float>(std::cos(phi)), static_cast<float>(std::sin(phi)));
 }
 
 // Sets a lobe's stretch to a positive-definite matrix scaled to det 1: r the larger eigenvalue, the
