@@ -47,6 +47,7 @@ SurfaceBsdf::SurfaceBsdf(const ShadingParams& p) : p_(p) {
   const Frame cf = Frame::from_normal(p_.clearcoat_normal);
   coat_t_ = cf.s, coat_b_ = cf.t;
   transmission_weight_ = (1.0f - p_.metallic) * p_.transmission * max_channel(p_.base_color);
+  thin_transmission_ = p_.thin_walled && transmission_weight_ > 0.0f;
 }
 
 glm::vec3 SurfaceBsdf::to_anisotropy(const glm::vec3& w) const {
@@ -147,12 +148,29 @@ Rgb SurfaceBsdf::diffuse_transmission_f(const glm::vec3& wi, const glm::vec3& wo
   return f;
 }
 
+Rgb SurfaceBsdf::specular_transmission_f(const glm::vec3& wi, const glm::vec3& wo) const {
+  const glm::vec3 wm = mirrored(wi);
+  const glm::vec3 h = glm::normalize(wm + wo);
+  const float c = std::min(std::abs(glm::dot(wo, h)), 1.0f);
+  const Rgb fr = dielectric_fresnel(c, schlick_weight(c));
+  Rgb f = ((1.0f - coat_blend(wo)) * (1.0f - p_.metallic) * p_.transmission * (1.0f - p_.specular * max_channel(fr)) *
+           specular_vd(wm, wo, h)) *
+          p_.base_color;
+  if (has_sheen()) f *= sheen_albedo_scaling(wm, wo, p_.sheen_color, p_.sheen_roughness);
+  return f;
+}
+
 Rgb SurfaceBsdf::eval(const glm::vec3& wi, const glm::vec3& wo) const {
-  // The whole BSDF, coat included, vanishes below the shading horizon but for the diffuse
-  // transmission: the integrator's cosine is the shading normal's, and a coat normal tilted off it
-  // would otherwise reflect with a negative one.
+  // The whole BSDF, coat included, vanishes below the shading horizon but for the transmissions:
+  // the integrator's cosine is the shading normal's, and a coat normal tilted off it would
+  // otherwise reflect with a negative one.
   if (wo.z <= 0.0f) return Rgb(0.0f);
-  if (wi.z < 0.0f && transmits_finitely()) return diffuse_transmission_f(wi, wo);
+  if (wi.z < 0.0f) {
+    Rgb f(0.0f);
+    if (diffuse_transmits()) f += diffuse_transmission_f(wi, wo);
+    if (thin_transmission_) f += specular_transmission_f(wi, wo);
+    return f;
+  }
   if (wi.z <= 0.0f) return Rgb(0.0f);
   if (p_.clearcoat <= 0.0f) return base_f(wi, wo);
   const float blend = coat_blend(wo);
@@ -170,12 +188,7 @@ Rgb SurfaceBsdf::transmission_magnitude(const glm::vec3& w) const {
 }
 
 bool SurfaceBsdf::transmitted(const glm::vec3& w, glm::vec3& wt, Rgb& magnitude) const {
-  if (!(transmission_weight_ > 0.0f)) return false;
-  if (p_.thin_walled) {
-    wt = -w;
-    magnitude = transmission_magnitude(w);
-    return true;
-  }
+  if (!has_impulse()) return false;
   if (!refract_through(w, p_.eta, wt)) return false;
   magnitude = transmission_magnitude(w) / (p_.eta * p_.eta);
   return max_channel(magnitude) > 0.0f;
@@ -194,10 +207,9 @@ Impulses SurfaceBsdf::impulses_out(const glm::vec3& wi) const {
   // (wi.z < 0) leaves toward this side along the reverse of that path, with its magnitude.
   if (wi.z > 0.0f) return impulses_in(wi);
   Impulses im;
-  if (!(transmission_weight_ > 0.0f) || wi.z == 0.0f) return im;
+  if (!has_impulse() || wi.z == 0.0f) return im;
   glm::vec3 wo;
-  if (p_.thin_walled) wo = -wi;
-  else if (!refract_through(wi, 1.0f / p_.eta, wo)) return im;
+  if (!refract_through(wi, 1.0f / p_.eta, wo)) return im;
   glm::vec3 wt;
   Rgb m;
   if (transmitted(wo, wt, m)) im.add(wo, m);
@@ -226,7 +238,7 @@ SurfaceBsdf::LobeChoice SurfaceBsdf::choose(const glm::vec3& wo) const {
     c.specular = under * (p_.metallic * metal + (1.0f - p_.metallic) * spec_d);
     c.diffuse = rest * (1.0f - p_.transmission);
     c.transmission = rest * p_.transmission;
-    if (transmits_finitely()) {
+    if (diffuse_transmits()) {
       c.diffuse *= 1.0f - p_.diffuse_transmission;
       c.diffuse_transmission = under * (1.0f - p_.metallic) * (1.0f - spec_d) * (1.0f - p_.transmission) *
                                p_.diffuse_transmission * max_channel(p_.diffuse_transmission_color);
@@ -241,7 +253,13 @@ SurfaceBsdf::LobeChoice SurfaceBsdf::choose(const glm::vec3& wo) const {
 
 float SurfaceBsdf::pdf(const glm::vec3& wi, const glm::vec3& wo) const {
   if (wo.z <= 0.0f) return 0.0f;
-  if (wi.z < 0.0f) return transmits_finitely() ? choose(wo).diffuse_transmission * -wi.z * kInvPi : 0.0f;
+  if (wi.z < 0.0f) {
+    if (!transmits_finitely()) return 0.0f;
+    const LobeChoice c = choose(wo);
+    float p = c.diffuse_transmission * -wi.z * kInvPi;
+    if (thin_transmission_ && c.transmission > 0.0f) p += c.transmission * specular_pdf(mirrored(wi), wo);
+    return p;
+  }
   if (wi.z == 0.0f) return 0.0f;
   const LobeChoice c = choose(wo);
   float p = c.diffuse * wi.z * kInvPi;
@@ -257,7 +275,12 @@ BsdfSample SurfaceBsdf::sample(const glm::vec3& wo, const SampleU& u) const {
   const glm::vec2 uv(u.y, u.z);
   glm::vec3 wi;
   bool transmitting = false;
-  if (u.x < c.transmission) {
+  if (u.x < c.transmission && thin_transmission_) {
+    // The reflection's visible normals, the reflected direction mirrored through the surface plane
+    // (specular_transmission_f's H_T is then the sampled normal).
+    wi = mirrored(reflect_about(wo, sample_specular_normal(wo, uv)));
+    transmitting = true;
+  } else if (u.x < c.transmission) {
     Rgb m;
     if (!transmitted(wo, out.wi, m)) return out;
     out.pdf = c.transmission;

@@ -9,7 +9,11 @@
 //     dielectric = (1 − specular·max(fr))·base + specular·fr·V·D;
 //   KHR_materials_diffuse_roughness — base's Lambertian ρ/π becomes the energy-preserving
 //     Oren–Nayar (EON, appearance/eon.h) with roughness σ;
-//   KHR_materials_transmission — a fraction `transmission` of base becomes a transmission impulse;
+//   KHR_materials_transmission — base becomes mix(base, specular_btdf·base_color, transmission): on
+//     a thin-walled surface (no volume) the extension's microfacet BTDF ("Transmission BTDF":
+//     V_T·D_T at H_T = normalize(V − 2(N·L)N + L)), which is the specular V·D at wi mirrored through
+//     the surface plane — the reflection lobe turned over, so a rough film blurs what it lets
+//     through and a smooth one (α = 10⁻³) passes it straight; with a volume, an impulse (below);
 //   KHR_materials_anisotropy — the specular V·D of both the dielectric and the metal becomes
 //     anisotropic GGX: α along the anisotropy direction mix(α, 1, strength²), α across it;
 //   KHR_materials_diffuse_transmission — base becomes mix(diffuse_brdf, diffuse_btdf,
@@ -28,11 +32,14 @@
 //     its radiance scaled by 1/eta² as it crosses (CGPP §27.5; the factors cancel on a path that
 //     enters and leaves a volume); the integrator attenuates what travels inside.
 // With the extensions at their defaults (ior 1.5, specular 1, color 1, σ 0, transmission 0, no
-// anisotropy, iridescence, sheen or coat) it is gltf_eval exactly. Transmission is an impulse:
-// straight through (wi = −wo) when thin-walled, refracted with a volume, of magnitude
+// anisotropy, iridescence, sheen or coat) it is gltf_eval exactly. The thin-walled transmission is
+//   (1 − clearcoat·Fc)·(1 − metallic)·transmission·(1 − specular·max(fr))·base_color·V·D(wi', wo),
+// wi' = (wi.x, wi.y, −wi.z), fr at |wo·H_T|, under the sheen's albedo scaling at (wi', wo), and is
+// sampled as the reflection's visible normals, mirrored. The transmission into or out of a volume
+// is an impulse refracted about the shading normal, of magnitude
 // (1 − metallic)·transmission·(1 − specular·max(fr))·base_color, fr at h = n, under the sheen's
-// albedo scaling and the coat's (1 − clearcoat·Fc); a rough transmissive surface is treated as
-// smooth (documented limit).
+// albedo scaling and the coat's (1 − clearcoat·Fc): a rough surface over a volume refracts as a
+// smooth one (a limit: Walter et al. 2007's rough refraction is not modelled).
 #include "appearance/bsdf.h"
 #include "appearance/shading.h"
 
@@ -94,9 +101,11 @@ class SurfaceBsdf final : public Bsdf {
   BsdfSample sample(const glm::vec3& wo, const SampleU& u) const override;
   float pdf(const glm::vec3& wi, const glm::vec3& wo) const override;
 
-  bool has_impulse() const { return transmission_weight_ > 0.0f; }
-  // Whether eval can be non-zero for wi on the other side of the surface (diffuse transmission).
-  bool transmits_finitely() const { return p_.diffuse_transmission > 0.0f && p_.metallic < 1.0f; }
+  // Whether the transmission is an impulse: refraction into or out of a volume.
+  bool has_impulse() const { return transmission_weight_ > 0.0f && !p_.thin_walled; }
+  // Whether eval can be non-zero for wi on the other side of the surface (diffuse transmission, or
+  // a thin-walled specular transmission).
+  bool transmits_finitely() const { return diffuse_transmits() || thin_transmission_; }
 
  private:
   struct LobeChoice {
@@ -111,6 +120,11 @@ class SurfaceBsdf final : public Bsdf {
   Rgb diffuse_f(const glm::vec3& wi, const glm::vec3& wo) const;
   // The diffuse BTDF term for wi below (wi.z < 0) and wo above, all layers applied.
   Rgb diffuse_transmission_f(const glm::vec3& wi, const glm::vec3& wo) const;
+  bool diffuse_transmits() const { return p_.diffuse_transmission > 0.0f && p_.metallic < 1.0f; }
+  // The thin-walled specular BTDF term for wi below (wi.z < 0) and wo above, all layers applied.
+  Rgb specular_transmission_f(const glm::vec3& wi, const glm::vec3& wo) const;
+  // A direction mirrored through the surface plane: the thin-walled BTDF's reflected twin.
+  static glm::vec3 mirrored(const glm::vec3& w) { return {w.x, w.y, -w.z}; }
   // The base material (everything under the coat) for both directions above the base's horizon.
   Rgb base_f(const glm::vec3& wi, const glm::vec3& wo) const;
   // The coat's V·D (no Fresnel) and the density of its sampler, in the shading frame.
@@ -137,6 +151,7 @@ class SurfaceBsdf final : public Bsdf {
   glm::vec3 coat_t_, coat_b_;  // a tangent frame around the coat normal (the coat is isotropic)
   Rgb f0_;
   float transmission_weight_;
+  bool thin_transmission_;  // a thin-walled specular transmission: finite, in eval
 };
 
 }  // namespace svbrdf
