@@ -63,6 +63,15 @@
 // n̂'s tangent plane, as the renderer expresses the anisotropy direction in a normal-mapped shading
 // frame (render/surface.cpp); the normals' spread (the horizons below) stays isotropic. A lobe with
 // r = 1 takes none of this: its arithmetic is that of the isotropic shapes, bit for bit.
+//
+// Transmission. A thin-walled KHR_materials_transmission turns the base's reflection lobe over: its
+// BTDF is the specular V·D at wi mirrored through the surface plane (appearance/gltf_surface_bsdf.h),
+// in the frame of the texel's normal n_x. So a lobe transmits, for wi below the geometric surface, as
+// it reflects the pair (wi', wo) with wi' the mirror of wi through n̂'s plane — exactly for one texel
+// (n̂ = n_x), its clipped cosine E[max(0, n·wi')] = E[max(0, −n·wi)] for spread normals — with the
+// factors τ + (τ90 − τ)·w in place of the Fresnel term and no diffuse part, w the Schlick weight at
+// |wo·h'|, f_eff's denominator |wi.z|. τ and τ90 are linear in the texels' parameters as ρ is, so a
+// merge averages them as it averages ρ, and the lobe's shape, fitted to its reflection, serves both.
 #include <algorithm>
 #include <cmath>
 #include <type_traits>
@@ -103,6 +112,10 @@ struct Lobe {
   // and the ratio r ≥ 1 of the slopes' widths along it and across it; r = 1 is isotropic.
   glm::vec2 stretch_dir{1.0f, 0.0f};
   float stretch = 1.0f;
+  // A thin-walled transmission (KHR_materials_transmission without a volume, "Transmission" below):
+  // the factors of the lobe's BTDF at w = 0 and w = 1, 0 without one.
+  glm::vec3 transmission{0.0f};
+  glm::vec3 transmission90{0.0f};
 };
 
 // The glTF layering of KHR_materials_specular (its "fresnel_mix", appearance/gltf.h gltf_layers):
@@ -124,8 +137,14 @@ inline float dielectric_f0(float ior) {
 // With an anisotropy (KHR_materials_anisotropy) the GGX atom is stretched: α_t = mix(α, 1, strength²)
 // along its direction and α across it, as the renderer computes them, make α² = α_t·α and r = α_t/α
 // ("Stretched shapes" above).
+//
+// With a transmission T (KHR_materials_transmission, thin-walled) the dielectric's base is
+// mix(diffuse, specular_btdf·c, T): ρ and ρ90 take 1 − T, and the BTDF's factors are
+//   τ = (1 − m)·c·T·(1 − s·max(f0)),   τ90 = (1 − m)·c·T·(1 − s)
+// (the base's 1 − s·max(fr) linear in w as for ρ; the plain layer's τ = 0.96·(1 − m)·c·T, τ90 = 0).
 inline Lobe lobe_from_texel(const glm::vec3& base_color, float metallic, float roughness, const glm::vec3& normal,
-                            float weight = 1.0f, const SpecularLayer& layer = {}, const AnisotropyLayer& aniso = {}) {
+                            float weight = 1.0f, const SpecularLayer& layer = {}, const AnisotropyLayer& aniso = {},
+                            float transmission = 0.0f) {
   const float alpha = gltf_alpha(roughness);
   Lobe l;
   l.weight = weight;
@@ -138,11 +157,16 @@ inline Lobe lobe_from_texel(const glm::vec3& base_color, float metallic, float r
     l.stretch = alpha_t / alpha;
     l.stretch_dir = aniso.direction;
   }
+  const float t = std::clamp(transmission, 0.0f, 1.0f);
   if (layer.plain()) {
     // The plain layer in its own arithmetic, so that its lobes stay bit for bit what they always were.
     l.diffuse = (1.0f - metallic) * base_color;
     l.f0 = glm::mix(glm::vec3(0.04f), base_color, metallic);
     l.f0_tint = metallic * base_color;
+    if (t > 0.0f) {
+      l.transmission = (0.96f * t) * l.diffuse;
+      l.diffuse *= 1.0f - t;
+    }
     return l;
   }
   const glm::vec3 f0 = glm::min(dielectric_f0(layer.ior) * layer.color, glm::vec3(1.0f));
@@ -153,6 +177,12 @@ inline Lobe lobe_from_texel(const glm::vec3& base_color, float metallic, float r
   l.f0 = (1.0f - metallic) * layer.specular * f0 + metallic * base_color;
   l.f90 = (1.0f - metallic) * layer.specular + metallic;
   l.f0_tint = metallic * base_color;
+  if (t > 0.0f) {
+    l.transmission = rho * (t * (1.0f - layer.specular * f0_max));
+    l.transmission90 = t * l.diffuse90;
+    l.diffuse *= 1.0f - t;
+    l.diffuse90 *= 1.0f - t;
+  }
   return l;
 }
 
@@ -171,6 +201,8 @@ inline Lobe lobe_from_texel(const glm::vec3& base_color, float metallic, float r
 inline Lobe tinted(Lobe l, const glm::vec3& v) {
   l.diffuse *= v;
   l.diffuse90 *= v;
+  l.transmission *= v;  // (1 − m)·c times factors free of c, as ρ
+  l.transmission90 *= v;
   l.f0 += l.f0_tint * (v - 1.0f);
   l.f0_tint *= v;
   return l;
@@ -382,11 +414,9 @@ T lobe_d(const LobeShape<T>& s, T ch, const glm::vec<3, T>& nxh) {
   return lobe_d_sin2(s, ch, shape_sin2(s, nxh));
 }
 
-// The glTF terms of a lobe for one pair, given its two sides: (0.96·(1 − w)·ρ + w·ρ90)/π + D·V·(F0 + (F90 − F0)·w).
-// spec_scale multiplies the specular term (a coarse texel's radial correction, radial_correction.h).
+// The specular V·D of a lobe for one pair, given the cosines of its two sides (LobeSide::c).
 template <class T>
-glm::vec<3, T> lobe_brdf(const Lobe& lobe, const LobeShape<T>& s, const PairTerms<T>& p, T ci, T co, T spec_scale = T(1)) {
-  using V3 = glm::vec<3, T>;
+T lobe_vd(const LobeShape<T>& s, const PairTerms<T>& p, T ci, T co) {
   const T ch = glm::dot(s.n, p.h);
   const T sin2 = shape_sin2(s, glm::cross(s.n, p.h));
   const T d = lobe_d_sin2(s, ch, sin2);
@@ -452,10 +482,19 @@ glm::vec<3, T> lobe_brdf(const Lobe& lobe, const LobeShape<T>& s, const PairTerm
   } else {
     vis = visibility(s.alpha2);
   }
+  return vis * d;
+}
+
+// The glTF terms of a lobe for one pair, given its two sides: (0.96·(1 − w)·ρ + w·ρ90)/π + D·V·(F0 + (F90 − F0)·w).
+// spec_scale multiplies the specular term (a coarse texel's radial correction, radial_correction.h).
+template <class T>
+glm::vec<3, T> lobe_brdf(const Lobe& lobe, const LobeShape<T>& s, const PairTerms<T>& p, T ci, T co, T spec_scale = T(1)) {
+  using V3 = glm::vec<3, T>;
+  const T vd = lobe_vd(s, p, ci, co);
   const T w = p.fresnel_w;
   const V3 f0(lobe.f0), rho(lobe.diffuse), rho90(lobe.diffuse90);
   return (T(0.96) * (T(1) - w) * kInvPiOf<T>) * rho + (w * kInvPiOf<T>) * rho90 +
-         (vis * d * spec_scale) * (f0 + (V3(T(lobe.f90)) - f0) * w);
+         (vd * spec_scale) * (f0 + (V3(T(lobe.f90)) - f0) * w);
 }
 
 // weight · f_eff of one lobe for one pair (see the top of this file), in precision T. `sides`, when
@@ -478,6 +517,50 @@ glm::vec<3, T> lobe_eval(const Lobe& lobe, const LobeShape<T>& s, const PairTerm
 template <class T>
 glm::vec<3, T> lobe_eval(const Lobe& lobe, const PairTerms<T>& p) {
   return lobe_eval(lobe, lobe_shape<T>(lobe), p);
+}
+
+// Whether a lobe transmits ("Transmission" at the top).
+inline bool transmits(const Lobe& l) {
+  return l.transmission.r > 0.0f || l.transmission.g > 0.0f || l.transmission.b > 0.0f || l.transmission90.r > 0.0f ||
+         l.transmission90.g > 0.0f || l.transmission90.b > 0.0f;
+}
+
+// The pair a lobe's transmission reflects: wi (below the geometric surface) mirrored through the plane
+// of the lobe's normal n̂, with wo; inv_wi_z is 1/|wi.z|, the f_eff factor's denominator of the
+// transmitted direction. Invalid unless wi is below and wo above the geometric surface.
+template <class T>
+PairTerms<T> transmission_pair(const LobeShape<T>& s, const glm::vec<3, T>& wi, const glm::vec<3, T>& wo) {
+  PairTerms<T> p;
+  p.wi = wi - (T(2) * glm::dot(s.n, wi)) * s.n;
+  p.wo = wo;
+  if (!(wi.z < 0) || !(wo.z > 0)) return p;
+  p.h = glm::normalize(p.wi + wo);
+  p.fresnel_w = schlick_weight(std::min(std::abs(glm::dot(wo, p.h)), T(1)));
+  p.inv_wi_z = T(-1) / wi.z;
+  p.valid = true;
+  return p;
+}
+
+// weight · f_eff of one lobe's transmission for wi below and wo above the geometric surface:
+//   weight · V·D(wi', wo)·(τ + (τ90 − τ)·w) · E[max(0, n·wi')]·P(n·wo > 0) / |wi.z|,
+// wi' the mirror of wi through n̂'s plane (transmission_pair), its sides those of a reflected pair.
+// `sides` as lobe_eval's.
+template <class T>
+glm::vec<3, T> lobe_transmission_eval(const Lobe& lobe, const LobeShape<T>& s, const glm::vec<3, T>& wi,
+                                      const glm::vec<3, T>& wo, T spec_scale = T(1), T* sides = nullptr) {
+  using V3 = glm::vec<3, T>;
+  if (sides) *sides = 0;
+  if (!s.valid || !transmits(lobe)) return V3(0);
+  const PairTerms<T> p = transmission_pair(s, wi, wo);
+  if (!p.valid) return V3(0);
+  const LobeSide<T> i = lobe_wi_side(s, glm::dot(s.n, p.wi));
+  if (!(i.factor > 0)) return V3(0);
+  const LobeSide<T> o = lobe_wo_side(s, glm::dot(s.n, p.wo));
+  if (!(o.factor > 0)) return V3(0);
+  if (sides) *sides = i.factor * o.factor;
+  const V3 t(lobe.transmission), t90(lobe.transmission90);
+  return (T(lobe.weight) * i.factor * o.factor * p.inv_wi_z * lobe_vd(s, p, i.c, o.c) * spec_scale) *
+         (t + (t90 - t) * p.fresnel_w);
 }
 
 }  // namespace svbrdf

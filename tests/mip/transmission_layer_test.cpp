@@ -1,0 +1,186 @@
+// A thin-walled KHR_materials_transmission in the BRDF MIP's lobes (mip/lobe.h, "Transmission"): a
+// level-0 lobe's transmission against the extension's BTDF transcribed in double and against the
+// renderer's glTF surface BSDF (appearance/gltf_surface_bsdf.h), with and without the specular layer
+// and the anisotropy; what the transmission leaves of the reflection; its factors under a tint.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "appearance/frame.h"
+#include "appearance/gltf_surface_bsdf.h"
+#include "appearance/rng.h"
+#include "gltf_transcription.h"
+#include "mip/lobe.h"
+#include "random_directions.h"
+
+namespace svbrdf {
+namespace {
+
+using gltf_transcription::anisotropic_vd;
+using gltf_transcription::kPi;
+using testing_directions::random_above;
+
+// A texel's parameters, each exactly a float.
+struct Texel {
+  glm::dvec3 base{0.5};
+  double metallic = 0, roughness = 0.5, transmission = 0;
+  glm::dvec3 normal{0, 0, 1};
+  double specular = 1, ior = 1.5;  // KHR_materials_specular's factor, KHR_materials_ior
+  glm::dvec3 specular_color{1.0};
+  double strength = 0;  // KHR_materials_anisotropy
+  glm::dvec2 dir{1, 0};
+};
+
+Texel random_texel(Rng& rng) {
+  Texel t;
+  t.base = {rng.next_float(), rng.next_float(), rng.next_float()};
+  t.metallic = rng.next_float() < 0.5f ? 0.0f : rng.next_float();
+  t.roughness = 0.2f + 0.8f * rng.next_float();
+  t.transmission = rng.next_float() < 0.25f ? 1.0f : rng.next_float();
+  const float tilt = 0.5f * rng.next_float(), phi = 6.2831853f * rng.next_float();
+  t.normal = glm::dvec3(glm::vec3(std::sin(tilt) * std::cos(phi), std::sin(tilt) * std::sin(phi), std::cos(tilt)));
+  if (rng.next_float() < 0.5f) {
+    t.specular = rng.next_float();
+    t.ior = 1.2f + rng.next_float();
+    t.specular_color = {rng.next_float(), rng.next_float(), rng.next_float()};
+  }
+  if (rng.next_float() < 0.3f) {
+    t.strength = rng.next_float();
+    const float psi = 6.2831853f * rng.next_float();
+    t.dir = glm::dvec2(glm::vec2(std::cos(psi), std::sin(psi)));
+  }
+  return t;
+}
+
+Lobe lobe_of(const Texel& t) {
+  SpecularLayer layer;
+  layer.specular = float(t.specular), layer.ior = float(t.ior), layer.color = glm::vec3(t.specular_color);
+  return lobe_from_texel(glm::vec3(t.base), float(t.metallic), float(t.roughness), glm::vec3(t.normal), 1.0f, layer,
+                         AnisotropyLayer{float(t.strength), glm::vec2(t.dir)}, float(t.transmission));
+}
+
+// The transmission's f_eff transcribed in double from the extension's "Transmission BTDF" in the frame
+// of the texel's normal n: L' = wi − 2(n·wi)n (the text's V − 2(N·L)N + L is V + L'), the base's
+// 1 − s·max(fr) at |wo·H_T|, (1 − m)·T·c the BTDF's colour; f_eff = f·|n·wi|/|wi.z|.
+glm::dvec3 transmission_khr(const Texel& t, const glm::dvec3& wi, const glm::dvec3& wo) {
+  const glm::dvec3 n = glm::normalize(t.normal);
+  const double ci = glm::dot(n, wi), co = glm::dot(n, wo);
+  if (wi.z >= 0 || wo.z <= 0 || ci >= 0 || co <= 0) return glm::dvec3(0);
+  const glm::dvec3 l = wi - 2 * ci * n;
+  const glm::dvec3 h = glm::normalize(wo + l);
+  const double vd = anisotropic_vd(t.roughness, t.strength, t.dir, n, l, wo);
+  const double w = std::pow(1 - std::abs(glm::dot(wo, h)), 5);
+  const double q = (t.ior - 1) / (t.ior + 1);
+  const glm::dvec3 f0 = glm::min(q * q * t.specular_color, glm::dvec3(1));
+  const glm::dvec3 fr = f0 + (1.0 - f0) * w;
+  const double base = 1 - t.specular * std::max({fr.r, fr.g, fr.b});
+  return (1 - t.metallic) * t.transmission * base * vd * t.base * (-ci / -wi.z);
+}
+
+// The renderer's level-0 model in a frame about the texel's normal (the anisotropy direction expressed
+// in it as render/surface.cpp does), f_eff = f·|n·wi|/|wi.z| for either side.
+SurfaceBsdf surface_of(const Texel& t, Frame& f) {
+  const glm::vec3 n = glm::normalize(glm::vec3(t.normal));
+  f = Frame::from_normal(n);
+  ShadingParams p;
+  p.base_color = Rgb(t.base), p.metallic = float(t.metallic), p.roughness = float(t.roughness);
+  p.transmission = float(t.transmission);
+  p.specular = float(t.specular), p.ior = float(t.ior), p.specular_color = Rgb(t.specular_color);
+  p.anisotropy = float(t.strength);
+  const glm::vec3 local = f.to_local(glm::vec3(float(t.dir.x), float(t.dir.y), 0.0f));
+  p.anisotropy_direction = glm::normalize(glm::vec2(local.x, local.y));
+  return SurfaceBsdf(p);
+}
+glm::dvec3 f_eff_surface(const Texel& t, const glm::dvec3& wi, const glm::dvec3& wo) {
+  Frame f;
+  const SurfaceBsdf b = surface_of(t, f);
+  const glm::vec3 n = f.n;
+  const double ci = glm::dot(glm::dvec3(n), wi);
+  if (wo.z <= 0 || glm::dot(glm::dvec3(n), wo) <= 0 || (wi.z < 0) != (ci < 0)) return glm::dvec3(0);
+  return glm::dvec3(b.eval(f.to_local(glm::vec3(wi)), f.to_local(glm::vec3(wo)))) * std::abs(ci) / std::abs(wi.z);
+}
+
+// At level 0 a lobe's transmission is the extension's: to 1e-6 relative in double against the
+// transcription; in float, and the renderer's BSDF, to 1e-4 (5e-4 below 1e-4, as the anisotropy's).
+// Its reflection, with ρ and ρ90 less the transmitted share, is the renderer's too.
+TEST(TransmissionLayer, Level0LobeIsTheExtensionsBtdf) {
+  Rng rng(71, 1);
+  int compared = 0, reflected = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    const Texel t = random_texel(rng);
+    const Lobe l = lobe_of(t);
+    ASSERT_TRUE(transmits(l) || t.metallic == 1.0);
+    glm::dvec3 wi = random_above(rng), wo = random_above(rng);
+    wi.z = -wi.z;
+    const glm::dvec3 want = transmission_khr(t, wi, wo);
+    const glm::dvec3 got = lobe_transmission_eval<double>(l, lobe_shape<double>(l), wi, wo);
+    const glm::dvec3 in_float(lobe_transmission_eval<float>(l, lobe_shape<float>(l), glm::vec3(wi), glm::vec3(wo)));
+    const glm::dvec3 model = f_eff_surface(t, wi, wo);
+    for (int c = 0; c < 3; ++c) {
+      if (want[c] == 0) {
+        EXPECT_EQ(got[c], 0.0);
+        EXPECT_EQ(model[c], 0.0);
+        continue;
+      }
+      const double tolerance = want[c] < 1e-4 ? 5e-4 : 1e-4;
+      EXPECT_NEAR(got[c], want[c], 1e-6 * want[c]) << trial;
+      EXPECT_NEAR(in_float[c], want[c], tolerance * want[c]) << trial;
+      EXPECT_NEAR(model[c], want[c], tolerance * want[c]) << trial;
+      ++compared;
+    }
+    // The reflection of the same texel, against the renderer's.
+    wi.z = -wi.z;
+    const glm::dvec3 r = lobe_eval<double>(l, pair_terms<double>(wi, wo)), rm = f_eff_surface(t, wi, wo);
+    for (int c = 0; c < 3; ++c)
+      if (rm[c] > 1e-4) {
+        EXPECT_NEAR(r[c], rm[c], 1e-4 * rm[c]) << trial;
+        ++reflected;
+      }
+  }
+  EXPECT_GT(compared, 5000);
+  EXPECT_GT(reflected, 5000);
+}
+
+// No transmission, no change: a lobe without one has zero factors and evaluates none, and its other
+// factors are those of a texel made without the argument, bit for bit.
+TEST(TransmissionLayer, NoTransmissionLeavesTheLobeAsItWas) {
+  Rng rng(72, 1);
+  for (int trial = 0; trial < 200; ++trial) {
+    Texel t = random_texel(rng);
+    t.transmission = 0;
+    const Lobe l = lobe_of(t);
+    EXPECT_FALSE(transmits(l));
+    SpecularLayer layer;
+    layer.specular = float(t.specular), layer.ior = float(t.ior), layer.color = glm::vec3(t.specular_color);
+    const Lobe before = lobe_from_texel(glm::vec3(t.base), float(t.metallic), float(t.roughness), glm::vec3(t.normal), 1.0f,
+                                        layer, AnisotropyLayer{float(t.strength), glm::vec2(t.dir)});
+    EXPECT_EQ(l.diffuse, before.diffuse);
+    EXPECT_EQ(l.diffuse90, before.diffuse90);
+    EXPECT_EQ(l.f0, before.f0);
+    EXPECT_EQ(l.f90, before.f90);
+    const glm::dvec3 wi(0.3, 0.1, -0.9), wo(0.0, 0.2, 0.95);
+    EXPECT_EQ(lobe_transmission_eval<double>(l, lobe_shape<double>(l), glm::normalize(wi), glm::normalize(wo)), glm::dvec3(0));
+  }
+}
+
+// A tint v of the base colour (lobe.h tinted) scales the transmission's factors as it scales ρ: the
+// tinted lobe's factors are those of the texel with colour c·v.
+TEST(TransmissionLayer, TintScalesTheTransmission) {
+  Rng rng(73, 1);
+  for (int trial = 0; trial < 200; ++trial) {
+    const Texel t = random_texel(rng);
+    const glm::dvec3 v(rng.next_float(), rng.next_float(), rng.next_float());
+    Texel tinted_texel = t;
+    tinted_texel.base = glm::dvec3(glm::vec3(t.base) * glm::vec3(v));
+    const Lobe a = tinted(lobe_of(t), glm::vec3(v)), b = lobe_of(tinted_texel);
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(a.transmission[c], b.transmission[c], 1e-6f * (1.0f + b.transmission[c])) << trial;
+      EXPECT_NEAR(a.transmission90[c], b.transmission90[c], 1e-6f * (1.0f + b.transmission90[c])) << trial;
+      EXPECT_NEAR(a.diffuse[c], b.diffuse[c], 1e-6f * (1.0f + b.diffuse[c])) << trial;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace svbrdf
