@@ -39,6 +39,7 @@ bool LobeMixtureBsdf::fill_slot(int at, const Lobe& l) {
   const float scale = l.weight * k.shape.len;
   k.diffuse_albedo = scale * (0.96f * mean3(l.diffuse) + 0.05f * mean3(l.diffuse90));
   k.spec_albedo = scale * (mean3(l.f0) + 0.1f * (l.f90 - mean3(l.f0)));
+  k.trans_albedo = scale * (mean3(l.transmission) + 0.1f * (mean3(l.transmission90) - mean3(l.transmission)));
   return true;
 }
 
@@ -48,8 +49,12 @@ void LobeMixtureBsdf::assign(std::span<const Lobe> lobes, std::span<const Lobe> 
   sheen_on_ = false;
   count_ = 0;
   coat_count_ = 0;
+  transmits_ = false;
   for (const Lobe& l : lobes)
-    if (count_ < kMaxLobes && fill_slot(count_, l)) ++count_;
+    if (count_ < kMaxLobes && fill_slot(count_, l)) {
+      transmits_ = transmits_ || transmits(l);
+      ++count_;
+    }
   for (const Lobe& l : coat)
     if (coat_count_ < kMaxLobes && l.weight > 0 && fill_slot(count_ + coat_count_, l)) ++coat_count_;
 }
@@ -65,7 +70,31 @@ void LobeMixtureBsdf::set_sheen(const SheenLayer& sheen) {
   sheen_albedo_ = mean3(sheen.color);
 }
 
+Rgb LobeMixtureBsdf::transmission_eval(const glm::vec3& wi, const glm::vec3& wo) const {
+  // Each base lobe's transmission (lobe.h) under its sheen's scaling at the mirrored pair, less what
+  // the coat reflects of it: coated_eval's layering with no coat term below the surface. The radial
+  // correction is the reflection's and takes no part.
+  Rgb f(0), coated(0);
+  for (int k = 0; k < count_; ++k) {
+    const Slot& sk = slot(k);
+    if (!transmits(sk.lobe)) continue;
+    float sides;
+    Rgb fk = lobe_transmission_eval(sk.lobe, sk.shape, wi, wo, 1.0f, &sides);
+    if (sheen_on_ && sides > 0) {
+      const PairTerms<float> m = transmission_pair(sk.shape, wi, wo);
+      fk *= sheen_lobe_terms(sk.lobe, sk.shape, m, sides, sheen_roughness_).scaling;
+    }
+    f += fk;
+    coated += sk.lobe.coat * fk;
+  }
+  if (coat_count_ == 0) return f;
+  CoatFresnel<float> fresnel;
+  for (int k = count_; k < count_ + coat_count_; ++k) fresnel.add(slot(k).lobe, slot(k).shape, wo);
+  return f - fresnel.value() * coated;
+}
+
 Rgb LobeMixtureBsdf::eval(const glm::vec3& wi, const glm::vec3& wo) const {
+  if (transmits_ && wi.z < 0 && wo.z > 0) return transmission_eval(wi, wo);
   const PairTerms<float> p = pair_terms<float>(wi, wo);
   if (!p.valid) return Rgb(0);
   Rgb f(0);
@@ -105,16 +134,20 @@ Rgb LobeMixtureBsdf::eval(const glm::vec3& wi, const glm::vec3& wo) const {
 
 LobeMixtureBsdf::Choice LobeMixtureBsdf::choice(const glm::vec3& wo) const {
   Choice c;
-  float total = 0;
+  float total = 0, transmitted = 0;
   const int n = count_ + coat_count_;
   for (int k = 0; k < n; ++k) {
     const std::size_t i = static_cast<std::size_t>(k);
     // The specular sampler needs wo above the lobe's own horizon.
     const bool spec_ok = glm::dot(slot(k).shape.n, wo) > 1e-4f;
     const float d = slot(k).diffuse_albedo, s = spec_ok ? slot(k).spec_albedo : 0.0f;
-    c.lobe[i] = d + s;
-    c.diffuse[i] = d + s > 0 ? d / (d + s) : 1.0f;
-    total += d + s;
+    const float t = spec_ok && k < count_ && transmits_ ? slot(k).trans_albedo : 0.0f;
+    const float all = d + s + t;
+    c.lobe[i] = all;
+    c.diffuse[i] = all > 0 ? d / all : 1.0f;
+    c.transmit[i] = all > 0 ? t / all : 0.0f;
+    total += all;
+    transmitted += t;
   }
   if (sheen_on_ && wo.z > 0) {
     c.sheen = sheen_albedo_ * sheen_albedo(wo.z, sheen_roughness_);
@@ -123,10 +156,36 @@ LobeMixtureBsdf::Choice LobeMixtureBsdf::choice(const glm::vec3& wo) const {
   const float scale = total > 0 ? (1.0f - kDefensive) / total : 0.0f;
   for (int k = 0; k < n; ++k) c.lobe[static_cast<std::size_t>(k)] *= scale;
   c.sheen *= scale;
+  // The defensive share below the surface: the transmission's share of the albedo estimates.
+  c.below = total > 0 ? transmitted / total : 0.0f;
   return c;
 }
 
+float LobeMixtureBsdf::transmission_pdf(const Choice& c, const glm::vec3& wi, const glm::vec3& wo) const {
+  float pdf = kDefensive * c.below * cosine_hemisphere_pdf(-wi.z);
+  // Each lobe's transmission is its specular sampler's direction mirrored through the lobe's plane, an
+  // isometry: the density of wi is the reflection's at the mirrored wi'.
+  for (int k = 0; k < count_; ++k) {
+    const std::size_t i = static_cast<std::size_t>(k);
+    if (!(c.lobe[i] > 0) || !(c.transmit[i] > 0)) continue;
+    const PairTerms<float> m = transmission_pair(slot(k).shape, wi, wo);
+    if (m.valid && glm::dot(wo, m.h) > 0) pdf += c.lobe[i] * c.transmit[i] * specular_pdf(slot(k).shape, wo, m.h);
+  }
+  return pdf;
+}
+
+float LobeMixtureBsdf::specular_pdf(const LobeShape<float>& sh, const glm::vec3& wo, const glm::vec3& h) {
+  const float co = glm::dot(sh.n, wo), ch = glm::dot(sh.n, h);
+  if (!(co > 0) || !(ch > 0)) return 0.0f;
+  const float sin2h = shape_sin2(sh, glm::cross(sh.n, h));
+  const float t2o = (sh.stretched ? stretched_tangent2(sh, wo) : std::max(0.0f, 1.0f - co * co)) / (co * co);
+  const float p = ggx_reflection_pdf(sh.alpha2, co, ch, sin2h, t2o);
+  // A roughness mixture is sampled half from each end of its range (sample below).
+  return sh.alpha2_hi > 0 ? 0.5f * (p + ggx_reflection_pdf(sh.alpha2_hi, co, ch, sin2h, t2o)) : p;
+}
+
 float LobeMixtureBsdf::pdf_with(const Choice& c, const glm::vec3& wi, const glm::vec3& wo) const {
+  if (transmits_ && wi.z < 0 && wo.z > 0) return transmission_pdf(c, wi, wo);
   if (!(wi.z > 0) || !(wo.z > 0)) return 0.0f;
   float pdf = 0;
   float defensive = kDefensive;
@@ -134,7 +193,7 @@ float LobeMixtureBsdf::pdf_with(const Choice& c, const glm::vec3& wi, const glm:
   for (int k = 0; k < count_ + coat_count_; ++k) used += c.lobe[static_cast<std::size_t>(k)];
   used += c.sheen;
   if (used == 0) defensive = 1.0f;  // no lobe to sample: all defensive
-  pdf += defensive * cosine_hemisphere_pdf(wi.z);
+  pdf += defensive * (1.0f - c.below) * cosine_hemisphere_pdf(wi.z);
   pdf += c.sheen * sheen_pdf(wi, wo);
   // The half vector is every lobe's; each lobe's density needs only its cosines (no frame per lobe).
   const glm::vec3 hsum = wi + wo;
@@ -146,18 +205,7 @@ float LobeMixtureBsdf::pdf_with(const Choice& c, const glm::vec3& wi, const glm:
     if (!(c.lobe[i] > 0)) continue;
     const LobeShape<float>& sh = slot(k).shape;
     float p = c.diffuse[i] * cosine_hemisphere_pdf(glm::dot(sh.n, wi));
-    if (c.diffuse[i] < 1.0f && h_ok) {
-      const float co = glm::dot(sh.n, wo), ch = glm::dot(sh.n, h);
-      if (co > 0 && ch > 0) {
-        const glm::vec3 nxh = glm::cross(sh.n, h);
-        const float sin2h = shape_sin2(sh, nxh);
-        const float t2o = (sh.stretched ? stretched_tangent2(sh, wo) : std::max(0.0f, 1.0f - co * co)) / (co * co);
-        float vis = ggx_reflection_pdf(sh.alpha2, co, ch, sin2h, t2o);
-        // A roughness mixture is sampled half from each end of its range (sample below).
-        if (sh.alpha2_hi > 0) vis = 0.5f * (vis + ggx_reflection_pdf(sh.alpha2_hi, co, ch, sin2h, t2o));
-        p += (1.0f - c.diffuse[i]) * vis;
-      }
-    }
+    if (c.diffuse[i] + c.transmit[i] < 1.0f && h_ok) p += (1.0f - c.diffuse[i] - c.transmit[i]) * specular_pdf(sh, wo, h);
     pdf += c.lobe[i] * p;
   }
   return pdf;
@@ -184,10 +232,15 @@ BsdfSample LobeMixtureBsdf::sample(const glm::vec3& wo, const SampleU& u) const 
   }
   const bool sheen = picked < 0 && c.sheen > 0 && ux < acc + c.sheen;
   const glm::vec2 uv(u.y, u.z);
+  bool below = false;  // a transmission's sample: wi on the far side
   if (sheen) {
     wi = sample_sheen(uv);
   } else if (picked < 0) {
+    // The defensive share, below the surface in proportion to the transmission's estimate.
+    const float rest = ux - acc - c.sheen, defensive = 1.0f - acc - c.sheen;
+    below = defensive > 0 && rest < c.below * defensive;
     wi = sample_cosine_hemisphere(uv);
+    if (below) wi.z = -wi.z;
   } else {
     const std::size_t i = static_cast<std::size_t>(picked);
     const LobeShape<float>& sh = slot(picked).shape;
@@ -197,23 +250,33 @@ BsdfSample LobeMixtureBsdf::sample(const glm::vec3& wo, const SampleU& u) const 
       wi = fr.to_world(sample_cosine_hemisphere(uv));
     } else {
       const glm::vec3 wo_l = fr.to_local(wo);
-      // A roughness mixture (lobe.h) is sampled half from each end of its α² range.
-      const bool upper = sh.alpha2_hi > 0 && (ux - c.diffuse[i]) >= 0.5f * (1.0f - c.diffuse[i]);
+      // The specular part's and the transmission's share of the lobe's choice after its diffuse part:
+      // each draws the same visible normals, the transmission mirrors the reflected direction through
+      // the lobe's plane (lobe.h). A roughness mixture (lobe.h) is sampled half from each end of its
+      // α² range.
+      const float spec = 1.0f - c.diffuse[i] - c.transmit[i];
+      float v = ux - c.diffuse[i];
+      below = c.transmit[i] > 0 && v >= spec;
+      if (below) v -= spec;
+      const float part = below ? c.transmit[i] : spec;
+      const bool upper = sh.alpha2_hi > 0 && v >= 0.5f * part;
       const float alpha = std::sqrt(upper ? sh.alpha2_hi : sh.alpha2);
       const glm::vec2 axes = sh.stretched ? glm::vec2(alpha * std::sqrt(sh.r), alpha * std::sqrt(sh.inv_r)) : glm::vec2(alpha);
       const glm::vec3 h = sample_ggx_visible(axes, wo_l, uv);
-      wi = fr.to_world(2.0f * glm::dot(wo_l, h) * h - wo_l);
+      glm::vec3 r = 2.0f * glm::dot(wo_l, h) * h - wo_l;
+      if (below) r.z = -r.z;
+      wi = fr.to_world(r);
     }
   }
   s.wi = wi;
   s.pdf = pdf_with(c, wi, wo);
-  if (!(wi.z > 0) || !(s.pdf > 0)) {
+  if (!(below ? wi.z < 0 : wi.z > 0) || !(s.pdf > 0)) {
     s.kind = SampleKind::absorbed;
     s.weight = Rgb(0);
     return s;
   }
   s.kind = SampleKind::finite;
-  s.weight = eval(wi, wo) * (wi.z / s.pdf);
+  s.weight = eval(wi, wo) * (std::abs(wi.z) / s.pdf);
   return s;
 }
 

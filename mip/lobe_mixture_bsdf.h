@@ -20,6 +20,13 @@
 // base's cosine factor K), exactly as texel_eval evaluates the texel; the sampler chooses among the base
 // and the coat lobes alike, a coat lobe by its specular part alone (F0 0.04, F90 1, no diffuse term).
 //
+// A texel whose lobes transmit (a thin-walled KHR_materials_transmission, lobe.h "Transmission") is
+// non-zero for wi below the surface: each lobe's BTDF under its sheen's scaling and the coat's
+// attenuation. The sampler chooses a lobe's transmission in proportion to its estimate mean(τ), draws
+// the lobe's visible normals and mirrors the reflected direction through the lobe's plane (an isometry:
+// the density is the reflection's at the mirrored direction); the defensive share goes below the
+// surface in proportion to the transmission's share of the estimates.
+//
 // A texel with a sheen (KHR_materials_sheen, sheen_layer.h: set_sheen) scales each base lobe by its
 // albedo scaling and adds the sheen about the base lobes' normals, under the coat where there is one;
 // the sampler draws the sheen uniformly over the hemisphere (appearance/sheen.h sample_sheen) with a
@@ -67,6 +74,8 @@ class LobeMixtureBsdf final : public Bsdf {
   // colour 0 or no lobe with a share: none. assign() clears it.
   void set_sheen(const SheenLayer& sheen);
   bool has_sheen() const { return sheen_on_; }
+  // Whether some base lobe transmits (lobe.h, "Transmission"): eval is then non-zero below the surface.
+  bool has_transmission() const { return transmits_; }
 
   int size() const { return count_; }
   const Lobe& lobe(int k) const { return slot(k).lobe; }
@@ -91,16 +100,24 @@ class LobeMixtureBsdf final : public Bsdf {
   struct Choice {
     std::array<float, kSlots> lobe{};     // probability of lobe k (sums to 1 − kDefensive)
     std::array<float, kSlots> diffuse{};  // within lobe k, probability of its diffuse part
+    std::array<float, kSlots> transmit{};  // within lobe k, probability of its transmission
     float sheen = 0;                      // probability of the sheen's uniform sampler
+    float below = 0;                      // within the defensive share, probability below the surface
   };
   Choice choice(const glm::vec3& wo) const;
   float pdf_with(const Choice& c, const glm::vec3& wi, const glm::vec3& wo) const;
+  // eval and pdf_with for wi below the surface (wo above): the transmission.
+  Rgb transmission_eval(const glm::vec3& wi, const glm::vec3& wo) const;
+  float transmission_pdf(const Choice& c, const glm::vec3& wi, const glm::vec3& wo) const;
+  // The density of a lobe's specular sampler for the reflection of wo about the unit half vector h
+  // (wo·h > 0).
+  static float specular_pdf(const LobeShape<float>& sh, const glm::vec3& wo, const glm::vec3& h);
 
   // A lobe with what eval and the sampling choice need of it, computed once per hit.
   struct Slot {
     Lobe lobe;
     LobeShape<float> shape;
-    float diffuse_albedo, spec_albedo;
+    float diffuse_albedo, spec_albedo, trans_albedo;
   };
   // Slots past count_ + coat_count_ stay uninitialized: a hit fills one to four of them, and
   // value-initializing all of them (~0.7 KB per hit for eight) was a measurable share of the render
@@ -119,6 +136,7 @@ class LobeMixtureBsdf final : public Bsdf {
   const RadialGrid* grid_ = nullptr;
   bool own_correction_ = false;  // correction_copy_ is the correction (a copy moves with the object)
   RadialCorrection correction_copy_;
+  bool transmits_ = false;  // some base lobe transmits
   bool sheen_on_ = false;
   float sheen_roughness_ = 0.0f;
   Rgb sheen_scale_{0.0f};  // C̄ / Σ_k w_k·σ_k (sheen_layer.h)

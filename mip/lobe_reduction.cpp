@@ -37,7 +37,7 @@ MergeBase merge_base(std::span<const Member> u) {
   for (const Member& x : u) w += x.lobe->weight;
   // Shares by one reciprocal: this runs for every candidate merge of every texel.
   const double inv_w = 1.0 / w;
-  glm::dvec3 diffuse(0), f0(0), f0_tint(0), diffuse90(0), nbar(0);
+  glm::dvec3 diffuse(0), f0(0), f0_tint(0), diffuse90(0), transmission(0), transmission90(0), nbar(0);
   double f90 = 0, coat = 0, sheen = 0;
   bool plain = true;  // every member's F90 is 1: the mean is 1 exactly, not a rounding of it
   Summary& s = mb.summary;
@@ -48,6 +48,8 @@ MergeBase merge_base(std::span<const Member> u) {
     f0 += t * glm::dvec3(x.lobe->f0);
     f0_tint += t * glm::dvec3(x.lobe->f0_tint);
     diffuse90 += t * glm::dvec3(x.lobe->diffuse90);
+    transmission += t * glm::dvec3(x.lobe->transmission);
+    transmission90 += t * glm::dvec3(x.lobe->transmission90);
     f90 += t * x.lobe->f90;
     coat += t * x.lobe->coat;
     sheen += t * x.lobe->sheen;
@@ -61,6 +63,8 @@ MergeBase merge_base(std::span<const Member> u) {
   m.f0 = glm::vec3(f0);
   m.f0_tint = glm::vec3(f0_tint);
   m.diffuse90 = glm::vec3(diffuse90);
+  m.transmission = glm::vec3(transmission);
+  m.transmission90 = glm::vec3(transmission90);
   m.coat = static_cast<float>(coat);
   m.sheen = static_cast<float>(sheen);
   if (plain) f90 = 1.0;
@@ -179,7 +183,9 @@ Merged merge_pair(const Lobe& a, const Summary& sa, const Lobe& b, const Summary
 }
 
 // Keeps the union's specular albedo: scales the merged lobe's weight (which scales its specular part)
-// and divides its ρ and ρ90 by the same factor (which leaves its diffuse part as it was). Applied when a merge
+// and divides its ρ and ρ90 by the same factor (which leaves its diffuse part as it was). A
+// transmission's τ and τ90 keep theirs: its BTDF is the same shape turned over (lobe.h), whose flux
+// the same factor keeps. Applied when a merge
 // is made, not while costs are estimated (it changes them by a few percent of the amplitude only).
 void keep_specular_flux(std::span<const Member> u, Merged& m) {
   // A lobe made by an earlier merge knows its flux (it was set to keep its lobes' there).

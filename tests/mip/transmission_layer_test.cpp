@@ -1,7 +1,8 @@
 // A thin-walled KHR_materials_transmission in the BRDF MIP's lobes (mip/lobe.h, "Transmission"): a
 // level-0 lobe's transmission against the extension's BTDF transcribed in double and against the
 // renderer's glTF surface BSDF (appearance/gltf_surface_bsdf.h), with and without the specular layer
-// and the anisotropy; what the transmission leaves of the reflection; its factors under a tint.
+// and the anisotropy; what the transmission leaves of the reflection; its factors under a tint; the
+// texel mixture's sampler over both hemispheres (mip/lobe_mixture_bsdf.h).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,8 +11,10 @@
 #include "appearance/frame.h"
 #include "appearance/gltf_surface_bsdf.h"
 #include "appearance/rng.h"
+#include "chi2.h"
 #include "gltf_transcription.h"
 #include "mip/lobe.h"
+#include "mip/lobe_mixture_bsdf.h"
 #include "random_directions.h"
 
 namespace svbrdf {
@@ -178,6 +181,75 @@ TEST(TransmissionLayer, TintScalesTheTransmission) {
       EXPECT_NEAR(a.transmission[c], b.transmission[c], 1e-6f * (1.0f + b.transmission[c])) << trial;
       EXPECT_NEAR(a.transmission90[c], b.transmission90[c], 1e-6f * (1.0f + b.transmission90[c])) << trial;
       EXPECT_NEAR(a.diffuse[c], b.diffuse[c], 1e-6f * (1.0f + b.diffuse[c])) << trial;
+    }
+  }
+}
+
+// The direction at polar angle θ and azimuth φ (degrees) above the surface.
+glm::vec3 direction(double theta, double phi) {
+  const double t = theta * kPi / 180, p = phi * kPi / 180;
+  return glm::vec3(glm::dvec3(std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)));
+}
+
+// Directional albedo over each hemisphere, ∫ f·|cosθ| dωi, by a model's own sampler (f·|cosθ|/pdf a
+// sample): unbiased for any sampler whose density covers f. `se` receives the standard errors.
+glm::dvec2 albedos(const Bsdf& b, const glm::vec3& wo, int n, std::uint64_t seed, glm::dvec2& se) {
+  Rng rng(seed, 3);
+  glm::dvec2 sum(0), sum2(0);
+  for (int k = 0; k < n; ++k) {
+    const BsdfSample s = b.sample(wo, SampleU(rng.next_float(), rng.next_float(), rng.next_float()));
+    if (s.kind != SampleKind::finite) continue;
+    const double x = (double(s.weight.r) + s.weight.g + s.weight.b) / 3;
+    const int side = s.wi.z < 0 ? 1 : 0;
+    sum[side] += x, sum2[side] += x * x;
+  }
+  const glm::dvec2 mean = sum / double(n);
+  se = glm::sqrt(glm::max(sum2 / double(n) - mean * mean, glm::dvec2(0)) / double(n));
+  return mean;
+}
+
+// A mixture of transmitting lobes — four tilted lobes of different roughness, transmission and
+// colour, one of them a roughness mixture, one stretched — draws the density its pdf() gives over both
+// hemispheres (the sphere's χ² test, which also checks that the density integrates to the probability
+// of a finite sample).
+TEST(TransmissionLayer, MixtureSamplerMatchesItsDensityOverBothHemispheres) {
+  Rng rng(74, 1);
+  std::vector<Lobe> lobes;
+  for (int k = 0; k < 4; ++k) {
+    Texel t = random_texel(rng);
+    t.strength = k == 3 ? 0.7 : 0.0;
+    Lobe l = lobe_of(t);
+    l.weight = 0.25f;
+    if (k == 1) l.alpha2_hi = 8.0f * l.alpha2, l.ggx = 0.6f;
+    lobes.push_back(l);
+  }
+  const LobeMixtureBsdf b(lobes);
+  ASSERT_TRUE(b.has_transmission());
+  for (const double theta : {10.0, 45.0, 75.0}) {
+    const testing::Chi2Result r = testing::chi2_test(b, direction(theta, 30.0));
+    EXPECT_GT(r.p_value, 1e-3) << "θo " << theta << ": worst bin " << r.worst;
+  }
+}
+
+// A level-0 texel's mixture (one lobe) reflects and transmits what the renderer's surface BSDF does:
+// its directional albedo over each hemisphere, each by its own sampler, within 4σ. The texel's normal
+// is the geometric one (the surface's frame is then the lobes').
+TEST(TransmissionLayer, Level0MixtureTransmitsWhatTheSurfaceTransmits) {
+  Rng rng(75, 1);
+  for (int trial = 0; trial < 6; ++trial) {
+    Texel t = random_texel(rng);
+    t.normal = glm::dvec3(0, 0, 1);
+    const LobeMixtureBsdf mixture(std::vector<Lobe>{lobe_of(t)});
+    Frame f;
+    const SurfaceBsdf surface = surface_of(t, f);
+    for (const double theta : {20.0, 70.0}) {
+      const glm::vec3 wo = direction(theta, 40.0);
+      glm::dvec2 se_m, se_s;
+      const glm::dvec2 m = albedos(mixture, wo, 40000, 5, se_m), s = albedos(surface, wo, 40000, 6, se_s);
+      for (int side = 0; side < 2; ++side)
+        EXPECT_NEAR(m[side], s[side], 4 * std::hypot(se_m[side], se_s[side]) + 1e-6)
+            << "trial " << trial << " θo " << theta << (side ? " transmitted" : " reflected");
+      EXPECT_GT(m[1], 0.0) << trial;
     }
   }
 }
