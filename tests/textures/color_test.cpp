@@ -1,11 +1,13 @@
 #include "textures/color.h"
 
 #include <OpenColorIO/OpenColorIO.h>
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <tuple>
@@ -132,6 +134,50 @@ TEST(Color, PackedTexelsDecodeAsAnImage) {
     }
   EXPECT_EQ(differ, 0);
   EXPECT_EQ(off_curve, 0);
+}
+
+// An image or texels of 8- and 16-bit codes decode through tables of the processor's output
+// (textures/code_tables.h), other values through the processor: either way each channel is bit for
+// bit the processor's own value for it (the per-value decode, which takes no table). Every code of
+// both widths as OpenImageIO converts them, in every channel and at shuffled places, with values
+// that are no code (a code times a factor, off [0, 1], not a number) among them; RGB and RGBA images
+// (alpha untouched) and packed texels; the built-in config's curve and Blender's LUT.
+TEST(Color, CodeTablesGiveTheProcessorsOwnFloats) {
+  std::vector<float> values(65536 + 256);
+  std::vector<std::uint16_t> codes16(65536);
+  std::vector<std::uint8_t> codes8(256);
+  for (int k = 0; k < 65536; ++k) codes16[std::size_t(k)] = std::uint16_t(k);
+  for (int k = 0; k < 256; ++k) codes8[std::size_t(k)] = std::uint8_t(k);
+  ASSERT_TRUE(OIIO::convert_pixel_values(OIIO::TypeDesc::UINT16, codes16.data(), OIIO::TypeDesc::FLOAT, values.data(), 65536));
+  ASSERT_TRUE(OIIO::convert_pixel_values(OIIO::TypeDesc::UINT8, codes8.data(), OIIO::TypeDesc::FLOAT, values.data() + 65536, 256));
+  for (const float v : {0.8f * values[30000], 0.9f * values[65536 + 128], std::nextafter(values[40000], 1.0f), -0.25f, 1.5f,
+                        1e-30f, std::nanf("")})
+    values.push_back(v);
+  const std::size_t n = values.size();
+  const auto value = [&](std::size_t p, int c) { return values[(p * 7919 * std::size_t(c + 1) + std::size_t(c) * 101) % n]; };
+  std::vector<ColorConfig> configs{ColorConfig::builtin()};
+  if (std::filesystem::exists(kBlenderConfig)) configs.push_back(ColorConfig::from_file(kBlenderConfig));
+  for (const ColorConfig& cfg : configs) {
+    Image rgb(int(n), 1, 3), rgba(int(n), 1, 4);
+    std::vector<glm::vec3> texels(n);
+    for (std::size_t p = 0; p < n; ++p) {
+      for (int c = 0; c < 3; ++c) rgb.at(int(p), 0, c) = rgba.at(int(p), 0, c) = texels[p][c] = value(p, c);
+      rgba.at(int(p), 0, 3) = value(p, 3);
+    }
+    cfg.srgb_texture_to_linear(rgb);
+    cfg.srgb_texture_to_linear(rgba);
+    cfg.srgb_texture_to_linear(std::span(texels));
+    int differ = 0;
+    const auto same = [](float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+    for (std::size_t p = 0; p < n; ++p) {
+      for (int c = 0; c < 3; ++c) {
+        const float expected = cfg.srgb_texture_to_linear(value(p, c));
+        differ += !same(rgb.at(int(p), 0, c), expected) + !same(rgba.at(int(p), 0, c), expected) + !same(texels[p][c], expected);
+      }
+      differ += !same(rgba.at(int(p), 0, 3), value(p, 3));
+    }
+    EXPECT_EQ(differ, 0) << cfg.source();
+  }
 }
 
 // sRGB → linear → sRGB returns every 8-bit code, and encoding matches IEC too.
