@@ -107,6 +107,11 @@ MaterialImages material_images(const MaterialDesc& d, const std::function<SlotIm
     in.anisotropy_strength = d.anisotropy_strength;
     in.anisotropy_rotation = d.anisotropy_rotation;
   }
+  if (d.transmission > 0.0f) {
+    in.transmission = image(d.transmission_texture, false);
+    in.transmission_name = at + ".extensions.KHR_materials_transmission.transmissionTexture";
+    in.transmission_factor = d.transmission;
+  }
   return in;
 }
 

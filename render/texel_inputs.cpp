@@ -68,12 +68,20 @@ std::vector<TexelInput> texel_inputs(const MaterialDesc& m) {
     };
     in.insert(in.end(), anisotropy.begin(), anisotropy.end());
   }
+  // KHR_materials_transmission (MaterialTexels::transmission_at): likewise only where its factor is not 0.
+  if (m.transmission > 0.0f) {
+    const std::vector<TexelInput> transmission{
+        {"transmissionFactor", nullptr, false, {m.transmission}},
+        {"transmissionTexture", &m.transmission_texture, false, {}},
+    };
+    in.insert(in.end(), transmission.begin(), transmission.end());
+  }
   return in;
 }
 
 bool same_texels(const MaterialDesc& a, const MaterialDesc& b) {
   const std::vector<TexelInput> x = texel_inputs(a), y = texel_inputs(b);
-  if (x.size() != y.size()) return false;  // one has a coat, a sheen or anisotropy, the other none
+  if (x.size() != y.size()) return false;  // one has a coat, a sheen, anisotropy or transmission, the other none
   for (std::size_t i = 0; i < x.size(); ++i) {
     if (x[i].texture && !same_ref(*x[i].texture, *y[i].texture)) return false;
     if (x[i].values != y[i].values) return false;

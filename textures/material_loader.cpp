@@ -43,6 +43,7 @@ MaterialTexels decode_material_texels(const MaterialImages& in, const ColorConfi
   check_factor(in.sheen_roughness_factor, true, "sheen roughness factor");
   check_factor(in.anisotropy_strength, true, "anisotropy strength");
   if (!std::isfinite(in.anisotropy_rotation)) throw input_error("anisotropy rotation", "must be finite");
+  check_factor(in.transmission_factor, true, "transmission factor");
   if (!std::isfinite(in.ior) || in.ior < 0.0f) throw input_error("ior", "must be finite and ≥ 0, got " + std::to_string(in.ior));
 
   // The common size: the first present image sets it, every other must match it.
@@ -80,6 +81,9 @@ MaterialTexels decode_material_texels(const MaterialImages& in, const ColorConfi
   // The anisotropy's likewise, only where it has a strength (the extension's "isotropic").
   const bool anisotropy = in.anisotropy_strength > 0.0f;
   if (anisotropy) take(in.anisotropy, in.anisotropy_name);
+  // The transmission's likewise, only where its factor is not 0 (the extension's "no transmission").
+  const bool transmission = in.transmission_factor > 0.0f;
+  if (transmission) take(in.transmission, in.transmission_name);
   for (const auto& [img, name] : {std::pair{in.normal, &in.normal_name}, std::pair{coat ? in.clearcoat_normal : nullptr, &in.clearcoat_normal_name}})
     if (img && img->channels < 3)
       throw input_error(*name, "a normal map needs RGB channels, this image has " + std::to_string(img->channels));
@@ -186,6 +190,20 @@ MaterialTexels decode_material_texels(const MaterialImages& in, const ColorConfi
           out.anisotropy[out.index(i, j)] = std::clamp(a.b, 0.0f, 1.0f) * in.anisotropy_strength;
           out.anisotropy_direction[out.index(i, j)] = glm::vec2(c * t.x - s * t.y, s * t.x + c * t.y);
         }
+      });
+    }
+  }
+
+  // The transmission: per texel only where its texture makes it vary. The product is clamped, not R
+  // alone, as SurfaceBsdf clamps the renderer's transmissionFactor · R (an HDR R above 1 can reach 1).
+  if (transmission) {
+    out.transmission_factor = in.transmission_factor;
+    if (in.transmission) {
+      out.transmission.resize(out.size());
+      for_rows(out.height, out.width, [&](int j) {
+        for (int i = 0; i < out.width; ++i)
+          out.transmission[out.index(i, j)] =
+              std::clamp(texel(*in.transmission, i, j).r * in.transmission_factor, 0.0f, 1.0f);
       });
     }
   }

@@ -6,7 +6,8 @@
 //   roughness  = metallicRoughnessTexture.g · roughnessFactor      (glTF: roughness in G)
 //   normal     = normalize((2·normalTexture.rgb − 1)·(s, s, 1)), s = normalTexture.scale
 // the specular layer of KHR_materials_specular and _ior, the clear coat of KHR_materials_clearcoat, the
-// sheen of KHR_materials_sheen and the anisotropy of KHR_materials_anisotropy (MaterialImages below).
+// sheen of KHR_materials_sheen, the anisotropy of KHR_materials_anisotropy and the transmission of
+// KHR_materials_transmission (MaterialImages below).
 // A missing texture contributes its factor alone (normal: (0, 0, 1)). All present textures must
 // have the same size, which is the result's size (1×1 when there is none). Texels are read at
 // their own (i, j): no filtering, no texture transform (the level-0 texel grid is the image's).
@@ -79,6 +80,12 @@ struct MaterialImages {
   std::string anisotropy_name = "anisotropy texture";
   float anisotropy_strength = 0.0f;
   float anisotropy_rotation = 0.0f;
+  // KHR_materials_transmission (MaterialTexels::transmission_at), read only where the factor is not 0,
+  // as render/surface.cpp shades it and SurfaceBsdf clamps it:
+  //   transmission = transmissionTexture.r · transmissionFactor, clamped to [0, 1] (R is linear data)
+  const Image* transmission = nullptr;
+  std::string transmission_name = "transmission texture";
+  float transmission_factor = 0.0f;
 };
 
 // Throws svbrdf::Error naming the image for different sizes or a normal map with fewer than three

@@ -83,6 +83,11 @@ struct MaterialTexels {
   std::vector<glm::vec2> anisotropy_direction;  // unit, tangent space
   float anisotropy_factor = 0.0f;
   glm::vec2 anisotropy_direction_factor{1.0f, 0.0f};
+  // The transmission (KHR_materials_transmission: transmissionFactor · transmissionTexture.r, linear,
+  // in [0, 1]), per texel where its texture makes it vary (as the anisotropy): `transmission` is empty
+  // where the factor holds. 0 transmits nothing.
+  std::vector<float> transmission;
+  float transmission_factor = 0.0f;
 
   MaterialTexels() = default;
   MaterialTexels(int w, int h)
@@ -122,6 +127,9 @@ struct MaterialTexels {
             anisotropy_direction.empty() ? anisotropy_direction_factor : anisotropy_direction[k]};
   }
   bool has_anisotropy() const { return anisotropy_factor > 0.0f; }
+  // Texel k's transmission, and whether the material transmits at all.
+  float transmission_at(std::size_t k) const { return transmission.empty() ? transmission_factor : transmission[k]; }
+  bool has_transmission() const { return transmission_factor > 0.0f; }
   bool plain_specular() const {
     return specular.empty() && specular_color.empty() &&
            SpecularLayer{specular_factor, specular_color_factor, ior}.plain();

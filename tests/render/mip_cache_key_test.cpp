@@ -1,7 +1,8 @@
 // The MIP cache's key (render/mip_cache_key.h) covers what enters a material's texels: here the clear
-// coat's inputs (KHR_materials_clearcoat) and the anisotropy's (KHR_materials_anisotropy), each of
-// which the texels read (textures/material_loader.h), so a change of any one must give another key; a
-// material without a coat or without an anisotropy strength does not read them.
+// coat's inputs (KHR_materials_clearcoat), the anisotropy's (KHR_materials_anisotropy) and the
+// transmission's (KHR_materials_transmission), each of which the texels read
+// (textures/material_loader.h), so a change of any one must give another key; a material without a
+// coat, without an anisotropy strength or without a transmission factor does not read them.
 #include <gtest/gtest.h>
 
 #include <functional>
@@ -132,6 +133,46 @@ TEST(MipCacheKey, EachAnisotropyInputChangesTheKey) {
   plain.base_color_texture = ref(0);
   MaterialDesc unused = anisotropic();
   unused.anisotropy_strength = 0.0f;
+  EXPECT_EQ(key_of(scene, unused), key_of(scene, plain));
+}
+
+// A transmitting material: base colour on texture 0, the transmission on texture 1.
+MaterialDesc transmitting() {
+  MaterialDesc m;
+  m.base_color_texture = ref(0);
+  m.transmission = 0.6f;
+  m.transmission_texture = ref(1);
+  return m;
+}
+
+TEST(MipCacheKey, EachTransmissionInputChangesTheKey) {
+  const Scene scene = scene_with_images(5);
+  const std::string base = key_of(scene, transmitting());
+  const std::vector<std::pair<std::string, std::function<void(MaterialDesc&)>>> changes{
+      {"transmissionFactor", [](MaterialDesc& m) { m.transmission = 0.3f; }},
+      {"transmissionTexture", [](MaterialDesc& m) { m.transmission_texture = ref(4); }},
+      {"transmissionTexture absent", [](MaterialDesc& m) { m.transmission_texture = TextureRef{}; }},
+  };
+  for (const auto& [name, change] : changes) {
+    MaterialDesc m = transmitting();
+    change(m);
+    EXPECT_NE(key_of(scene, m), base) << name;
+  }
+  EXPECT_EQ(key_of(scene, transmitting()), base);
+  Scene changed = scene;
+  changed.images[1].pixels.pixels[5] += 0.25f;
+  EXPECT_NE(key_of(changed, transmitting()), base) << "images[1]";
+  // The texture is data: its texels are read as stored even where another material shows the same
+  // image as colour (and TextureSet holds a linearized copy of it), so the key stays.
+  Scene shown = scene;
+  shown.materials.push_back(MaterialDesc{});
+  shown.materials.back().base_color_texture = ref(1);
+  EXPECT_EQ(key_of(shown, transmitting()), base) << "images[1] shown as colour elsewhere";
+  // Factor 0 transmits nothing: the texture is not read, and not part of the key.
+  MaterialDesc plain;
+  plain.base_color_texture = ref(0);
+  MaterialDesc unused = transmitting();
+  unused.transmission = 0.0f;
   EXPECT_EQ(key_of(scene, unused), key_of(scene, plain));
 }
 
