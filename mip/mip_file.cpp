@@ -56,14 +56,19 @@ int band_rows(int width, std::size_t stride) {
 // writer's alone: the file says "zip", and its pixels read back the same at any level.
 constexpr const char* kCompression = "zip:2";
 constexpr int kZipChunkRows = 16;
-// Rows a write of scanlines hands OpenEXR: whole chunks, and at least two for each thread of its pool.
-// OpenEXR compresses the chunks one call completes in parallel; a call of a band's few rows (a 4096²
-// material's level 1 holds 15 rows in kBandBytes) completes at most one, which one thread compresses
-// while the others wait.
+// Rows a write of scanlines hands OpenEXR: whole chunks, and at least two for each thread of its pool
+// where that fits in kWriteBytes. OpenEXR compresses the chunks one call completes in parallel; a call
+// of a band's few rows (a 4096² material's level 1 holds 15 rows in kBandBytes) completes at most one,
+// which one thread compresses while the others wait. The bound keeps a many-core machine's band from
+// growing toward a level's whole pixels (16 threads: 142 MB for that level 1).
+constexpr std::size_t kWriteBytes = std::size_t(1) << 26;
 int write_rows(int width, std::size_t stride) {
   int threads = 1;
   OIIO::getattribute("threads", threads);
-  return std::max(band_rows(width, stride) / kZipChunkRows, 2 * std::max(threads, 1)) * kZipChunkRows;
+  const std::size_t chunk_bytes = std::size_t(std::max(width, 1)) * std::max<std::size_t>(stride, 1) * kZipChunkRows;
+  const int fit = static_cast<int>(std::max<std::size_t>(1, kWriteBytes / chunk_bytes));
+  const int chunks = std::max(band_rows(width, stride) / kZipChunkRows, std::min(2 * std::max(threads, 1), fit));
+  return chunks * kZipChunkRows;
 }
 // Texels a packing task takes: a band of kBandBytes holds 16 to 128 thousand texels (strides of 256 to
 // 32 bytes), so each band of a large level splits among at least 16 tasks.
