@@ -18,6 +18,19 @@ glm::dvec3 level0_eval(const MaterialTexels& m, std::size_t k, const PairTerms<d
   return coated_eval(f, double(base.coat) * f, {&base, 1}, level0_coat(m, k, scratch), p);
 }
 
+glm::dvec3 level0_transmission_eval(const MaterialTexels& m, std::size_t k, const glm::dvec3& wi, const glm::dvec3& wo) {
+  if (!m.has_transmission()) return glm::dvec3(0);
+  const Lobe base = level0_lobe(m, k);
+  const LobeShape<double> s = lobe_shape<double>(base);
+  glm::dvec3 f = lobe_transmission_eval<double>(base, s, wi, wo);
+  if (f == glm::dvec3(0)) return f;
+  if (m.has_sheen()) f *= sheen_terms(m.sheen_layer(k), s.n, transmission_pair(s, wi, wo)).scaling;
+  Lobe scratch;
+  const CoatTexel coat = level0_coat(m, k, scratch);
+  if (coat.present()) f -= (coat_fresnel<double>(coat, wo) * double(base.coat)) * f;
+  return f;
+}
+
 void accumulate_level0_double(const MaterialTexels& m, std::size_t k, double scale, std::span<glm::dvec3> table) {
   const Lobe base = level0_lobe(m, k);
   Lobe scratch;
@@ -49,13 +62,17 @@ void accumulate_level0_double(const MaterialTexels& m, std::size_t k, double sca
 
 glm::dvec3 ExactReference::eval(int level, int i, int j, const glm::dvec3& wi, const glm::dvec3& wo) const {
   const Coverage c = coverage(level0(), level, i, j);
+  const bool below = wi.z < 0 && wo.z > 0;
   const PairTerms<double> p = pair_terms<double>(wi, wo);
-  if (!p.valid) return glm::dvec3(0);
+  if (!p.valid && !below) return glm::dvec3(0);
   const glm::dvec3 sum = tbb::parallel_deterministic_reduce(
       tbb::blocked_range<int>(c.rows.begin, c.rows.end), glm::dvec3(0),
       [&](const tbb::blocked_range<int>& r, glm::dvec3 acc) {
         for (int y = r.begin(); y < r.end(); ++y)
-          for (int x = c.columns.begin; x < c.columns.end; ++x) acc += level0_eval(texels_, texels_.index(x, y), p);
+          for (int x = c.columns.begin; x < c.columns.end; ++x) {
+            const std::size_t k = texels_.index(x, y);
+            acc += below ? level0_transmission_eval(texels_, k, wi, wo) : level0_eval(texels_, k, p);
+          }
         return acc;
       },
       [](const glm::dvec3& a, const glm::dvec3& b) { return a + b; });

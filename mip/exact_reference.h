@@ -16,10 +16,11 @@
 
 namespace svbrdf {
 
-// The level-0 lobe of texel k of a material (exactly f_eff of that texel, its anisotropy included).
+// The level-0 lobe of texel k of a material (exactly f_eff of that texel, its anisotropy and its
+// thin-walled transmission included).
 inline Lobe level0_lobe(const MaterialTexels& m, std::size_t k) {
   Lobe l = lobe_from_texel(m.base_color[k], m.metallic[k], m.roughness[k], m.normal[k], 1.0f, m.specular_layer(k),
-                           m.anisotropy_layer(k));
+                           m.anisotropy_layer(k), m.has_transmission() ? m.transmission_at(k) : 0.0f);
   if (m.has_coat()) l.coat = std::clamp(m.coat_layer(k).weight, 0.0f, 1.0f);
   if (m.has_sheen()) l.sheen = sheen_share(m.sheen_layer(k));
   return l;
@@ -35,6 +36,10 @@ inline CoatTexel level0_coat(const MaterialTexels& m, std::size_t k, Lobe& scrat
 // f_eff of level-0 texel k of a material (its lobe, under its sheen and its coat) for a pair, in double
 // precision.
 glm::dvec3 level0_eval(const MaterialTexels& m, std::size_t k, const PairTerms<double>& p);
+// The same for wi below and wo above the geometric surface: the texel's thin-walled transmission (lobe.h,
+// "Transmission") under its sheen's albedo scaling at the mirrored pair and its coat's 1 − c·Fc(wo), as
+// the renderer's surface BSDF layers it (appearance/gltf_surface_bsdf.h); 0 without a transmission.
+glm::dvec3 level0_transmission_eval(const MaterialTexels& m, std::size_t k, const glm::dvec3& wi, const glm::dvec3& wo);
 // table += scale · the same over the direction grid's pairs.
 void accumulate_level0_double(const MaterialTexels& m, std::size_t k, double scale, std::span<glm::dvec3> table);
 
@@ -55,7 +60,7 @@ class ExactReference {
   Extent level0() const { return {texels_.width, texels_.height}; }
   const MaterialTexels& texels() const { return texels_; }
 
-  // F_L,ij(wi, wo), directions in the geometric tangent frame.
+  // F_L,ij(wi, wo), directions in the geometric tangent frame; wi below the surface: the transmission's.
   glm::dvec3 eval(int level, int i, int j, const glm::dvec3& wi, const glm::dvec3& wo) const;
   // F_L,ij over the metric's 4225 pairs (direction_grid.h).
   BrdfTable table(int level, int i, int j) const;

@@ -71,7 +71,13 @@
 // (n̂ = n_x), its clipped cosine E[max(0, n·wi')] = E[max(0, −n·wi)] for spread normals — with the
 // factors τ + (τ90 − τ)·w in place of the Fresnel term and no diffuse part, w the Schlick weight at
 // |wo·h'|, f_eff's denominator |wi.z|. τ and τ90 are linear in the texels' parameters as ρ is, so a
-// merge averages them as it averages ρ, and the lobe's shape, fitted to its reflection, serves both.
+// merge averages them as it averages ρ. The shape is another matter: a thin wall passes light straight
+// through whatever its normal's tilt (at wi = −wo the mirrored half vector is the texel's normal), so
+// the texels' normals, which spread the union's reflection, do not spread its transmission. A lobe
+// transmits through GGX of its own transmission_alpha2 (its α² at level 0; a merge's is its members'
+// amplitude-weighted harmonic mean, which keeps the union's peak), about its normal, with its spread's
+// horizons and its stretch, its τ scaled by the merge to keep the union's transmitted flux
+// (albedo_table.h transmission_flux).
 #include <algorithm>
 #include <cmath>
 #include <type_traits>
@@ -116,6 +122,7 @@ struct Lobe {
   // the factors of the lobe's BTDF at w = 0 and w = 1, 0 without one.
   glm::vec3 transmission{0.0f};
   glm::vec3 transmission90{0.0f};
+  float transmission_alpha2 = 0.0f;  // the transmission's GGX α² ("Transmission" above); 0 without one
 };
 
 // The glTF layering of KHR_materials_specular (its "fresnel_mix", appearance/gltf.h gltf_layers):
@@ -166,6 +173,7 @@ inline Lobe lobe_from_texel(const glm::vec3& base_color, float metallic, float r
     if (t > 0.0f) {
       l.transmission = (0.96f * t) * l.diffuse;
       l.diffuse *= 1.0f - t;
+      l.transmission_alpha2 = l.alpha2;
     }
     return l;
   }
@@ -182,6 +190,7 @@ inline Lobe lobe_from_texel(const glm::vec3& base_color, float metallic, float r
     l.transmission90 = t * l.diffuse90;
     l.diffuse *= 1.0f - t;
     l.diffuse90 *= 1.0f - t;
+    l.transmission_alpha2 = l.alpha2;
   }
   return l;
 }
@@ -525,6 +534,15 @@ inline bool transmits(const Lobe& l) {
          l.transmission90.g > 0.0f || l.transmission90.b > 0.0f;
 }
 
+// The shape a lobe transmits through ("Transmission" at the top): GGX of its transmission_alpha2 (its own
+// α² where it has none), about the lobe's normal, with the lobe's spread and stretch.
+template <class T>
+LobeShape<T> transmission_shape(const Lobe& lobe, LobeShape<T> s) {
+  s.alpha2 = T(lobe.transmission_alpha2 > 0.0f ? lobe.transmission_alpha2 : lobe.alpha2);
+  s.ggx = 1, s.skirt = 1, s.alpha2_hi = 0, s.lmean = 0, s.two_point = false;
+  return s;
+}
+
 // The pair a lobe's transmission reflects: wi (below the geometric surface) mirrored through the plane
 // of the lobe's normal n̂, with wo; inv_wi_z is 1/|wi.z|, the f_eff factor's denominator of the
 // transmitted direction. Invalid unless wi is below and wo above the geometric surface.
@@ -546,11 +564,12 @@ PairTerms<T> transmission_pair(const LobeShape<T>& s, const glm::vec<3, T>& wi, 
 // wi' the mirror of wi through n̂'s plane (transmission_pair), its sides those of a reflected pair.
 // `sides` as lobe_eval's.
 template <class T>
-glm::vec<3, T> lobe_transmission_eval(const Lobe& lobe, const LobeShape<T>& s, const glm::vec<3, T>& wi,
+glm::vec<3, T> lobe_transmission_eval(const Lobe& lobe, const LobeShape<T>& s_reflected, const glm::vec<3, T>& wi,
                                       const glm::vec<3, T>& wo, T spec_scale = T(1), T* sides = nullptr) {
   using V3 = glm::vec<3, T>;
   if (sides) *sides = 0;
-  if (!s.valid || !transmits(lobe)) return V3(0);
+  if (!s_reflected.valid || !transmits(lobe)) return V3(0);
+  const LobeShape<T> s = transmission_shape(lobe, s_reflected);
   const PairTerms<T> p = transmission_pair(s, wi, wo);
   if (!p.valid) return V3(0);
   const LobeSide<T> i = lobe_wi_side(s, glm::dot(s.n, p.wi));

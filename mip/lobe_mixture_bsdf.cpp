@@ -168,8 +168,9 @@ float LobeMixtureBsdf::transmission_pdf(const Choice& c, const glm::vec3& wi, co
   for (int k = 0; k < count_; ++k) {
     const std::size_t i = static_cast<std::size_t>(k);
     if (!(c.lobe[i] > 0) || !(c.transmit[i] > 0)) continue;
-    const PairTerms<float> m = transmission_pair(slot(k).shape, wi, wo);
-    if (m.valid && glm::dot(wo, m.h) > 0) pdf += c.lobe[i] * c.transmit[i] * specular_pdf(slot(k).shape, wo, m.h);
+    const LobeShape<float> ts = transmission_shape(slot(k).lobe, slot(k).shape);
+    const PairTerms<float> m = transmission_pair(ts, wi, wo);
+    if (m.valid && glm::dot(wo, m.h) > 0) pdf += c.lobe[i] * c.transmit[i] * specular_pdf(ts, wo, m.h);
   }
   return pdf;
 }
@@ -259,8 +260,8 @@ BsdfSample LobeMixtureBsdf::sample(const glm::vec3& wo, const SampleU& u) const 
       below = c.transmit[i] > 0 && v >= spec;
       if (below) v -= spec;
       const float part = below ? c.transmit[i] : spec;
-      const bool upper = sh.alpha2_hi > 0 && v >= 0.5f * part;
-      const float alpha = std::sqrt(upper ? sh.alpha2_hi : sh.alpha2);
+      const bool upper = !below && sh.alpha2_hi > 0 && v >= 0.5f * part;
+      const float alpha = std::sqrt(below ? transmission_shape(slot(picked).lobe, sh).alpha2 : upper ? sh.alpha2_hi : sh.alpha2);
       const glm::vec2 axes = sh.stretched ? glm::vec2(alpha * std::sqrt(sh.r), alpha * std::sqrt(sh.inv_r)) : glm::vec2(alpha);
       const glm::vec3 h = sample_ggx_visible(axes, wo_l, uv);
       glm::vec3 r = 2.0f * glm::dot(wo_l, h) * h - wo_l;

@@ -39,6 +39,7 @@ MergeBase merge_base(std::span<const Member> u) {
   const double inv_w = 1.0 / w;
   glm::dvec3 diffuse(0), f0(0), f0_tint(0), diffuse90(0), transmission(0), transmission90(0), nbar(0);
   double f90 = 0, coat = 0, sheen = 0;
+  double t_amp = 0, t_peak = 0;  // the transmission's amplitude and its GGX peaks' sum (below)
   bool plain = true;  // every member's F90 is 1: the mean is 1 exactly, not a rounding of it
   Summary& s = mb.summary;
   s.rho = s.f0 = 0;
@@ -50,6 +51,8 @@ MergeBase merge_base(std::span<const Member> u) {
     diffuse90 += t * glm::dvec3(x.lobe->diffuse90);
     transmission += t * glm::dvec3(x.lobe->transmission);
     transmission90 += t * glm::dvec3(x.lobe->transmission90);
+    const double a = t * (double(x.lobe->transmission.r) + x.lobe->transmission.g + x.lobe->transmission.b);
+    if (a > 0 && x.lobe->transmission_alpha2 > 0) t_amp += a, t_peak += a / x.lobe->transmission_alpha2;
     f90 += t * x.lobe->f90;
     coat += t * x.lobe->coat;
     sheen += t * x.lobe->sheen;
@@ -65,6 +68,10 @@ MergeBase merge_base(std::span<const Member> u) {
   m.diffuse90 = glm::vec3(diffuse90);
   m.transmission = glm::vec3(transmission);
   m.transmission90 = glm::vec3(transmission90);
+  // The members transmit about −wo whatever their normals' tilts (a thin wall passes light straight
+  // through; lobe.h "Transmission"), so the union's transmission is their GGX lobes untilted: one GGX
+  // of the same peak, α²_T the amplitude-weighted harmonic mean of theirs.
+  m.transmission_alpha2 = t_amp > 0 ? static_cast<float>(t_amp / t_peak) : 0.0f;
   m.coat = static_cast<float>(coat);
   m.sheen = static_cast<float>(sheen);
   if (plain) f90 = 1.0;
@@ -183,10 +190,10 @@ Merged merge_pair(const Lobe& a, const Summary& sa, const Lobe& b, const Summary
 }
 
 // Keeps the union's specular albedo: scales the merged lobe's weight (which scales its specular part)
-// and divides its ρ and ρ90 by the same factor (which leaves its diffuse part as it was). A
-// transmission's τ and τ90 keep theirs: its BTDF is the same shape turned over (lobe.h), whose flux
-// the same factor keeps. Applied when a merge
-// is made, not while costs are estimated (it changes them by a few percent of the amplitude only).
+// and divides its ρ and ρ90 by the same factor (which leaves its diffuse part as it was); then scales
+// its τ and τ90 so that it transmits what the union transmits (transmission_flux: its transmission
+// shape is not its reflection's, merge_base). Applied when a merge is made, not while costs are
+// estimated (it changes them by a few percent of the amplitude only).
 void keep_specular_flux(std::span<const Member> u, Merged& m) {
   // A lobe made by an earlier merge knows its flux (it was set to keep its lobes' there).
   double want = 0;
@@ -205,6 +212,16 @@ void keep_specular_flux(std::span<const Member> u, Merged& m) {
     m.summary.f0 = mean3(m.lobe.f0);
     m.summary.amp = specular_amp(m.lobe.weight, len, m.summary.f0, m.summary.f90);
     m.summary.flux = want;
+  }
+  if (transmits(m.lobe)) {
+    double want_t = 0;
+    for (const Member& x : u) want_t += transmission_flux(*x.lobe);
+    const double have_t = transmission_flux(m.lobe);
+    if (have_t > 0 && want_t > 0) {
+      const double scale = want_t / have_t;
+      m.lobe.transmission = glm::vec3(glm::dvec3(m.lobe.transmission) * scale);
+      m.lobe.transmission90 = glm::vec3(glm::dvec3(m.lobe.transmission90) * scale);
+    }
   }
 }
 

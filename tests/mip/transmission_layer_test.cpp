@@ -13,6 +13,7 @@
 #include "appearance/rng.h"
 #include "chi2.h"
 #include "gltf_transcription.h"
+#include "mip/exact_reference.h"
 #include "mip/lobe.h"
 #include "mip/lobe_mixture_bsdf.h"
 #include "random_directions.h"
@@ -252,6 +253,61 @@ TEST(TransmissionLayer, Level0MixtureTransmitsWhatTheSurfaceTransmits) {
       EXPECT_GT(m[1], 0.0) << trial;
     }
   }
+}
+
+// Under a clear coat and a sheen, a level-0 texel's transmission — the exact reference's, in double, and
+// its mixture's, in float — is the renderer's surface BSDF's: the lobe's BTDF under the sheen's albedo
+// scaling at the mirrored pair and the coat's 1 − c·Fc(wo) (to 1e-4, 5e-4 below 1e-4 as above). The
+// texels' normals and coat normals are the geometric one, so the surface's frame is the lobes'.
+TEST(TransmissionLayer, Level0UnderCoatAndSheenIsTheSurfaces) {
+  Rng rng(76, 1);
+  MaterialTexels m(4, 4);
+  m.clearcoat_factor = 1.0f, m.clearcoat.resize(m.size()), m.clearcoat_roughness_factor = 1.0f;
+  m.clearcoat_roughness.resize(m.size());
+  m.sheen_color_factor = glm::vec3(1.0f), m.sheen_color.resize(m.size()), m.sheen_roughness_factor = 1.0f;
+  m.sheen_roughness.resize(m.size());
+  m.transmission_factor = 1.0f, m.transmission.resize(m.size());
+  for (std::size_t k = 0; k < m.size(); ++k) {
+    m.base_color[k] = {rng.next_float(), rng.next_float(), rng.next_float()};
+    m.metallic[k] = k % 3 == 0 ? 0.5f * rng.next_float() : 0.0f;
+    m.roughness[k] = 0.2f + 0.8f * rng.next_float();
+    m.clearcoat[k] = rng.next_float(), m.clearcoat_roughness[k] = 0.1f + 0.9f * rng.next_float();
+    m.sheen_color[k] = {rng.next_float(), rng.next_float(), rng.next_float()};
+    m.sheen_roughness[k] = 0.2f + 0.8f * rng.next_float();
+    m.transmission[k] = k % 4 == 1 ? 0.0f : rng.next_float();
+  }
+  const ExactReference exact(m);
+  int compared = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const int i = trial % 4, j = (trial / 4) % 4;
+    const std::size_t k = m.index(i, j);
+    ShadingParams p;
+    p.base_color = Rgb(m.base_color[k]), p.metallic = m.metallic[k], p.roughness = m.roughness[k];
+    p.transmission = m.transmission[k];
+    p.clearcoat = m.clearcoat[k], p.clearcoat_roughness = m.clearcoat_roughness[k];
+    p.sheen_color = Rgb(m.sheen_color[k]), p.sheen_roughness = m.sheen_roughness[k];
+    const SurfaceBsdf surface(p);
+    Lobe scratch;
+    LobeMixtureBsdf mixture(std::vector<Lobe>{level0_lobe(m, k)}, level0_coat(m, k, scratch).lobes);
+    mixture.set_sheen(m.sheen_layer(k));
+    glm::dvec3 wi = random_above(rng), wo = random_above(rng);
+    wi.z = -wi.z;
+    const glm::dvec3 want(surface.eval(glm::vec3(wi), glm::vec3(wo)));
+    const glm::dvec3 got = exact.eval(0, i, j, wi, wo);
+    const glm::dvec3 in_float(mixture.eval(glm::vec3(wi), glm::vec3(wo)));
+    for (int c = 0; c < 3; ++c) {
+      if (want[c] == 0) {
+        EXPECT_EQ(got[c], 0.0) << trial;
+        EXPECT_EQ(in_float[c], 0.0) << trial;
+        continue;
+      }
+      const double tolerance = want[c] < 1e-4 ? 5e-4 : 1e-4;
+      EXPECT_NEAR(got[c], want[c], tolerance * want[c]) << trial;
+      EXPECT_NEAR(in_float[c], want[c], tolerance * want[c]) << trial;
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 6000);
 }
 
 }  // namespace
