@@ -429,11 +429,15 @@ TEST(Transmission, ThinWallLetsThroughWhatAMetalReflects) {
       double se_w = 0, se_m = 0;
       const double through = albedo(w, wo, 40000, 29, &se_w), reflected = albedo(m, wo, 40000, 31, &se_m);
       EXPECT_NEAR(through, reflected, 4 * std::hypot(se_w, se_m) + 1e-6) << roughness << " " << theta;
-      if (roughness == 0.0f) EXPECT_NEAR(through, 1.0, 1e-3) << theta;
+      if (roughness == 0.0f) {
+        EXPECT_NEAR(through, 1.0, 1e-3) << theta;
+      }
       const BsdfSample s = w.sample(wo, SampleU(0.5f, 0.3f, 0.6f));
       EXPECT_EQ(s.kind, SampleKind::finite);
       EXPECT_LT(s.wi.z, 0.0f);
-      if (roughness == 0.0f) EXPECT_NEAR(glm::length(s.wi + wo), 0.0, 1e-2) << "straight through";
+      if (roughness == 0.0f) {
+        EXPECT_NEAR(glm::length(s.wi + wo), 0.0, 1e-2) << "straight through";
+      }
     }
   }
   ShadingParams p;
