@@ -45,9 +45,9 @@ MaterialTexels load_gltf_material_texels(const std::filesystem::path& path, cons
 
 std::string mip_unsupported(const MaterialDesc& m) {
   if (m.unlit) return "KHR_materials_unlit (no BRDF to filter)";
-  if (m.transmission > 0.0f || m.transmission_texture.present()) return "KHR_materials_transmission";
-  if (m.diffuse_roughness > 0.0f || m.diffuse_roughness_texture.present())
-    return "KHR_materials_diffuse_roughness (the MIP lobes are Lambertian)";
+  // A factor of 0 is no layer whatever its texture (the factor multiplies it, render/surface.cpp).
+  if (m.transmission > 0.0f) return "KHR_materials_transmission";
+  if (m.diffuse_roughness > 0.0f) return "KHR_materials_diffuse_roughness (the MIP lobes are Lambertian)";
   if (m.diffuse_transmission > 0.0f) return "KHR_materials_diffuse_transmission (the MIP lobes reflect only)";
   if (m.iridescence > 0.0f) return "KHR_materials_iridescence (the MIP lobes' Fresnel is Schlick's)";
   return {};

@@ -317,6 +317,16 @@ TEST(MipFilters, TextureGridRules) {
     warned(std::move(s), "KHR_materials_transmission");
   }
   {
+    // A factor of 0 is no transmission (nor diffuse roughness), whatever its texture: filtered, no warning.
+    Scene s = periodic_quad(8);
+    s.materials[0].transmission_texture = s.materials[0].metallic_roughness_texture;
+    s.materials[0].diffuse_roughness_texture = s.materials[0].metallic_roughness_texture;
+    Prepared p(std::move(s));
+    EXPECT_TRUE(p.mips->warnings(TextureFilter::brdf).empty());
+    p.mips->prepare(TextureFilter::brdf);
+    EXPECT_NE(p.mips->find(0), nullptr);
+  }
+  {
     // A tinted COLOR_0 makes the material's BRDF pyramid tintable, with no warning; white COLOR_0
     // does not.
     for (const float g : {0.5f, 1.0f}) {
