@@ -15,6 +15,7 @@
 #include <numeric>
 #include <optional>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -420,35 +421,21 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
       formats.push_back(f);
     };
     for (const char* c : kParamChannels) need(c);
-    // The specular layer's channels: in every level or in none (param), per level (lobes).
-    const bool param_specular = index.count(kParamSpecularChannels[0]) > 0;
-    if (level > 0 && param_specular != !specular_levels.empty())
-      throw input_error(where(path), at_level + (param_specular ? " has" : " has no") + " channel " +
-                                         kParamSpecularChannels[0] + (param_specular ? " but level 0 has none" : " but level 0 has"));
-    if (param_specular)
-      for (const char* c : kParamSpecularChannels) need(c);
-    // The coat's: its means in every level or in none, its lobes and shares in every level ≥ 1 of a
-    // coated material's file.
-    const bool coat = index.count(kParamCoatChannels[0]) > 0;
-    if (level > 0 && coat != !coat_levels.empty())
-      throw input_error(where(path), at_level + (coat ? " has" : " has no") + " channel " + kParamCoatChannels[0] +
-                                         (coat ? " but level 0 has none" : " but level 0 has"));
-    if (coat)
-      for (const char* c : kParamCoatChannels) need(c);
-    // The sheen's: its means in every level or in none, its shares in every level ≥ 1.
-    const bool sheen = index.count(kParamSheenChannels[0]) > 0;
-    if (level > 0 && sheen != !sheen_levels.empty())
-      throw input_error(where(path), at_level + (sheen ? " has" : " has no") + " channel " + kParamSheenChannels[0] +
-                                         (sheen ? " but level 0 has none" : " but level 0 has"));
-    if (sheen)
-      for (const char* c : kParamSheenChannels) need(c);
-    // The anisotropy's: its means in every level or in none.
-    const bool anisotropy = index.count(kParamAnisotropyChannels[0]) > 0;
-    if (level > 0 && anisotropy != !anisotropy_levels.empty())
-      throw input_error(where(path), at_level + (anisotropy ? " has" : " has no") + " channel " +
-                                         kParamAnisotropyChannels[0] + (anisotropy ? " but level 0 has none" : " but level 0 has"));
-    if (anisotropy)
-      for (const char* c : kParamAnisotropyChannels) need(c);
+    // A layer's means (the specular layer's, the coat's, the sheen's, the anisotropy's): in every level
+    // or in none, as level 0 has them or not; its lobes' channels are per level (below).
+    const auto means = [&](std::span<const char* const> channels, bool in_level0) {
+      const bool here = index.count(channels[0]) > 0;
+      if (level > 0 && here != in_level0)
+        throw input_error(where(path), at_level + (here ? " has" : " has no") + " channel " + channels[0] +
+                                           (here ? " but level 0 has none" : " but level 0 has"));
+      if (here)
+        for (const char* c : channels) need(c);
+      return here;
+    };
+    const bool param_specular = means(kParamSpecularChannels, !specular_levels.empty());
+    const bool coat = means(kParamCoatChannels, !coat_levels.empty());
+    const bool sheen = means(kParamSheenChannels, !sheen_levels.empty());
+    const bool anisotropy = means(kParamAnisotropyChannels, !anisotropy_levels.empty());
     const int coat_slots = level > 0 && coat ? s.get_int_attribute(kCoatSlots, -1) : 0;
     if (coat_slots < 0 || coat_slots > kMaxLobes)
       throw input_error(where(path), at_level + " has " + std::to_string(coat_slots) + " coat lobe slots (" + kCoatSlots + ")");

@@ -425,6 +425,55 @@ TEST(MipFile, RefusesCodesConvertedToFloatAndCorrectionsWithoutTheirGrid) {
             std::string::npos) << msg;
 }
 
+// Copies a MIP file as floats (copy_mip_file's all_float) without channel `name` in subimage `level`.
+void copy_without_channel(const std::filesystem::path& from, const std::filesystem::path& to, int level,
+                          const std::string& name) {
+  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(from.string());
+  ASSERT_TRUE(in);
+  std::vector<OIIO::ImageSpec> specs;
+  std::vector<std::vector<float>> pixels;
+  for (int l = 0; in->seek_subimage(l, 0); ++l) {
+    OIIO::ImageSpec s = in->spec();
+    const std::size_t texels = std::size_t(s.width) * s.height, n = std::size_t(s.nchannels);
+    std::vector<float> px(texels * n);
+    ASSERT_TRUE(in->read_image(l, 0, 0, s.nchannels, OIIO::TypeDesc::FLOAT, px.data()));
+    const auto it = std::find(s.channelnames.begin(), s.channelnames.end(), name);
+    if (l == level && it != s.channelnames.end()) {
+      const std::size_t c = std::size_t(it - s.channelnames.begin());
+      std::vector<float> kept;
+      kept.reserve(texels * (n - 1));
+      for (std::size_t t = 0; t < texels; ++t)
+        for (std::size_t k = 0; k < n; ++k)
+          if (k != c) kept.push_back(px[t * n + k]);
+      px = std::move(kept);
+      s.channelnames.erase(it);
+      s.nchannels -= 1;
+    }
+    s.set_format(OIIO::TypeDesc::FLOAT), s.channelformats.clear();
+    specs.push_back(s);
+    pixels.push_back(std::move(px));
+  }
+  in->close();
+  write_levels(to, specs, pixels, OIIO::TypeDesc::FLOAT);
+}
+
+// A layer's means are in every level or in none, as level 0 has them: a coarse level without a
+// channel of them that level 0 has, or with one that level 0 lacks, is refused naming the level and
+// the channel (the specular layer's, the coat's, the sheen's and the anisotropy's alike, one check).
+TEST(MipFile, RefusesALayersMeansInSomeLevelsOnly) {
+  testing::TempDir dir;
+  std::uint64_t seed = 1;
+  while (!draw_random_material(seed).sheen_textured) ++seed;
+  write_mip_file(dir / "sheen.exr", build_mip(random_material_texels(draw_random_material(seed), 8)));
+  copy_without_channel(dir / "sheen.exr", dir / "level1.exr", 1, "param.sheen.R");
+  std::string msg = read_error(dir / "level1.exr");
+  EXPECT_NE(msg.find("level1.exr"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("level 1 has no channel param.sheen.R but level 0 has"), std::string::npos) << msg;
+  copy_without_channel(dir / "sheen.exr", dir / "level0.exr", 0, "param.sheen.R");
+  msg = read_error(dir / "level0.exr");
+  EXPECT_NE(msg.find("level 1 has channel param.sheen.R but level 0 has none"), std::string::npos) << msg;
+}
+
 // The radial grid's last node is read from svbrdf:radial_outer (30°); a file without it is refused.
 TEST(MipFile, ReadsTheRadialGridsOuterNode) {
   testing::TempDir dir;
