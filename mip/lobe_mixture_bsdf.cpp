@@ -145,7 +145,7 @@ LobeMixtureBsdf::Choice LobeMixtureBsdf::choice(const glm::vec3& wo) const {
     const float all = d + s + t;
     c.lobe[i] = all;
     c.diffuse[i] = all > 0 ? d / all : 1.0f;
-    c.transmit[i] = all > 0 ? t / all : 0.0f;
+    c.transmit[i] = t > 0 ? t / all : 0.0f;  // no division per lobe and hit where nothing transmits
     total += all;
     transmitted += t;
   }
@@ -259,8 +259,7 @@ BsdfSample LobeMixtureBsdf::sample(const glm::vec3& wo, const SampleU& u) const 
       float v = ux - c.diffuse[i];
       below = c.transmit[i] > 0 && v >= spec;
       if (below) v -= spec;
-      const float part = below ? c.transmit[i] : spec;
-      const bool upper = !below && sh.alpha2_hi > 0 && v >= 0.5f * part;
+      const bool upper = !below && sh.alpha2_hi > 0 && v >= 0.5f * spec;
       const float alpha = std::sqrt(below ? transmission_shape(slot(picked).lobe, sh).alpha2 : upper ? sh.alpha2_hi : sh.alpha2);
       const glm::vec2 axes = sh.stretched ? glm::vec2(alpha * std::sqrt(sh.r), alpha * std::sqrt(sh.inv_r)) : glm::vec2(alpha);
       const glm::vec3 h = sample_ggx_visible(axes, wo_l, uv);
