@@ -80,6 +80,20 @@ struct BrdfLevel {
         if (l.stretch != 1.0f) return true;
     return false;
   }
+  // Whether some lobe transmits (lobe.h "Transmission"), and whether some lobe's τ90 is not 0, which the
+  // MIP file then stores in kBytesPerTransmission and kBytesPerTransmission90 more bytes a slot.
+  bool transmission_layer() const {
+    for (std::size_t t = 0; t < counts.size(); ++t)
+      for (const Lobe& l : texel_lobes(t))
+        if (transmits(l)) return true;
+    return false;
+  }
+  bool transmission90_layer() const {
+    for (std::size_t t = 0; t < counts.size(); ++t)
+      for (const Lobe& l : texel_lobes(t))
+        if (l.transmission90 != glm::vec3(0.0f)) return true;
+    return false;
+  }
   // Makes room for `texels` texels, all empty.
   void reset(Extent e, std::size_t texels) {
     extent = e;

@@ -209,7 +209,9 @@ void write_mip_file(const fs::path& path, const ParamPyramid& param, const BrdfP
     const BrdfLevel& bl = brdf.level(level);
     c.slots = bl.slots;
     c.radial = !bl.correction.empty();
-    c.lobe = lobe_channels(bl.specular_layer(), brdf.tintable() && bl.tint_layer(), c.coat, c.sheen, bl.stretch_layer());
+    c.lobe = lobe_channels({.specular = bl.specular_layer(), .tint = brdf.tintable() && bl.tint_layer(), .coat = c.coat,
+                            .sheen = c.sheen, .stretch = bl.stretch_layer(), .transmission = bl.transmission_layer(),
+                            .transmission90 = bl.transmission90_layer()});
     c.coat_slots = c.coat ? brdf.coat_level(level).slots : 0;
   }
   // Each level is packed twice a band of rows at a time, for its checksum (the headers come first) and
@@ -444,9 +446,11 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
     const bool tint_channels = slots > 0 && index.count("lobe0.F0tint.R") > 0;
     if (tint_channels && s.get_int_attribute(kTint, 0) != 1)
       throw input_error(where(path), at_level + " has channel lobe0.F0tint.R but the file is not " + kTint + " 1");
-    const std::vector<LobeChannel> lobe_ch =
-        lobe_channels(slots > 0 && index.count("lobe0.F90") > 0, tint_channels, coat, sheen,
-                      slots > 0 && index.count("lobe0.stretch") > 0);
+    const auto lobe_layer = [&](const char* channel) { return slots > 0 && index.count(channel) > 0; };
+    const std::vector<LobeChannel> lobe_ch = lobe_channels(
+        {.specular = lobe_layer("lobe0.F90"), .tint = tint_channels, .coat = coat, .sheen = sheen,
+         .stretch = lobe_layer("lobe0.stretch"), .transmission = lobe_layer("lobe0.transmission.R"),
+         .transmission90 = lobe_layer("lobe0.transmission90.R")});
     const std::vector<LobeChannel> coat_ch = coat_lobe_channels();
     const auto need_lobes = [&](const char* prefix, int n, const std::vector<LobeChannel>& channels) {
       for (int k = 0; k < n; ++k)

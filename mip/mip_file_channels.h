@@ -1,7 +1,7 @@
 #pragma once
-// Private to mip/ (mip_file.cpp): the channels of the MIP file as mip_file.h lists them — the
-// parameters', the lobes' by role, the specular, tint and coat layers' and the sheen's — and a lobe packed into them and
-// unpacked; and a pixel's layout in a level's bytes.
+// Private to mip/ (mip_file.cpp, mip_records.cpp): the channels of the MIP file as mip_file.h lists them —
+// the parameters', the lobes' by role, the specular, tint and coat layers', the sheen's, the stretch's and
+// the transmission's — and a lobe packed into them and unpacked; and a pixel's layout in a level's bytes.
 #include <Imath/half.h>
 #include <OpenImageIO/typedesc.h>
 
@@ -50,6 +50,8 @@ enum class Role {
   coat,                                         // the coat layer's (kCoatShareChannels)
   sheen,                                        // the sheen's (kSheenShareChannels)
   stretch, stretch_dir_hi, stretch_dir_lo,      // the stretch's (kStretchLobeChannels)
+  transmission_r, transmission_g, transmission_b, transmission_alpha,  // the transmission's (kTransmissionLobeChannels)
+  transmission90_r, transmission90_g, transmission90_b,                // (kTransmission90LobeChannels)
   count
 };
 struct LobeChannel {
@@ -105,6 +107,20 @@ constexpr LobeChannel kStretchLobeChannels[] = {
     {"stretch.dirHi", Role::stretch_dir_hi, kHalf},
     {"stretch.dirLo", Role::stretch_dir_lo, kHalf},
 };
+// A lobe's channels of a thin-walled transmission, 8 bytes (kBytesPerTransmission), in levels where some
+// lobe transmits: τ and α_T (stored_lobe.h; α_T 0 where the lobe transmits nothing).
+constexpr LobeChannel kTransmissionLobeChannels[] = {
+    {"transmission.R", Role::transmission_r, kHalf},
+    {"transmission.G", Role::transmission_g, kHalf},
+    {"transmission.B", Role::transmission_b, kHalf},
+    {"transmission.alpha", Role::transmission_alpha, kHalf},
+};
+// τ90, 6 bytes (kBytesPerTransmission90), in levels where some lobe's is not 0.
+constexpr LobeChannel kTransmission90LobeChannels[] = {
+    {"transmission90.R", Role::transmission90_r, kHalf},
+    {"transmission90.G", Role::transmission90_g, kHalf},
+    {"transmission90.B", Role::transmission90_b, kHalf},
+};
 // A coat lobe's channels, 14 bytes (kBytesPerCoatLobe), named "coatK.<suffix>": a lobe's without its
 // colours, which the extension fixes (stored_lobe.h set_coat_colours).
 constexpr LobeChannel kCoatLobeChannels[] = {
@@ -117,14 +133,24 @@ constexpr LobeChannel kCoatLobeChannels[] = {
 };
 // The attribute (int 1, on every subimage) of a tintable pyramid's file (brdf_pyramid.h tintable).
 inline constexpr const char* kTint = "svbrdf:tint";
+// The layers a level's lobe slots carry beyond kLobeChannels.
+struct LobeLayers {
+  bool specular = false, tint = false, coat = false, sheen = false, stretch = false;
+  bool transmission = false, transmission90 = false;
+};
 // The channels of a level's lobe slots, with the layers' it has.
-inline std::vector<LobeChannel> lobe_channels(bool specular, bool tint, bool coat, bool sheen, bool stretch) {
+inline std::vector<LobeChannel> lobe_channels(const LobeLayers& l) {
   std::vector<LobeChannel> c(std::begin(kLobeChannels), std::end(kLobeChannels));
-  if (specular) c.insert(c.end(), std::begin(kSpecularLobeChannels), std::end(kSpecularLobeChannels));
-  if (tint) c.insert(c.end(), std::begin(kTintLobeChannels), std::end(kTintLobeChannels));
-  if (coat) c.insert(c.end(), std::begin(kCoatShareChannels), std::end(kCoatShareChannels));
-  if (sheen) c.insert(c.end(), std::begin(kSheenShareChannels), std::end(kSheenShareChannels));
-  if (stretch) c.insert(c.end(), std::begin(kStretchLobeChannels), std::end(kStretchLobeChannels));
+  const auto add = [&c](bool has, const auto& channels) {
+    if (has) c.insert(c.end(), std::begin(channels), std::end(channels));
+  };
+  add(l.specular, kSpecularLobeChannels);
+  add(l.tint, kTintLobeChannels);
+  add(l.coat, kCoatShareChannels);
+  add(l.sheen, kSheenShareChannels);
+  add(l.stretch, kStretchLobeChannels);
+  add(l.transmission, kTransmissionLobeChannels);
+  add(l.transmission90, kTransmission90LobeChannels);
   return c;
 }
 inline std::vector<LobeChannel> coat_lobe_channels() {
@@ -151,6 +177,11 @@ inline LobeValues pack_lobe(const Lobe& l) {
   out[Role::f0_tint_r] = l.f0_tint.r, out[Role::f0_tint_g] = l.f0_tint.g, out[Role::f0_tint_b] = l.f0_tint.b;
   out[Role::coat] = l.coat;
   out[Role::sheen] = l.sheen;
+  out[Role::transmission_r] = l.transmission.r, out[Role::transmission_g] = l.transmission.g, out[Role::transmission_b] = l.transmission.b;
+  out[Role::transmission90_r] = l.transmission90.r, out[Role::transmission90_g] = l.transmission90.g;
+  out[Role::transmission90_b] = l.transmission90.b;
+  // exact, as α's: a stored α_T² is the square of a half or 0
+  out[Role::transmission_alpha] = std::sqrt(l.transmission_alpha2);
   const StoredNormal n = store_normal(l.normal);  // exact: the pyramid's normals are decoded codes
   out.direction = n.direction;
   out[Role::normal_deficit] = n.deficit;
@@ -172,6 +203,10 @@ inline Lobe unpack_lobe(const LobeValues& in) {
   l.f0_tint = {in[Role::f0_tint_r], in[Role::f0_tint_g], in[Role::f0_tint_b]};
   l.coat = in[Role::coat];
   l.sheen = in[Role::sheen];
+  l.transmission = {in[Role::transmission_r], in[Role::transmission_g], in[Role::transmission_b]};
+  l.transmission90 = {in[Role::transmission90_r], in[Role::transmission90_g], in[Role::transmission90_b]};
+  // A corrupt α_T of 0 or NaN transmits through the lobe's own shape (lobe.h transmission_shape).
+  l.transmission_alpha2 = in[Role::transmission_alpha] * in[Role::transmission_alpha];
   l.normal = load_normal(StoredNormal{in.direction, in[Role::normal_deficit]});
   l.alpha2 = in[Role::alpha] * in[Role::alpha];
   set_lobe_shape_code(l, in[Role::shape]);

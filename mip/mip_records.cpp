@@ -93,6 +93,8 @@ MipRecordLayout MipRecordLayout::of(const ParamPyramid& param, const BrdfPyramid
     v.lobe_specular = bl.specular_layer();
     v.lobe_tint = o.tint && bl.tint_layer();
     v.lobe_stretch = bl.stretch_layer();
+    v.lobe_transmission = bl.transmission_layer();
+    v.lobe_transmission90 = bl.transmission90_layer();
     v.radial = !bl.correction.empty();
     corrected |= v.radial;
   }
@@ -104,7 +106,9 @@ MipRecordLayout MipRecordLayout::of(const ParamPyramid& param, const BrdfPyramid
 void MipRecordLayout::find_roles() {
   roles.clear();
   for (const Level& v : level)
-    roles.push_back(half_roles(mip_file_channels::lobe_channels(v.lobe_specular, v.lobe_tint, coat, sheen, v.lobe_stretch)));
+    roles.push_back(half_roles(mip_file_channels::lobe_channels(
+        {.specular = v.lobe_specular, .tint = v.lobe_tint, .coat = coat, .sheen = sheen, .stretch = v.lobe_stretch,
+         .transmission = v.lobe_transmission, .transmission90 = v.lobe_transmission90})));
 }
 
 int MipRecordLayout::words(int l) const {
@@ -122,7 +126,7 @@ std::string MipRecordLayout::describe(const std::string& key) const {
     << ' ' << bits_of(radial_outer);
   for (const Level& v : level)
     s << " level " << v.slots << ' ' << v.coat_slots << ' ' << v.lobe_specular << ' ' << v.lobe_tint << ' '
-      << v.lobe_stretch << ' ' << v.radial;
+      << v.lobe_stretch << ' ' << v.lobe_transmission << ' ' << v.lobe_transmission90 << ' ' << v.radial;
   return s.str();
 }
 
@@ -165,7 +169,7 @@ std::optional<MipRecordLayout> MipRecordLayout::parse(const std::string& text, c
   for (int l = 0; l < o.levels; ++l) {
     Level v;
     if (!expect("level") || !(s >> v.slots >> v.coat_slots) || !flag(v.lobe_specular) || !flag(v.lobe_tint) ||
-        !flag(v.lobe_stretch) || !flag(v.radial))
+        !flag(v.lobe_stretch) || !flag(v.lobe_transmission) || !flag(v.lobe_transmission90) || !flag(v.radial))
       return fail("its layout lists fewer levels than it has");
     const bool brdf_level = o.brdf && l > 0;
     if (v.slots < (brdf_level ? 1 : 0) || v.slots > (brdf_level ? kMaxLobes : 0) || v.coat_slots < 0 ||

@@ -51,7 +51,9 @@ struct MipRecordLayout {
   float radial_inner = 0.0f, radial_outer = 0.0f;  // the radial grid (0: none)
   struct Level {
     int slots = 0, coat_slots = 0;
-    bool lobe_specular = false, lobe_tint = false, lobe_stretch = false, radial = false;  // the lobes' layers, the correction
+    // The lobes' layers (mip_file_channels.h LobeLayers), the correction.
+    bool lobe_specular = false, lobe_tint = false, lobe_stretch = false, lobe_transmission = false,
+         lobe_transmission90 = false, radial = false;
   };
   std::vector<Level> level;  // one a level
   // Per level, the roles of a lobe's half channels (mip_file_channels.h), made by of() and parse().

@@ -102,7 +102,8 @@ void set_lobe_stretch_code(Lobe& lobe, float code, std::uint32_t direction) {
 
 void round_to_stored(Lobe& lobe) {
   lobe.weight = to_half(lobe.weight);
-  // α as a half (α ≥ 1e-3 is in its normal range): 2.4e-4 relative on α, and α·α is exact in a float.
+  // α as a half (α ≥ 1e-3 is in its normal range): at most 2^-11 (4.9e-4) relative on α, and α·α is
+  // exact in a float.
   const float alpha = to_half(std::sqrt(lobe.alpha2));
   lobe.alpha2 = alpha * alpha;
   for (int c = 0; c < 3; ++c) {
@@ -114,6 +115,14 @@ void round_to_stored(Lobe& lobe) {
   lobe.f90 = to_half(lobe.f90);
   lobe.coat = to_half(lobe.coat);
   lobe.sheen = to_half(lobe.sheen);
+  for (int c = 0; c < 3; ++c) {
+    lobe.transmission[c] = to_half(lobe.transmission[c]);
+    lobe.transmission90[c] = to_half(lobe.transmission90[c]);
+  }
+  if (lobe.transmission_alpha2 > 0.0f) {  // as α: α_T ≥ 1e-3, and its square is exact in a float
+    const float alpha_t = to_half(std::sqrt(lobe.transmission_alpha2));
+    lobe.transmission_alpha2 = alpha_t * alpha_t;
+  }
   lobe.normal = round_normal(lobe.normal);
   set_lobe_stretch_code(lobe, lobe_stretch_code(lobe), lobe_stretch_direction_code(lobe));
   const float skirt_code = lobe_skirt_code(lobe);
