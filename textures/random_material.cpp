@@ -24,6 +24,7 @@ enum Stream : std::uint64_t {
   kSpecularStream = 5,  // reserved: KHR_materials_specular / ior
   kSheenStream = 6,
   kAnisotropyStream = 7,
+  kTransmissionStream = 8,
 };
 
 constexpr float kMinRoughness = 0.02f, kMaxRoughness = 1.0f;
@@ -217,6 +218,18 @@ RandomMaterialDraw draw_random_material(std::uint64_t seed) {
       if (textured) d.anisotropy_swirl_deg = swirl, d.anisotropy_feature = feature, d.anisotropy_variation = variation;
     }
   }
+  {
+    noise::Sequence s(seed, kTransmissionStream);
+    const bool transmits = s.uniform() < 0.25f;
+    const float factor = s.uniform(0.2f, 1.0f);
+    const bool textured = s.uniform() < 0.5f;
+    const float share = s.uniform(0.2f, 0.8f), feature = log_uniform(s, 3.0f, 24.0f);
+    if (transmits && d.metal != MetalMix::metal) {
+      d.transmission = factor;
+      d.transmission_textured = textured;
+      if (textured) d.transmission_share = share, d.transmission_feature = feature;
+    }
+  }
   // KHR_materials_specular / ior: noise::Sequence(seed, kSpecularStream) draws them here (specular
   // weight, specular colour, ior) once MaterialTexels has the fields.
   return d;
@@ -294,6 +307,17 @@ MaterialTexels random_material_texels(const RandomMaterialDraw& d, int size) {
       }
     }
   }
+  // Transmission: its factor, and for a textured one its patches (the texel's value is factor × the
+  // texture's, as MaterialTexels holds it).
+  if (d.transmission > 0.0f) {
+    t.transmission_factor = d.transmission;
+    if (d.transmission_textured) {
+      const std::vector<float> cover =
+          mask(field(noise::hash(d.seed, kTransmissionStream, 1), size, d.transmission_feature), d.transmission_share, kSharpEdge);
+      t.transmission.resize(t.size());
+      for (std::size_t k = 0; k < t.size(); ++k) t.transmission[k] = cover[k] * d.transmission;
+    }
+  }
   return t;
 }
 
@@ -354,6 +378,14 @@ std::string RandomMaterialDraw::summary() const {
     if (anisotropy_textured) {
       std::snprintf(buf, sizeof buf, " turned ±%.0f° on %.0f texels, strength ±%.0f%%", anisotropy_swirl_deg,
                     anisotropy_feature, 100.0 * anisotropy_variation);
+      s += buf;
+    }
+  }
+  if (transmission > 0.0f) {
+    std::snprintf(buf, sizeof buf, "; transmission %.2f", transmission);
+    s += buf;
+    if (transmission_textured) {
+      std::snprintf(buf, sizeof buf, " on %.0f%% (%.0f-texel patches)", 100.0 * transmission_share, transmission_feature);
       s += buf;
     }
   }

@@ -28,7 +28,13 @@
 //   anisotropy — with probability 1/3 a KHR_materials_anisotropy: strength U[0.2, 1], direction at
 //                U[0°, 180°); with probability 1/2 textured: the direction turned per texel by a smooth
 //                field of amplitude U[0°, 90°] on features U_log[4, 32] texels (brushing that swirls),
-//                the strength varied by noise of relative amplitude U[0, 0.5] on 16-texel features.
+//                the strength varied by noise of relative amplitude U[0, 0.5] on 16-texel features;
+//   transmission — with probability 1/4 a thin-walled KHR_materials_transmission (a film: lobe.h
+//                "Transmission"), factor U[0.2, 1]; with probability 1/2 textured: the factor
+//                covers U[0.2, 0.8] of the texture in patches U_log[3, 24] texels across (sharp
+//                edges; none elsewhere, a print on a clear film), otherwise it holds everywhere. Only
+//                a seed with a dielectric part draws one: the model transmits (1 − m) of it, nothing
+//                through metal, so an all-metal seed keeps none.
 // Every ingredient has its own random stream, so an ingredient added later (a stream of its own)
 // leaves every existing seed's texels unchanged.
 //
@@ -91,6 +97,12 @@ struct RandomMaterialDraw {
   float anisotropy_swirl_deg = 0.0f;
   float anisotropy_feature = 0.0f;
   float anisotropy_variation = 0.0f;
+  // KHR_materials_transmission (factor 0: none): factor, and for a textured one its covered share and
+  // patch size (texels).
+  float transmission = 0.0f;
+  bool transmission_textured = false;
+  float transmission_share = 1.0f;
+  float transmission_feature = 0.0f;
   // KHR_materials_specular / KHR_materials_ior (specular weight, specular colour, ior) are drawn in
   // draw_random_material's stream kSpecularStream once MaterialTexels carries them.
 

@@ -39,7 +39,14 @@ std::vector<std::uint64_t> sheen_seeds(int n, std::uint64_t from, bool textured)
   return out;
 }
 
-MaterialTexels seed_texels(std::uint64_t seed, int size) { return random_material_texels(draw_random_material(seed), size); }
+// A seed's texels without its transmission: these figures are the sheen's (transmission_pyramid_test.cpp
+// has the transmission), and the sampler's check holds the mixture's reflection.
+MaterialTexels seed_texels(std::uint64_t seed, int size) {
+  MaterialTexels m = random_material_texels(draw_random_material(seed), size);
+  m.transmission_factor = 0.0f;
+  m.transmission.clear();
+  return m;
+}
 
 // A texel's mixture as the renderer's lookup makes it: its lobes, its radial correction, its sheen.
 LobeMixtureBsdf mixture(const MipData& mip, int level, int i, int j, Lobe& scratch) {

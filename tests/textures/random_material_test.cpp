@@ -1,7 +1,8 @@
 // The random material family (textures/random_material.h) against the distributions its header
 // states: determinism per seed, the roughness range over seeds, the tilt bounds, one-axis
 // corrugations, that a two-population texture holds two populations and nothing much between, and the
-// sheen's share of the seeds, ranges and coverage.
+// sheen's and the transmission's share of the seeds, ranges and coverage, and that the transmission's
+// stream leaves every other ingredient's draw as it was.
 #include "textures/random_material.h"
 
 #include <gtest/gtest.h>
@@ -26,7 +27,8 @@ double fraction(const MaterialTexels& t, Pred pred) {
 }
 
 bool same(const MaterialTexels& a, const MaterialTexels& b) {
-  return a.base_color == b.base_color && a.metallic == b.metallic && a.roughness == b.roughness && a.normal == b.normal;
+  return a.base_color == b.base_color && a.metallic == b.metallic && a.roughness == b.roughness && a.normal == b.normal &&
+         a.transmission == b.transmission && a.transmission_factor == b.transmission_factor;
 }
 
 TEST(RandomMaterial, SameSeedSameTexelsAtAnyThreadCount) {
@@ -196,6 +198,76 @@ TEST(RandomMaterial, SheenOnAThirdOfTheSeeds) {
   }
   EXPECT_NEAR(sheened / double(kSeeds), 1.0 / 3.0, 0.1);
   EXPECT_NEAR(textured / double(std::max(1, sheened)), 0.5, 0.15);
+}
+
+// A quarter of the seeds with a dielectric part draw a transmission, with factor in [0.2, 1]; an
+// all-metal seed none (the model transmits (1 − m) of it). Half of those are textured: the factor on
+// the stated share of the texels (the mask's sharp edge: ±0.06 at 32²), nothing elsewhere and nothing
+// between but on the edge; the rest hold the factor everywhere.
+TEST(RandomMaterial, TransmissionOnAQuarterOfTheDielectricSeeds) {
+  int dielectric = 0, transmitting = 0, textured = 0;
+  for (std::uint64_t seed = 1; seed <= kSeeds; ++seed) {
+    const RandomMaterialDraw d = draw_random_material(seed);
+    const MaterialTexels t = random_material_texels(d, 32);
+    if (d.metal != MetalMix::metal) ++dielectric;
+    if (d.transmission == 0.0f) {
+      EXPECT_FALSE(t.has_transmission()) << d.summary();
+      continue;
+    }
+    ++transmitting;
+    EXPECT_NE(d.metal, MetalMix::metal) << d.summary();
+    EXPECT_GE(d.transmission, 0.2f) << d.summary();
+    EXPECT_LE(d.transmission, 1.0f) << d.summary();
+    ASSERT_TRUE(t.has_transmission()) << d.summary();
+    EXPECT_EQ(t.transmission_factor, d.transmission) << d.summary();
+    if (!d.transmission_textured) {
+      EXPECT_TRUE(t.transmission.empty()) << d.summary();
+      continue;
+    }
+    ++textured;
+    ASSERT_EQ(t.transmission.size(), t.size());
+    for (float v : t.transmission) ASSERT_TRUE(v >= 0.0f && v <= d.transmission) << d.summary();
+    const double full = fraction(t, [&](std::size_t k) { return t.transmission[k] == d.transmission; });
+    const double none = fraction(t, [&](std::size_t k) { return t.transmission[k] == 0.0f; });
+    EXPECT_NEAR(full, d.transmission_share, 0.06) << d.summary();
+    EXPECT_GE(full + none, 0.94) << d.summary();
+  }
+  // 3 deviations: ~130 seeds with a dielectric part, ~33 transmitting.
+  EXPECT_NEAR(transmitting / double(dielectric), 0.25, 0.12);
+  EXPECT_NEAR(textured / double(std::max(1, transmitting)), 0.5, 0.26);
+}
+
+// The transmission draws from a stream of its own, so every other ingredient of every seed is as it
+// was before the family drew transmissions: the summaries of seeds 1–200 without their transmission
+// hash (FNV-1a, 64 bits, each line ending in a newline) to what the family printed before the stream
+// existed (`svbrdf-bake random-family --seeds 200 --size 2`, the lines' text), and a seed's texels but
+// the transmission are those of its draw without one.
+TEST(RandomMaterial, TransmissionLeavesTheOtherIngredientsAsTheyWere) {
+  std::uint64_t hash = 0xcbf29ce484222325u;
+  int transmitting = 0;
+  for (std::uint64_t seed = 1; seed <= kSeeds; ++seed) {
+    const RandomMaterialDraw d = draw_random_material(seed);
+    RandomMaterialDraw without = d;
+    without.transmission = 0.0f;
+    without.transmission_textured = false;
+    without.transmission_share = 1.0f;
+    without.transmission_feature = 0.0f;
+    for (const char c : without.summary() + "\n") hash = (hash ^ std::uint8_t(c)) * 0x100000001b3u;
+    if (d.transmission == 0.0f) continue;
+    ++transmitting;
+    MaterialTexels a = random_material_texels(d, 32);
+    const MaterialTexels b = random_material_texels(without, 32);
+    EXPECT_TRUE(a.has_transmission());
+    a.transmission.clear();
+    a.transmission_factor = 0.0f;
+    EXPECT_TRUE(same(a, b)) << d.summary();
+    EXPECT_TRUE(a.sheen_color == b.sheen_color && a.sheen_roughness == b.sheen_roughness &&
+                a.sheen_color_factor == b.sheen_color_factor && a.anisotropy == b.anisotropy &&
+                a.anisotropy_direction == b.anisotropy_direction && a.anisotropy_factor == b.anisotropy_factor)
+        << d.summary();
+  }
+  EXPECT_EQ(hash, 0xc88012c149a9b3b6u);
+  EXPECT_GT(transmitting, 0);
 }
 
 }  // namespace
