@@ -104,6 +104,8 @@ SeedFigures measure_random_draw(const RandomMaterialDraw& draw, int size, const 
   });
 
   const ExactReference exact(m);
+  const std::vector<TransmissionFigures> transmission =
+      m.has_transmission() ? measure_transmission(mip) : std::vector<TransmissionFigures>{};
   for (const LevelComparison& row : rows) {
     LevelFigures f;
     f.level = row.level;
@@ -167,6 +169,10 @@ SeedFigures measure_random_draw(const RandomMaterialDraw& draw, int size, const 
                      return grey(directional_albedo(mip.brdf.texel(row.level, i, j), sheen, incident(a), kAlbedoStrata));
                    },
                    f.brdf);
+    if (m.has_transmission()) {
+      f.transmits = true;
+      f.transmission = transmission[std::size_t(row.level - 1)];
+    }
     out.levels.push_back(std::move(f));
   }
   return out;

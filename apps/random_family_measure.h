@@ -21,11 +21,16 @@
 // the level's total (area-weighted), and the texels' mean absolute error relative to the level's mean
 // albedo (a texel turned away from a grazing light reflects nothing, so its own relative error is
 // not defined).
+//
+// A seed that transmits (KHR_materials_transmission) also gets, per level, the transmitted radiance's
+// e_log and flux beside the reflected radiance's, measured on the same pairs (transmission_figures.h);
+// the albedo above is the reflected light's.
 #include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "apps/transmission_figures.h"
 #include "mip/metrics.h"
 #include "textures/random_material.h"
 
@@ -49,6 +54,9 @@ struct LevelFigures {
   int measured = 0;  // texels whose e_rel / e_log were measured (compare_levels' subset)
   int glint = 0;     // of them, in the glint regime
   ModeFigures param, brdf;
+  // A seed that transmits: `brdf`'s transmission beside its reflection (transmission_figures.h).
+  bool transmits = false;
+  TransmissionFigures transmission;
 };
 
 struct SeedFigures {

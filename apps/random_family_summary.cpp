@@ -78,18 +78,21 @@ const std::vector<FamilyMetric>& family_metrics() {
 
 bool seed_in_glint_regime(const LevelFigures& level) { return 2 * level.glint >= level.measured; }
 
-Distribution distribution(const std::vector<SeedFigures>& seeds, int level, const FamilyMetric& metric, bool brdf,
-                          bool without_glints) {
+namespace {
+
+// The distribution of `value(level figures)` over the seeds that have `level` and pass `keep`.
+template <class Value, class Keep>
+Distribution distribution_of(const std::vector<SeedFigures>& seeds, int level, double target, Value value, Keep keep) {
   std::vector<double> values;
   Distribution d;
   for (const SeedFigures& s : seeds) {
     const LevelFigures* l = find_level(s, level);
-    if (!l || (without_glints && seed_in_glint_regime(*l))) continue;
-    const double v = metric.get(brdf ? l->brdf : l->param);
+    if (!l || !keep(*l)) continue;
+    const double v = value(*l);
     if (!std::isfinite(v)) continue;
     values.push_back(v);
     if (values.size() == 1 || v > d.max) d.max = v, d.worst_seed = s.seed;
-    if (v <= metric.target) ++d.meeting;  // never for a figure without a target (NaN)
+    if (v <= target) ++d.meeting;  // never for a figure without a target (NaN)
   }
   d.count = static_cast<int>(values.size());
   if (values.empty()) return d;
@@ -104,6 +107,31 @@ Distribution distribution(const std::vector<SeedFigures>& seeds, int level, cons
   return d;
 }
 
+}  // namespace
+
+Distribution distribution(const std::vector<SeedFigures>& seeds, int level, const FamilyMetric& metric, bool brdf,
+                          bool without_glints) {
+  return distribution_of(
+      seeds, level, metric.target, [&](const LevelFigures& l) { return metric.get(brdf ? l.brdf : l.param); },
+      [&](const LevelFigures& l) { return !(without_glints && seed_in_glint_regime(l)); });
+}
+
+const std::vector<TransmissionMetric>& transmission_metrics() {
+  static const std::vector<TransmissionMetric> metrics{
+      {"e_log, transmitted", [](const TransmissionFigures& t) { return t.elog_transmitted; }},
+      {"e_log, reflected", [](const TransmissionFigures& t) { return t.elog_reflected; }},
+      {"|flux|, transmitted", [](const TransmissionFigures& t) { return std::abs(t.flux_transmitted); }},
+      {"|flux|, reflected", [](const TransmissionFigures& t) { return std::abs(t.flux_reflected); }},
+  };
+  return metrics;
+}
+
+Distribution distribution(const std::vector<SeedFigures>& seeds, int level, const TransmissionMetric& metric) {
+  return distribution_of(
+      seeds, level, kNoTarget, [&](const LevelFigures& l) { return metric.get(l.transmission); },
+      [](const LevelFigures& l) { return l.transmits; });
+}
+
 std::string family_table(const std::vector<SeedFigures>& seeds, int size) {
   std::string s = format("The random family at %dx%d, %zu seeds (textures/random_material.h):\n", size, size, seeds.size());
   for (const SeedFigures& seed : seeds) {
@@ -116,6 +144,13 @@ std::string family_table(const std::vector<SeedFigures>& seeds, int size) {
         if (v > m.target) misses += format(" L%d %s %.4f;", l.level, m.name, v);
       }
     if (!misses.empty()) s += "    brdf misses:" + misses + "\n";
+    std::string transmission;
+    for (const LevelFigures& l : seed.levels)
+      if (l.transmits)
+        transmission += format(" L%d e_log %.4f / %.4f, flux %+.2f / %+.2f %%;", l.level, l.transmission.elog_transmitted,
+                               l.transmission.elog_reflected, 100 * l.transmission.flux_transmitted,
+                               100 * l.transmission.flux_reflected);
+    if (!transmission.empty()) s += "    brdf transmitted / reflected:" + transmission + "\n";
   }
   s += format("\n%-5s %-24s %7s | %-42s | %-46s | %-23s\n", "level", "figure", "target",
               "brdf, all seeds: median p90 max (worst) meet", "brdf, seeds without glints: median p90 max (worst) meet",
@@ -135,9 +170,20 @@ std::string family_table(const std::vector<SeedFigures>& seeds, int size) {
       s += format("%-5d %-24s %7s | %s | %s | %7.4f %7.4f %7.4f\n", level, m.name, target ? format("%.3f", m.target).c_str() : "-",
                   cells(b).c_str(), cells(c).c_str(), p.median, p.p90, p.max);
     }
+  std::string transmission;
+  for (int level = 1; level <= last; ++level)
+    for (const TransmissionMetric& m : transmission_metrics()) {
+      const Distribution d = distribution(seeds, level, m);
+      if (d.count == 0) continue;
+      transmission += format("%-5d %-24s | %7.4f %7.4f %7.4f (%6llu) %5d\n", level, m.name, d.median, d.p90, d.max,
+                             static_cast<unsigned long long>(d.worst_seed), d.count);
+    }
+  if (!transmission.empty())
+    s += format("\n%-5s %-24s | %-37s\n", "level", "brdf, seeds that transmit", "median p90 max (worst) seeds") + transmission;
   s += "e_log, e_mean, e_rel: ../shared/spec/brdf-mip.md over the 4225 direction pairs (256 random texels where a level has "
        "more); e_rel glints: texels in the glint regime (apps/random_family_measure.h); seeds without glints: fewer than half "
-       "their measured texels in it at the level; albedo: the largest error over θi 0°, 45°, 75°.\n";
+       "their measured texels in it at the level; albedo: the largest error over θi 0°, 45°, 75°; transmitted and reflected: "
+       "the same pairs, 4 × 4 texels a level (apps/transmission_figures.h), |flux| = |Σ L̂ / Σ L − 1|.\n";
   return s;
 }
 
@@ -145,12 +191,19 @@ Json family_json(const std::vector<SeedFigures>& seeds, int size) {
   Json list = Json::array();
   for (const SeedFigures& seed : seeds) {
     Json levels = Json::array();
-    for (const LevelFigures& l : seed.levels)
-      levels.push_back({{"level", l.level},
-                        {"measured", l.measured},
-                        {"glint", l.glint},
-                        {"param", mode_json(l.param)},
-                        {"brdf", mode_json(l.brdf)}});
+    for (const LevelFigures& l : seed.levels) {
+      Json level = {{"level", l.level},
+                    {"measured", l.measured},
+                    {"glint", l.glint},
+                    {"param", mode_json(l.param)},
+                    {"brdf", mode_json(l.brdf)}};
+      if (l.transmits)
+        level["brdf_transmission"] = {{"e_log_transmitted", six_digits(l.transmission.elog_transmitted)},
+                                      {"e_log_reflected", six_digits(l.transmission.elog_reflected)},
+                                      {"flux_transmitted", six_digits(l.transmission.flux_transmitted)},
+                                      {"flux_reflected", six_digits(l.transmission.flux_reflected)}};
+      levels.push_back(std::move(level));
+    }
     list.push_back({{"seed", seed.seed}, {"drew", seed.summary}, {"levels", std::move(levels)}});
   }
   Json dist = Json::array();
@@ -172,6 +225,19 @@ Json family_json(const std::vector<SeedFigures>& seeds, int size) {
                         {"worst_seed", d.worst_seed},
                         {"meeting", d.meeting}});
       }
+  for (int level = 1; level <= last; ++level)
+    for (const TransmissionMetric& m : transmission_metrics()) {
+      const Distribution d = distribution(seeds, level, m);
+      dist.push_back({{"level", level},
+                      {"figure", m.name},
+                      {"mode", "brdf"},
+                      {"seeds", "transmitting"},
+                      {"count", d.count},
+                      {"median", six_digits(d.median)},
+                      {"p90", six_digits(d.p90)},
+                      {"max", six_digits(d.max)},
+                      {"worst_seed", d.worst_seed}});
+    }
   return {{"size", size}, {"seeds", std::move(list)}, {"distribution", std::move(dist)}};
 }
 

@@ -39,6 +39,16 @@ bool seed_in_glint_regime(const LevelFigures& level);
 Distribution distribution(const std::vector<SeedFigures>& seeds, int level, const FamilyMetric& metric, bool brdf,
                           bool without_glints = false);
 
+// The transmission's figures (random_family_measure.h, transmission_figures.h), reported over the seeds
+// that transmit: e_log and |flux − 1| of the transmitted radiance, and of the reflected radiance on the
+// same pairs beside them. No target: docs/mip-algorithm.md §4.6 holds the transmission to the reflection.
+struct TransmissionMetric {
+  const char* name;
+  double (*get)(const TransmissionFigures&);  // NaN where the level has no such figure
+};
+const std::vector<TransmissionMetric>& transmission_metrics();
+Distribution distribution(const std::vector<SeedFigures>& seeds, int level, const TransmissionMetric& metric);
+
 std::string family_table(const std::vector<SeedFigures>& seeds, int size);
 Json family_json(const std::vector<SeedFigures>& seeds, int size);
 
