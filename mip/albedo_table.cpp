@@ -59,9 +59,18 @@ double stretch_albedo_factor(double r) { return std::pow(0.5 * (std::pow(r, 0.9)
 
 double transmission_flux(const Lobe& lobe) {
   if (!transmits(lobe)) return 0.0;
-  const double a2 = double(lobe.transmission_alpha2 > 0.0f ? lobe.transmission_alpha2 : lobe.alpha2) *
-                    (lobe.stretch > 1.0f ? stretch_albedo_factor(lobe.stretch) : 1.0);
-  const double albedo = SpecAlbedoTable::get().ggx_albedo_at_log(series_log(a2), mean3(lobe.transmission), mean3(lobe.transmission90));
+  const SpecAlbedoTable& t = SpecAlbedoTable::get();
+  const double k = lobe.stretch > 1.0f ? stretch_albedo_factor(lobe.stretch) : 1.0;
+  const double lo = double(lobe.transmission_alpha2 > 0.0f ? lobe.transmission_alpha2 : lobe.alpha2) * k;
+  const double f0 = mean3(lobe.transmission), f90 = mean3(lobe.transmission90);
+  double albedo = 0;
+  if (lobe.transmission_alpha2 > 0.0f && lobe.transmission_alpha2_hi > lobe.transmission_alpha2 * 1.0001f) {
+    // A band: the mean of its GGX albedos over log-uniform α², as specular_flux takes a mixture's.
+    const double step = series_log(double(lobe.transmission_alpha2_hi) / double(lobe.transmission_alpha2)) / 8;
+    for (int j = 0; j < 8; ++j) albedo += t.ggx_albedo_at_log(series_log(lo) + (j + 0.5) * step, f0, f90) / 8;
+  } else {
+    albedo = t.ggx_albedo_at_log(series_log(lo), f0, f90);
+  }
   return double(lobe.weight) * glm::length(glm::dvec3(lobe.normal)) * albedo;
 }
 

@@ -56,7 +56,7 @@ class SpecAlbedoTable {
 // table's, summed over θi ∈ {0°, 45°, 75°}); a roughness mixture's is the mean of its components'.
 double specular_flux(const Lobe& lobe);
 // A lobe's transmitted flux as the merges keep it (lobe.h "Transmission"): weight · |mean normal| · the
-// table's albedo of its transmission shape (GGX of transmission_alpha2, its stretch as specular_flux
+// table's albedo of its transmission shape (GGX of transmission_alpha2 or its band, its stretch as specular_flux
 // takes it) with τ, τ90 for F0, F90 — the BTDF is the reflection of the mirrored direction, so it
 // transmits what that lobe would reflect. 0 without a transmission.
 double transmission_flux(const Lobe& lobe);

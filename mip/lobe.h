@@ -74,10 +74,15 @@
 // merge averages them as it averages ρ. The shape is another matter: a thin wall passes light straight
 // through whatever its normal's tilt (at wi = −wo the mirrored half vector is the texel's normal), so
 // the texels' normals, which spread the union's reflection, do not spread its transmission. A lobe
-// transmits through GGX of its own transmission_alpha2 (its α² at level 0; a merge's is its members'
-// amplitude-weighted harmonic mean, which keeps the union's peak), about its normal, with its spread's
-// horizons and its stretch, its τ scaled by the merge to keep the union's transmitted flux
-// (albedo_table.h transmission_flux).
+// transmits through a shape of its own, about its normal, with its spread's horizons and its stretch:
+// GGX of transmission_alpha2 (its α² at level 0), or the reflection's log-uniform band over
+// [transmission_alpha2, transmission_alpha2_hi]. A merge gives it the union's tail and peak moments,
+// A = E[α²] and P = E[1/α²] over the members' amplitudes (a band's are L(l, h) and L/(l·h)): GGX of
+// α² = 1/P where A·P = 1 (one roughness), else the band with l·h = A/P and sinh(s)/s = √(A·P), s =
+// ln(h/l)/2 — the two moments that set a union's peak and its tails (the reflection's "Why two" above;
+// one GGX of the union's peak left lobes of roughnesses 100× apart 10 % dark 35° off the straight-
+// through direction). Its τ is scaled by the merge to keep the union's transmitted flux (albedo_table.h
+// transmission_flux).
 #include <algorithm>
 #include <cmath>
 #include <type_traits>
@@ -122,7 +127,9 @@ struct Lobe {
   // the factors of the lobe's BTDF at w = 0 and w = 1, 0 without one.
   glm::vec3 transmission{0.0f};
   glm::vec3 transmission90{0.0f};
-  float transmission_alpha2 = 0.0f;  // the transmission's GGX α² ("Transmission" above); 0 without one
+  float transmission_alpha2 = 0.0f;     // the transmission's GGX α² ("Transmission" above); 0 without one
+  float transmission_alpha2_hi = 0.0f;  // > transmission_alpha2: its shape is the log-uniform band
+                                        // [transmission_alpha2, transmission_alpha2_hi]
 };
 
 // The glTF layering of KHR_materials_specular (its "fresnel_mix", appearance/gltf.h gltf_layers):
@@ -267,6 +274,34 @@ struct LobeShape {
   bool valid = false;
 };
 
+// A shape's band over [lo, hi] (alpha2 = lo, alpha2_hi = hi set): its logarithmic mean and, with_nodes,
+// the quadrature nodes lobe_brdf's V needs (not lobe_d).
+template <class T>
+void set_band(LobeShape<T>& s, float lo, float hi, bool with_nodes) {
+  T x, span;  // h/l − 1 and ln(h/l)
+  if constexpr (std::is_same_v<T, float>) {
+    // Both from the one float ratio, so that x/span (smooth in the ratio) keeps its precision.
+    const float ratio = hi / lo;
+    x = ratio - 1.0f;
+    span = series_logf(ratio);
+  } else {
+    const double ratio = double(hi) / double(lo);
+    x = T(ratio - 1.0);
+    span = T(series_log(ratio));  // within 1e-9
+  }
+  s.lmean = s.alpha2 * x / span;
+  if (with_nodes) {
+    // l·(h/l)^t at t = ½ ∓ √(3/20) and ½: the outer two are l·e and h/e with e = (h/l)^0.1127.
+    const T x01 = T(0.11270166537925831) * span;
+    T e;
+    if constexpr (std::is_same_v<T, float>) e = series_exp(x01);  // every hit's lobes: no libm call
+    else e = std::exp(x01);
+    s.node_a2[0] = s.alpha2 * e;
+    s.node_a2[1] = std::sqrt(s.alpha2 * s.alpha2_hi);
+    s.node_a2[2] = s.alpha2_hi / e;
+  }
+}
+
 // with_nodes: also the quadrature nodes lobe_brdf's V needs (not lobe_d).
 template <class T>
 LobeShape<T> lobe_shape(const Lobe& lobe, bool with_nodes = true) {
@@ -298,30 +333,7 @@ LobeShape<T> lobe_shape(const Lobe& lobe, bool with_nodes = true) {
     s.alpha2_hi = T(lobe.alpha2_hi);
     s.two_point = lobe.skirt == 0.0f;  // (s.skirt is 1 for either kind: a mixture has no skirt)
   }
-  if (s.alpha2_hi > 0 && !s.two_point) {
-    T x, span;  // h/l − 1 and ln(h/l)
-    if constexpr (std::is_same_v<T, float>) {
-      // Both from the one float ratio, so that x/span (smooth in the ratio) keeps its precision.
-      const float ratio = lobe.alpha2_hi / lobe.alpha2;
-      x = ratio - 1.0f;
-      span = series_logf(ratio);
-    } else {
-      const double ratio = double(lobe.alpha2_hi) / double(lobe.alpha2);
-      x = T(ratio - 1.0);
-      span = T(series_log(ratio));  // within 1e-9
-    }
-    s.lmean = s.alpha2 * x / span;
-    if (with_nodes) {
-      // l·(h/l)^t at t = ½ ∓ √(3/20) and ½: the outer two are l·e and h/e with e = (h/l)^0.1127.
-      const T x01 = T(0.11270166537925831) * span;
-      T e;
-      if constexpr (std::is_same_v<T, float>) e = series_exp(x01);  // every hit's lobes: no libm call
-      else e = std::exp(x01);
-      s.node_a2[0] = s.alpha2 * e;
-      s.node_a2[1] = std::sqrt(s.alpha2 * s.alpha2_hi);
-      s.node_a2[2] = s.alpha2_hi / e;
-    }
-  }
+  if (s.alpha2_hi > 0 && !s.two_point) set_band(s, lobe.alpha2, lobe.alpha2_hi, with_nodes);
   s.valid = true;
   return s;
 }
@@ -535,12 +547,52 @@ inline bool transmits(const Lobe& l) {
 }
 
 // The shape a lobe transmits through ("Transmission" at the top): GGX of its transmission_alpha2 (its own
-// α² where it has none), about the lobe's normal, with the lobe's spread and stretch.
+// α² where it has none) or its band, about the lobe's normal, with the lobe's spread and stretch.
 template <class T>
 LobeShape<T> transmission_shape(const Lobe& lobe, LobeShape<T> s) {
-  s.alpha2 = T(lobe.transmission_alpha2 > 0.0f ? lobe.transmission_alpha2 : lobe.alpha2);
+  const bool own = lobe.transmission_alpha2 > 0.0f;
+  s.alpha2 = T(own ? lobe.transmission_alpha2 : lobe.alpha2);
   s.ggx = 1, s.skirt = 1, s.alpha2_hi = 0, s.lmean = 0, s.two_point = false;
+  if (own && lobe.transmission_alpha2_hi > lobe.transmission_alpha2 * 1.0001f) {
+    s.alpha2_hi = T(lobe.transmission_alpha2_hi);
+    set_band(s, lobe.transmission_alpha2, lobe.transmission_alpha2_hi, true);
+  }
   return s;
+}
+
+// A lobe's transmission moments ("Transmission" at the top): the tail coefficient A = E[α²] and the
+// peak P = E[1/α²] of its shape, GGX's α² and 1/α², a band's L(l, h) and L/(l·h).
+struct TransmissionMoments {
+  double tail = 0, peak = 0;
+};
+inline TransmissionMoments transmission_moments(const Lobe& l) {
+  const double lo = l.transmission_alpha2 > 0.0f ? l.transmission_alpha2 : l.alpha2;
+  if (!(l.transmission_alpha2 > 0.0f) || !(l.transmission_alpha2_hi > l.transmission_alpha2 * 1.0001f))
+    return {lo, 1.0 / lo};
+  const double hi = l.transmission_alpha2_hi, L = (hi - lo) / std::log(hi / lo);
+  return {L, L / (lo * hi)};
+}
+// Gives a lobe the transmission shape of moments A and P ("Transmission" at the top): GGX of α² = 1/P
+// where A·P ≤ 1 + 1e-6, else the band with l·h = A/P and sinh(s)/s = √(A·P), s = ln(h/l)/2 (its
+// L(l, h) = √(l·h)·sinh(s)/s = A and L/(l·h) = P). Newton from s₀ = √(6(√(A·P) − 1)), which is past the
+// root (sinh(s)/s ≥ 1 + s²/6) of a convex increasing function, so it descends to it monotonically.
+inline void set_transmission_shape(Lobe& l, double tail, double peak) {
+  const double k = std::sqrt(tail * peak);
+  if (!(k > 1.0 + 1e-6)) {
+    l.transmission_alpha2 = static_cast<float>(1.0 / peak);
+    l.transmission_alpha2_hi = 0.0f;
+    return;
+  }
+  double x = std::sqrt(6.0 * (k - 1.0));
+  for (int i = 0; i < 60; ++i) {
+    const double sh = std::sinh(x), f = sh / x - k, df = (std::cosh(x) * x - sh) / (x * x);
+    const double step = f / df;
+    x -= step;
+    if (!(step > 1e-12 * x)) break;
+  }
+  const double g = std::sqrt(tail / peak);
+  l.transmission_alpha2 = static_cast<float>(g * std::exp(-x));
+  l.transmission_alpha2_hi = static_cast<float>(g * std::exp(x));
 }
 
 // The pair a lobe's transmission reflects: wi (below the geometric surface) mirrored through the plane

@@ -253,14 +253,15 @@ BsdfSample LobeMixtureBsdf::sample(const glm::vec3& wo, const SampleU& u) const 
       const glm::vec3 wo_l = fr.to_local(wo);
       // The specular part's and the transmission's share of the lobe's choice after its diffuse part:
       // each draws the same visible normals, the transmission mirrors the reflected direction through
-      // the lobe's plane (lobe.h). A roughness mixture (lobe.h) is sampled half from each end of its
-      // α² range.
+      // the lobe's plane (lobe.h). A roughness mixture or a transmission's band (lobe.h) is sampled half
+      // from each end of its α² range.
       const float spec = 1.0f - c.diffuse[i] - c.transmit[i];
       float v = ux - c.diffuse[i];
       below = c.transmit[i] > 0 && v >= spec;
       if (below) v -= spec;
-      const bool upper = !below && sh.alpha2_hi > 0 && v >= 0.5f * spec;
-      const float alpha = std::sqrt(below ? transmission_shape(slot(picked).lobe, sh).alpha2 : upper ? sh.alpha2_hi : sh.alpha2);
+      const LobeShape<float> ts = below ? transmission_shape(slot(picked).lobe, sh) : sh;
+      const bool upper = ts.alpha2_hi > 0 && v >= 0.5f * (below ? c.transmit[i] : spec);
+      const float alpha = std::sqrt(upper ? ts.alpha2_hi : ts.alpha2);
       const glm::vec2 axes = sh.stretched ? glm::vec2(alpha * std::sqrt(sh.r), alpha * std::sqrt(sh.inv_r)) : glm::vec2(alpha);
       const glm::vec3 h = sample_ggx_visible(axes, wo_l, uv);
       glm::vec3 r = 2.0f * glm::dot(wo_l, h) * h - wo_l;

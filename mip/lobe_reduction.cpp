@@ -39,7 +39,7 @@ MergeBase merge_base(std::span<const Member> u) {
   const double inv_w = 1.0 / w;
   glm::dvec3 diffuse(0), f0(0), f0_tint(0), diffuse90(0), transmission(0), transmission90(0), nbar(0);
   double f90 = 0, coat = 0, sheen = 0;
-  double t_amp = 0, t_peak = 0;  // the transmission's amplitude and its GGX peaks' sum (below)
+  double t_amp = 0, t_tail = 0, t_peak = 0;  // the transmission's amplitude and its moments' sums (below)
   bool plain = true;  // every member's F90 is 1: the mean is 1 exactly, not a rounding of it
   Summary& s = mb.summary;
   s.rho = s.f0 = 0;
@@ -52,7 +52,10 @@ MergeBase merge_base(std::span<const Member> u) {
     transmission += t * glm::dvec3(x.lobe->transmission);
     transmission90 += t * glm::dvec3(x.lobe->transmission90);
     const double a = t * (double(x.lobe->transmission.r) + x.lobe->transmission.g + x.lobe->transmission.b);
-    if (a > 0 && x.lobe->transmission_alpha2 > 0) t_amp += a, t_peak += a / x.lobe->transmission_alpha2;
+    if (a > 0 && x.lobe->transmission_alpha2 > 0) {
+      const TransmissionMoments tm = transmission_moments(*x.lobe);
+      t_amp += a, t_tail += a * tm.tail, t_peak += a * tm.peak;
+    }
     f90 += t * x.lobe->f90;
     coat += t * x.lobe->coat;
     sheen += t * x.lobe->sheen;
@@ -69,9 +72,9 @@ MergeBase merge_base(std::span<const Member> u) {
   m.transmission = glm::vec3(transmission);
   m.transmission90 = glm::vec3(transmission90);
   // The members transmit about −wo whatever their normals' tilts (a thin wall passes light straight
-  // through; lobe.h "Transmission"), so the union's transmission is their GGX lobes untilted: one GGX
-  // of the same peak, α²_T the amplitude-weighted harmonic mean of theirs.
-  m.transmission_alpha2 = t_amp > 0 ? static_cast<float>(t_amp / t_peak) : 0.0f;
+  // through; lobe.h "Transmission"), so the union's transmission is their shapes untilted: the shape of
+  // their amplitude-weighted tail and peak moments.
+  if (t_amp > 0) set_transmission_shape(m, t_tail / t_amp, t_peak / t_amp);
   m.coat = static_cast<float>(coat);
   m.sheen = static_cast<float>(sheen);
   if (plain) f90 = 1.0;
@@ -177,7 +180,7 @@ Merged merge_union(std::span<const Member> u, const UnionTerms* terms, const Red
   best.lobe.stretch = stretch_of.stretch;
   best.lobe.stretch_dir = stretch_of.stretch_dir;
   best.summary = summarize(best.lobe);
-  if (terms) best.cost = union_cost(u, terms->self, terms->horizon, best.summary, by_amp, peak_weight);
+  if (terms) best.cost = union_cost(u, *terms, best.summary, by_amp, peak_weight);
   return best;
 }
 
@@ -318,12 +321,13 @@ int reduce_lobes(std::span<Lobe> lobes, int n, const ReductionOptions& options) 
     const double spec_norm2 = union_spec_norm2(whole);
     double diffuse_amp = 0;
     for (int i = 0; i < n; ++i) diffuse_amp += S(i).weight * glm::length(glm::dvec3(L(i).normal)) * S(i).rho;
-    const double norm2 = spec_norm2 + (4.0 / 3.0) * diffuse_amp * diffuse_amp;
+    const double trans_norm2 = union_trans_norm2(whole);
+    const double norm2 = spec_norm2 + (4.0 / 3.0) * diffuse_amp * diffuse_amp + trans_norm2;
     const double budget = double(options.tolerance) * options.tolerance * norm2;
     // Most texels of smooth regions end as one lobe: try that first, as one merge of the whole union
     // within the budget, before the pairwise search (which would take about n² merges to get there).
     if (budget > 0) {
-      const UnionTerms terms{spec_norm2, horizon_sums(whole, union_weight(whole))};
+      const UnionTerms terms{spec_norm2, horizon_sums(whole, union_weight(whole)), trans_norm2};
       if (union_cost_bound(whole, terms.horizon) <= budget) {
         Merged m = merge_union(whole, &terms, options, kWholePeakWeight);
         if (m.cost <= budget) {

@@ -91,8 +91,86 @@ Summary summarize(const Lobe& l) {
     s.stretch = stretch_matrix(l);
     s.stretch_log = stretch_log(l);
   }
+  if (transmits(l)) {
+    s.trans = (l.weight * len) * (glm::dvec3(l.transmission) + 0.05 * (glm::dvec3(l.transmission90) - glm::dvec3(l.transmission)));
+    const TransmissionMoments tm = transmission_moments(l);
+    s.alpha2_t = 1.0 / tm.peak;
+    s.tail_t = tm.tail;
+    profile_of(DShape::of(transmission_shape(l, sh)), s.trans_profile);
+  }
   return s;
 }
+
+namespace {
+// ln(a/b)², a, b > 0. ln(a/b) = 2·atanh(q), q = (a − b)/(a + b): for the near matches that decide merges
+// (|q| < ½, a ratio within 3) the series to q⁹ (within 4e-5) in one division.
+double log_ratio2(double a, double b) {
+  const double q = (a - b) / (a + b), q2 = q * q;
+  const double r = q2 < 0.25 ? 2 * q * (1 + q2 * (1.0 / 3 + q2 * (1.0 / 5 + q2 * (1.0 / 7 + q2 * (1.0 / 9)))))
+                             : series_log(a / b);
+  return r * r;
+}
+
+// The width term's norm: a change Δ of a tail coefficient changes D by Δ/(π·t²) far out, whose squared
+// L2 over slope space from the resolution outward is Δ²/(3π·α⁶_res) (union_cost).
+constexpr double kWidthNorm = 3 * kPiD * kResolutionAlpha2 * kResolutionAlpha2 * kResolutionAlpha2;
+
+// Σ_i (trans_i·t/3)·⟨T_i, T(alpha2)⟩ over the union: its transmission's inner product with a lobe of
+// amplitude t and α²_T alpha2.
+double trans_cross(std::span<const Member> u, const glm::dvec3& t, double alpha2) {
+  double s = 0;
+  for (const Member& x : u)
+    if (has_transmission(*x.sum)) s += glm::dot(x.sum->trans, t) / 3 * trans_inner(x.sum->alpha2_t, alpha2);
+  return s;
+}
+}  // namespace
+
+double union_trans_norm2(std::span<const Member> u) {
+  double s = 0;
+  for (std::size_t i = 0; i < u.size(); ++i)
+    if (has_transmission(*u[i].sum)) s += trans_cross(u, u[i].sum->trans, u[i].sum->alpha2_t);
+  return s;
+}
+
+namespace {
+// union_cost's terms for the union's transmission (merge_cost.h), the merged lobe m's amplitude the
+// union's (the merge keeps its flux), 0 where no member transmits: per channel c, with t the members'
+// amplitudes,
+//   the L2 error       Σ_ij t_i·t_j·⟨T_i, T_j⟩ − 2·Σ_i t_i·T_m·⟨T_i, T_m⟩ + T_m²·⟨T_m, T_m⟩,
+//   the peak           Σ t_i·P_i/π − T_m·P_m/π, weighted as the reflection's,
+//   the core widths    Σ t_i·A_i − T_m·A_m (the tail coefficients),
+//   the log profile    of Σ t_i·D_i against T_m·D_m, weighted as the reflection's by T_m²;
+// averaged over the channels.
+double trans_cost(std::span<const Member> u, const UnionTerms& t, const Summary& m, double peak_weight) {
+  if (!(t.trans_self > 0)) return 0.0;
+  glm::dvec3 Tm(0.0), peak(0.0), width(0.0);
+  for (const Member& x : u) {
+    const Summary& a = *x.sum;
+    if (!has_transmission(a)) continue;
+    Tm += a.trans;
+    peak += a.trans / (kPiD * a.alpha2_t);
+    width += a.trans * a.tail_t;
+  }
+  peak -= Tm / (kPiD * m.alpha2_t);
+  width -= Tm * m.tail_t;
+  const double l2 = std::max(0.0, t.trans_self - 2 * trans_cross(u, Tm, m.alpha2_t) +
+                                      glm::dot(Tm, Tm) / 3 * trans_inner(m.alpha2_t, m.alpha2_t));
+  double profile = 0;
+  for (int c = 0; c < 3; ++c) {
+    if (!(Tm[c] > 0)) continue;
+    double e = 0;
+    for (std::size_t j = 0; j < kProfileSteps; ++j) {
+      double ex = 0;
+      for (const Member& x : u) ex += x.sum->trans[c] * x.sum->trans_profile[j];
+      const double ap = Tm[c] * m.trans_profile[j];
+      if (ex > 0 && ap > 0) e += log_ratio2(ap, ex);
+    }
+    profile += Tm[c] * Tm[c] * e;
+  }
+  return l2 + (peak_weight * glm::dot(peak, peak) + glm::dot(width, width) / kWidthNorm +
+               kProfileWeight * profile / kProfileSteps) / 3;
+}
+}  // namespace
 
 double union_spec_norm2(std::span<const Member> u) {
   double s = 0;
@@ -136,9 +214,8 @@ double union_cost_bound(std::span<const Member> u, const HorizonSums& h) {
   return (1.0 - 1e-6) * h.cost(rho / W, f0 / W);
 }
 
-double union_cost(std::span<const Member> u, double self, const HorizonSums& hs, const Summary& m, bool by_amp,
-                  double peak_weight) {
-  double Am = 0, peak = 0, width = 0, spec = self, W = 0;
+double union_cost(std::span<const Member> u, const UnionTerms& t, const Summary& m, bool by_amp, double peak_weight) {
+  double Am = 0, peak = 0, width = 0, spec = t.self, W = 0;
   for (const Member& x : u) Am += x.sum->amp, W += x.sum->weight;
   spec += Am * Am * spec_inner(m, m, 0);
   for (const Member& x : u) {
@@ -147,7 +224,7 @@ double union_cost(std::span<const Member> u, double self, const HorizonSums& hs,
     peak += a.amp * a.d_z;
     width += a.amp * a.ggx * a.alpha2;
   }
-  const double horizon = hs.cost(m.rho, m.f0);
+  const double horizon = t.horizon.cost(m.rho, m.f0);
   // The highlight about the geometric normal. Every mirror pair of the metric has h = z, and a
   // polished surface seen from afar shows its highlight there, so a merge that lowers or raises the
   // mixture's peak at h = z is charged for it (the blurred L2 above cannot see the height of narrow
@@ -168,21 +245,40 @@ double union_cost(std::span<const Member> u, double self, const HorizonSums& hs,
     double ex = 0;
     for (const Member& x : u) ex += (by_amp ? x.sum->amp : x.sum->weight) * x.sum->profile[j];
     const double ap = k * m.profile[j];
-    if (ex > 0 && ap > 0) {
-      // ln(ap/ex) = 2·atanh(q), q = (ap − ex)/(ap + ex): for the near matches that decide merges
-      // (|q| < ½, a ratio within 3) the series to q⁹ (within 4e-5) in one division.
-      const double q = (ap - ex) / (ap + ex), q2 = q * q;
-      const double r = q2 < 0.25 ? 2 * q * (1 + q2 * (1.0 / 3 + q2 * (1.0 / 5 + q2 * (1.0 / 7 + q2 * (1.0 / 9)))))
-                                 : series_log(ap / ex);
-      e += r * r;
-    }
+    if (ex > 0 && ap > 0) e += log_ratio2(ap, ex);
   }
-  return std::max(0.0, spec) + horizon + peak_weight * peak * peak +
-         width * width / (3 * kPiD * kResolutionAlpha2 * kResolutionAlpha2 * kResolutionAlpha2) +
-         kProfileWeight * k * k * e / kProfileSteps;
+  return std::max(0.0, spec) + horizon + peak_weight * peak * peak + width * width / kWidthNorm +
+         kProfileWeight * k * k * e / kProfileSteps + trans_cost(u, t, m, peak_weight);
 }
 
-UnionTerms union_terms(std::span<const Member> u) { return {union_spec_norm2(u), horizon_sums(u, union_weight(u))}; }
+UnionTerms union_terms(std::span<const Member> u) {
+  return {union_spec_norm2(u), horizon_sums(u, union_weight(u)), union_trans_norm2(u)};
+}
+
+namespace {
+// rough_distance's transmission term. Two lobes of transmitted amplitudes a and b (per channel, sum
+// S = a + b) and shapes T_a, T_b merge into one shape T_m near f·T_a + (1 − f)·T_b, f = Σa/ΣS the
+// share of the amplitude (the merge's α²_T is the amplitude-weighted harmonic mean: lobe.h). Channel c
+// keeps a_c·T_a + b_c·T_b − S_c·T_m = S_c·(f_c − f)·(T_a − T_b) of its colour's own mixture (f_c =
+// a_c/S_c), and one shape for the mixture loses Ward's S_c²·f·(1 − f)·|T_a − T_b|² more; |T_a − T_b|²
+// is rough_distance's shape term in the log-roughness, ln(α²_T,a/α²_T,b)²/4 over 2·(α²_T,a + α²_T,b +
+// 2α²_res). So lobes transmitting the same colour through different widths, or different colours
+// through different widths, are kept apart; equal widths merge exactly (τ is linear).
+double trans_distance(const Summary& a, const Summary& b) {
+  if (!has_transmission(a) && !has_transmission(b)) return 0.0;
+  const glm::dvec3 S = a.trans + b.trans;
+  const double total = S.x + S.y + S.z;
+  if (!(total > 0)) return 0.0;
+  const double f = (a.trans.x + a.trans.y + a.trans.z) / total;
+  double colour = 0;
+  for (int c = 0; c < 3; ++c) {
+    const double fc = S[c] > 0 ? a.trans[c] / S[c] : f;
+    colour += S[c] * S[c] * (f * (1 - f) + (fc - f) * (fc - f));
+  }
+  const double dl = series_log(std::max(a.alpha2_t, 1e-12) / std::max(b.alpha2_t, 1e-12));
+  return colour / 3 * (0.25 * dl * dl) / (2.0 * (a.alpha2_t + b.alpha2_t + 2.0 * kResolutionAlpha2));
+}
+}  // namespace
 
 double rough_distance(const Summary& a, const Summary& b) {
   const double w = a.weight + b.weight;
@@ -200,7 +296,7 @@ double rough_distance(const Summary& a, const Summary& b) {
   const glm::dvec2 dv = a.stretch_log - b.stretch_log;
   const double shape = 0.25 * dl * dl + 0.125 * glm::dot(dv, dv);
   return ab * (amp * amp / (2.0 * width) * (shape + dn2 / width) + 0.4 * horizon_amp * horizon_amp * std::sqrt(dn2)) +
-         (4.0 / 3.0) * ab * ab * drho * drho * dn2;
+         (4.0 / 3.0) * ab * ab * drho * drho * dn2 + trans_distance(a, b);
 }
 
 }  // namespace svbrdf::reduction

@@ -70,6 +70,13 @@ struct Summary {
   Sym2 stretch;
   glm::dvec2 stretch_log{0.0};
   glm::dvec2 slope{0.0};
+  // Its transmission (lobe.h "Transmission"): the transmitted amplitude per channel, weight·|normal|
+  // times τ plus a little toward τ90 (as amp's F0 toward F90), and the transmission's α²; 0 and 0 for a
+  // lobe that transmits nothing.
+  glm::dvec3 trans{0.0};
+  double alpha2_t = 0;  // the core's width 1/P of its transmission shape (lobe.h transmission_moments)
+  double tail_t = 0;    // A of its transmission shape
+  std::array<double, kProfileSteps> trans_profile{};  // its transmission's D about its normal (profile_of)
 };
 
 // D of a lobe shape at tan²θ = t from its normal: lobe_d's shapes written in t (cos²θ = 1/(1 + t)), so
@@ -147,6 +154,20 @@ struct Member {
 // Σ_ij amp_i·amp_j·⟨G_i, G_j⟩: the squared L2 norm of the union's specular lobes (spec_inner).
 double union_spec_norm2(std::span<const Member> u);
 
+// The transmission's terms of union_cost (trans_cost in merge_cost.cpp) are the reflection's, taken per
+// colour channel and averaged over the channels (the transmitted colour is all in the lobes, which no
+// diffuse part carries, so lobes whose τ differ in colour as well as in width cannot share one shape):
+// the L2 error of the Gaussian model, the peak, the core widths and the log profile. A thin wall
+// passes light straight through whatever the normals' tilt (lobe.h "Transmission"), so every
+// transmission lobe is centred on the same direction, ⟨T_a, T_b⟩ = trans_inner(α²_T,a, α²_T,b) (α²_T
+// the core's width 1/P), the Gaussian model of spec_inner at tan²θ = 0, and each is at its own peak,
+// π·D = P, at the straight-through pairs wi = −wo (the mirrored half vector is then the lobe's normal).
+inline double trans_inner(double alpha2_a, double alpha2_b) { return spec_inner(alpha2_a, alpha2_b, 0.0); }
+inline bool has_transmission(const Summary& s) { return s.trans != glm::dvec3(0.0); }
+// Σ_ij (trans_i·trans_j/3)·⟨T_i, T_j⟩: the squared L2 norm of the union's transmission; 0 where no
+// member transmits.
+double union_trans_norm2(std::span<const Member> u);
+
 // Horizons: the linear part of the cosine factors is kept exactly, but where the lobes' horizons
 // differ (a lune of width δ, the angle between the normals) the merged lobe's smooth horizon differs
 // from theirs; diffuse and grazing specular (Fresnel rises toward 1) both feel it. Plus the coupling
@@ -173,28 +194,31 @@ double union_weight(std::span<const Member> u);
 // float rounding of the merged lobe's).
 double union_cost_bound(std::span<const Member> u, const HorizonSums& h);
 
-// The estimated squared error of replacing the union u by the lobe m, whose union has specular norm²
-// `self` (union_spec_norm2): the specular L2 error of the Gaussian model, the horizons, the highlight
-// about the geometric normal, the core widths and the log profile, each below. For two lobes these
-// are the terms of the pair; for more, the pair terms summed over the pairs (horizons) or the union's
-// sums in place of the pair's.
-double union_cost(std::span<const Member> u, double self, const HorizonSums& hs, const Summary& m, bool by_amp,
-                  double peak_weight);
-
-// What union_cost needs of the union alone: its specular norm² (union_spec_norm2) and horizon sums.
+// What union_cost needs of the union alone: its specular and transmission norm² (union_spec_norm2,
+// union_trans_norm2) and horizon sums.
 struct UnionTerms {
   double self = 0;
   HorizonSums horizon;
+  double trans_self = 0;
 };
 
 UnionTerms union_terms(std::span<const Member> u);
+
+// The estimated squared error of replacing the union u by the lobe m, whose union has the terms `t`
+// (union_terms): the specular L2 error of the Gaussian model, the horizons, the highlight about the
+// geometric normal, the core widths and the log profile, each below, and the transmission's L2 error
+// where the union transmits. For two lobes these are the terms of the pair; for more, the pair terms
+// summed over the pairs (horizons) or the union's sums in place of the pair's.
+double union_cost(std::span<const Member> u, const UnionTerms& t, const Summary& m, bool by_amp, double peak_weight);
+
 
 // For unions of rough lobes only (α² at or above the resolution, where shapes are smooth and no peak
 // needs keeping): a cheap stand-in for union_cost that orders the merges down to max_lobes the same
 // way on the presets (bench/results/mip.md) at a tenth of the cost — Ward's criterion (Ward 1963,
 // "Hierarchical Grouping to Optimize an Objective Function": the product of the weights over their
 // sum) times the squared distance of the shapes (log-roughness, the normals' offset relative to the
-// lobes' widths) scaled by the specular amplitude's L2 norm, plus the horizon term of union_cost.
+// lobes' widths) scaled by the specular amplitude's L2 norm, plus the horizon term of union_cost; and
+// where they transmit, the transmission's (merge_cost.cpp, trans_distance).
 double rough_distance(const Summary& a, const Summary& b);
 
 }  // namespace svbrdf::reduction

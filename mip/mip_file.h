@@ -62,9 +62,11 @@
 //   lobeK.stretch.dirHi/dirLo   the stretch direction's angle in [0, π) as a 20-bit code k
 //                               (φ = k·π/2^20), its high and low 10 bits as integers      half
 // and, in a level where some lobe transmits (a thin-walled KHR_materials_transmission; lobe.h,
-// "Transmission"), 8 bytes more a slot:
+// "Transmission"), 10 bytes more a slot:
 //   lobeK.transmission.R/G/B    τ, the lobe's BTDF factor at w = 0                        half
-//   lobeK.transmission.alpha    α_T, the GGX α of its transmission (0: transmits nothing)  half
+//   lobeK.transmission.alpha    α_T, the GGX α of its transmission, its band's lower end
+//                               (0: transmits nothing)                                    half
+//   lobeK.transmission.alphaHi  its band's upper end (0: GGX)                             half
 // and, in a level where some lobe's τ90 ≠ 0 (a transmitting material whose specular layer is not
 // plain), 6 bytes more a slot:
 //   lobeK.transmission90.R/G/B  τ90, the BTDF factor at w = 1                             half

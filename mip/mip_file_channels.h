@@ -50,7 +50,7 @@ enum class Role {
   coat,                                         // the coat layer's (kCoatShareChannels)
   sheen,                                        // the sheen's (kSheenShareChannels)
   stretch, stretch_dir_hi, stretch_dir_lo,      // the stretch's (kStretchLobeChannels)
-  transmission_r, transmission_g, transmission_b, transmission_alpha,  // the transmission's (kTransmissionLobeChannels)
+  transmission_r, transmission_g, transmission_b, transmission_alpha, transmission_alpha_hi,  // (kTransmissionLobeChannels)
   transmission90_r, transmission90_g, transmission90_b,                // (kTransmission90LobeChannels)
   count
 };
@@ -107,13 +107,15 @@ constexpr LobeChannel kStretchLobeChannels[] = {
     {"stretch.dirHi", Role::stretch_dir_hi, kHalf},
     {"stretch.dirLo", Role::stretch_dir_lo, kHalf},
 };
-// A lobe's channels of a thin-walled transmission, 8 bytes (kBytesPerTransmission), in levels where some
-// lobe transmits: τ and α_T (stored_lobe.h; α_T 0 where the lobe transmits nothing).
+// A lobe's channels of a thin-walled transmission, 10 bytes (kBytesPerTransmission), in levels where some
+// lobe transmits: τ, α_T and α_T,hi (stored_lobe.h; α_T 0 where the lobe transmits nothing, α_T,hi 0
+// where its shape is GGX).
 constexpr LobeChannel kTransmissionLobeChannels[] = {
     {"transmission.R", Role::transmission_r, kHalf},
     {"transmission.G", Role::transmission_g, kHalf},
     {"transmission.B", Role::transmission_b, kHalf},
     {"transmission.alpha", Role::transmission_alpha, kHalf},
+    {"transmission.alphaHi", Role::transmission_alpha_hi, kHalf},
 };
 // τ90, 6 bytes (kBytesPerTransmission90), in levels where some lobe's is not 0.
 constexpr LobeChannel kTransmission90LobeChannels[] = {
@@ -182,6 +184,7 @@ inline LobeValues pack_lobe(const Lobe& l) {
   out[Role::transmission90_b] = l.transmission90.b;
   // exact, as α's: a stored α_T² is the square of a half or 0
   out[Role::transmission_alpha] = std::sqrt(l.transmission_alpha2);
+  out[Role::transmission_alpha_hi] = std::sqrt(l.transmission_alpha2_hi);
   const StoredNormal n = store_normal(l.normal);  // exact: the pyramid's normals are decoded codes
   out.direction = n.direction;
   out[Role::normal_deficit] = n.deficit;
@@ -207,6 +210,7 @@ inline Lobe unpack_lobe(const LobeValues& in) {
   l.transmission90 = {in[Role::transmission90_r], in[Role::transmission90_g], in[Role::transmission90_b]};
   // A corrupt α_T of 0 or NaN transmits through the lobe's own shape (lobe.h transmission_shape).
   l.transmission_alpha2 = in[Role::transmission_alpha] * in[Role::transmission_alpha];
+  l.transmission_alpha2_hi = in[Role::transmission_alpha_hi] * in[Role::transmission_alpha_hi];
   l.normal = load_normal(StoredNormal{in.direction, in[Role::normal_deficit]});
   l.alpha2 = in[Role::alpha] * in[Role::alpha];
   set_lobe_shape_code(l, in[Role::shape]);

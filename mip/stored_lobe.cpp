@@ -119,10 +119,16 @@ void round_to_stored(Lobe& lobe) {
     lobe.transmission[c] = to_half(lobe.transmission[c]);
     lobe.transmission90[c] = to_half(lobe.transmission90[c]);
   }
-  if (lobe.transmission_alpha2 > 0.0f) {  // as α: α_T ≥ 1e-3, and its square is exact in a float
-    const float alpha_t = to_half(std::sqrt(lobe.transmission_alpha2));
-    lobe.transmission_alpha2 = alpha_t * alpha_t;
-  }
+  // As α: α_T ≥ 1e-3, and its square is exact in a float; a band's upper end the same way, a band
+  // narrower than a half's step a GGX.
+  const auto round_alpha2 = [](float& a2) {
+    if (!(a2 > 0.0f)) return;
+    const float a = to_half(std::sqrt(a2));
+    a2 = a * a;
+  };
+  round_alpha2(lobe.transmission_alpha2);
+  round_alpha2(lobe.transmission_alpha2_hi);
+  if (!(lobe.transmission_alpha2_hi > lobe.transmission_alpha2)) lobe.transmission_alpha2_hi = 0.0f;
   lobe.normal = round_normal(lobe.normal);
   set_lobe_stretch_code(lobe, lobe_stretch_code(lobe), lobe_stretch_direction_code(lobe));
   const float skirt_code = lobe_skirt_code(lobe);

@@ -39,9 +39,9 @@ std::uint32_t lobe_stretch_direction_code(const Lobe& lobe);
 void set_lobe_stretch_code(Lobe& lobe, float code, std::uint32_t direction);
 
 // Rounds a lobe to what the MIP file stores: weight, colors (f0_tint and the transmission's τ and τ90 among
-// them), its coat and sheen shares, α and the transmission's α_T (the square roots of alpha2 and
-// transmission_alpha2), shape code and skirt as half floats, the normal as stored_normal.h codes it, its
-// stretch as above.
+// them), its coat and sheen shares, α and the transmission's α_T and α_T,hi (the square roots of alpha2,
+// transmission_alpha2 and transmission_alpha2_hi), shape code and skirt as half floats, the normal as
+// stored_normal.h codes it, its stretch as above.
 void round_to_stored(Lobe& lobe);
 
 // The same for a coat lobe (coat_layer.h), whose colours the file does not store: F0 = 0.04 and F90 = 1
@@ -62,10 +62,10 @@ inline constexpr int kBytesPerTintLayer = 3 * 2;
 // What the anisotropy adds to a stored lobe (its stretch: ln r as a half, the direction's code as a
 // 32-bit integer), in levels where some lobe is stretched.
 inline constexpr int kBytesPerStretch = 2 + 4;
-// What a thin-walled transmission adds to a stored lobe (τ as three halves and α_T as one; lobe.h
-// "Transmission"), in levels where some lobe transmits, and τ90 (three halves) in levels where some
-// lobe's is not 0 (a transmitting material whose specular layer is not plain).
-inline constexpr int kBytesPerTransmission = 4 * 2;
+// What a thin-walled transmission adds to a stored lobe (τ as three halves, α_T and α_T,hi as one each;
+// lobe.h "Transmission"), in levels where some lobe transmits, and τ90 (three halves) in levels where
+// some lobe's is not 0 (a transmitting material whose specular layer is not plain).
+inline constexpr int kBytesPerTransmission = 5 * 2;
 inline constexpr int kBytesPerTransmission90 = 3 * 2;
 
 }  // namespace svbrdf

@@ -7,15 +7,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "appearance/frame.h"
 #include "appearance/gltf_surface_bsdf.h"
 #include "appearance/rng.h"
 #include "chi2.h"
 #include "gltf_transcription.h"
+#include "mip/albedo_table.h"
 #include "mip/exact_reference.h"
 #include "mip/lobe.h"
 #include "mip/lobe_mixture_bsdf.h"
+#include "mip/lobe_reduction.h"
 #include "random_directions.h"
 
 namespace svbrdf {
@@ -210,7 +213,7 @@ glm::dvec2 albedos(const Bsdf& b, const glm::vec3& wo, int n, std::uint64_t seed
 }
 
 // A mixture of transmitting lobes — four tilted lobes of different roughness, transmission and
-// colour, one of them a roughness mixture, one stretched — draws the density its pdf() gives over both
+// colour, one of them a roughness mixture, one transmitting through a band, one stretched — draws the density its pdf() gives over both
 // hemispheres (the sphere's χ² test, which also checks that the density integrates to the probability
 // of a finite sample).
 TEST(TransmissionLayer, MixtureSamplerMatchesItsDensityOverBothHemispheres) {
@@ -222,6 +225,10 @@ TEST(TransmissionLayer, MixtureSamplerMatchesItsDensityOverBothHemispheres) {
     Lobe l = lobe_of(t);
     l.weight = 0.25f;
     if (k == 1) l.alpha2_hi = 8.0f * l.alpha2, l.ggx = 0.6f;
+    if (k == 2) {  // a transmitting band 30× wide
+      l.transmission = glm::max(l.transmission, glm::vec3(0.5f, 0.4f, 0.3f));
+      l.transmission_alpha2 = 0.01f, l.transmission_alpha2_hi = 0.3f;
+    }
     lobes.push_back(l);
   }
   const LobeMixtureBsdf b(lobes);
@@ -229,6 +236,42 @@ TEST(TransmissionLayer, MixtureSamplerMatchesItsDensityOverBothHemispheres) {
   for (const double theta : {10.0, 45.0, 75.0}) {
     const testing::Chi2Result r = testing::chi2_test(b, direction(theta, 30.0));
     EXPECT_GT(r.p_value, 1e-3) << "θo " << theta << ": worst bin " << r.worst;
+  }
+}
+
+// A merge gives the union's transmission the members' amplitude-weighted tail and peak moments, A =
+// E[α²] and P = E[1/α²] (lobe.h "Transmission"): for two lobes of one roughness a GGX of it, for lobes of
+// different roughness (pairs 4× and 100× apart in α², and a merged band merged again) the log-uniform
+// band whose L(l, h) = (h − l)/ln(h/l) and L/(l·h) are A and P, within 1e-5; its τ is the weighted mean
+// scaled to keep the union's transmitted flux.
+TEST(TransmissionLayer, AMergeKeepsTheUnionsTailAndPeak) {
+  const auto lobe = [](float roughness, float t, float weight) {
+    return lobe_from_texel(glm::vec3(0.8f, 0.5f, 0.3f), 0.0f, roughness, glm::vec3(0, 0, 1), weight, {}, {}, t);
+  };
+  // The moments of a transmission shape from its fields alone.
+  const auto moments = [](const Lobe& l) {
+    const double lo = l.transmission_alpha2, hi = l.transmission_alpha2_hi;
+    if (!(hi > lo)) return glm::dvec2(lo, 1 / lo);
+    const double L = (hi - lo) / std::log(hi / lo);
+    return glm::dvec2(L, L / (lo * hi));
+  };
+  const auto amplitude = [](const Lobe& l) {
+    return double(l.weight) * (double(l.transmission.r) + l.transmission.g + l.transmission.b);
+  };
+  const Lobe same = merge_lobes(lobe(0.4f, 0.9f, 0.5f), lobe(0.4f, 0.3f, 0.5f));
+  EXPECT_EQ(same.transmission_alpha2_hi, 0.0f);
+  EXPECT_NEAR(same.transmission_alpha2, std::pow(0.4, 4), 1e-6);
+  const Lobe a = lobe(0.25f, 0.9f, 0.3f), b = lobe(0.35f, 0.5f, 0.7f), c = lobe(0.8f, 0.6f, 0.4f);
+  const Lobe ab = merge_lobes(a, b);
+  for (const auto& [x, y] : {std::pair{a, b}, std::pair{a, c}, std::pair{ab, c}}) {
+    const Lobe m = merge_lobes(x, y);
+    const double ax = amplitude(x), ay = amplitude(y);
+    const glm::dvec2 want = (ax * moments(x) + ay * moments(y)) / (ax + ay);
+    EXPECT_GT(m.transmission_alpha2_hi, m.transmission_alpha2);
+    EXPECT_NEAR(moments(m).x, want.x, 1e-5 * want.x);
+    EXPECT_NEAR(moments(m).y, want.y, 1e-5 * want.y);
+    using reduction::transmission_flux;
+    EXPECT_NEAR(transmission_flux(m), transmission_flux(x) + transmission_flux(y), 1e-4 * transmission_flux(m));
   }
 }
 
