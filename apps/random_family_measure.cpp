@@ -156,10 +156,12 @@ SeedFigures measure_random_draw(const RandomMaterialDraw& draw, int size, const 
     }
     albedo_figures(e0, row.level, e, exact_albedo,
                    [&](int i, int j, int a) {
+                     const float* transmission = mip.param.transmission(row.level, i, j);
                      const ParamLobes l = param_lobes(mip.param.texel(row.level, i, j), TextureFilter::param,
                                                       mip.param.specular(row.level, i, j), nullptr,
                                                       mip.param.sheen(row.level, i, j),
-                                                      mip.param.anisotropy(row.level, i, j));
+                                                      mip.param.anisotropy(row.level, i, j),
+                                                      transmission ? *transmission : 0.0f);
                      return grey(directional_albedo(std::span<const Lobe>(&l.base, 1), l.sheen, incident(a), kAlbedoStrata));
                    },
                    f.param);

@@ -158,11 +158,13 @@ std::span<const Lobe> MipTexture::lobes(const Choice& c, Scratch& scratch) const
     SpecularLayer layer;
     ParamCoat coat;
     AnisotropyLayer aniso;
-    ParamTexel t = filter_params(p.param, c.footprint, wrap(), kMaxProbes, &layer, &coat, &scratch.sheen, &aniso);
+    float transmission = 0.0f;
+    ParamTexel t = filter_params(p.param, c.footprint, wrap(), kMaxProbes, &layer, &coat, &scratch.sheen, &aniso,
+                                 &transmission);
     t.base_color *= c.tint;
     const ParamLobes l = param_lobes(t, c.filter, layer, p.param.has_coat() ? &coat : nullptr,
                                      p.param.has_sheen() ? &scratch.sheen : nullptr,
-                                     p.param.has_anisotropy() ? &aniso : nullptr);
+                                     p.param.has_anisotropy() ? &aniso : nullptr, transmission);
     scratch.lobe[0] = l.base;
     if (l.coated) scratch.coat = l.coat;
     return {scratch.lobe, 1};
@@ -178,8 +180,10 @@ std::span<const Lobe> MipTexture::lobes(const Choice& c, Scratch& scratch) const
   // exact, so this is level0_lobe of the texel, the BRDF pyramid's level-0 lobe bit for bit.
   const ParamTexel& t = p.level0(c.i, c.j);
   const AnisotropyLayer* aniso = p.param.anisotropy(0, c.i, c.j);
+  const float* transmission = p.param.transmission(0, c.i, c.j);
   scratch.lobe[0] = lobe_from_texel(t.base_color * c.tint, t.metallic, t.roughness, t.normal, 1.0f,
-                                    p.param.specular(0, c.i, c.j), aniso ? *aniso : AnisotropyLayer{});
+                                    p.param.specular(0, c.i, c.j), aniso ? *aniso : AnisotropyLayer{},
+                                    transmission ? *transmission : 0.0f);
   if (const ParamCoat* coat = p.param.coat(0, c.i, c.j)) {
     // As exact_reference.h level0_lobe and level0_coat make them.
     scratch.lobe[0].coat = std::clamp(coat->clearcoat, 0.0f, 1.0f);

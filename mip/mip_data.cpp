@@ -70,8 +70,10 @@ void accumulate_mixture(const LobeMixtureBsdf& b, double weight, std::span<glm::
 
 // The parameter filters' texel (param_pyramid.h param_lobes), the mean coat's lobe made into `out`.
 ParamLobes param_texel_lobes(const MipData& mip, TextureFilter filter, int level, int i, int j) {
+  const float* transmission = mip.param.transmission(level, i, j);
   return param_lobes(mip.param.texel(level, i, j), filter, mip.param.specular(level, i, j), mip.param.coat(level, i, j),
-                     mip.param.sheen(level, i, j), mip.param.anisotropy(level, i, j));
+                     mip.param.sheen(level, i, j), mip.param.anisotropy(level, i, j),
+                     transmission ? *transmission : 0.0f);
 }
 CoatTexel coat_of(const ParamLobes& l) {
   if (!l.coated || !(l.coat.weight > 0)) return {};
@@ -176,7 +178,8 @@ int bytes_per_texel(const MipData& mip, TextureFilter filter, int level) {
   return ParamPyramid::kBytesPerTexel + (mip.param.specular_level(0).empty() ? 0 : ParamPyramid::kBytesPerSpecularTexel) +
          (mip.param.has_coat() ? ParamPyramid::kBytesPerCoatTexel : 0) +
          (mip.param.has_sheen() ? ParamPyramid::kBytesPerSheenTexel : 0) +
-         (mip.param.has_anisotropy() ? ParamPyramid::kBytesPerAnisotropyTexel : 0);
+         (mip.param.has_anisotropy() ? ParamPyramid::kBytesPerAnisotropyTexel : 0) +
+         (mip.param.has_transmission() ? ParamPyramid::kBytesPerTransmissionTexel : 0);
 }
 
 }  // namespace svbrdf

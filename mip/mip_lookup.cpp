@@ -176,13 +176,15 @@ LobeMixtureBsdf lookup_brdf(const MipData& mip, const Footprint& footprint, floa
 }
 
 ParamTexel filter_params(const ParamPyramid& pyramid, const Footprint& footprint, WrapModes wrap, int max_probes,
-                         SpecularLayer* specular, ParamCoat* coat, SheenLayer* sheen, AnisotropyLayer* anisotropy) {
-  const ParamStore store{pyramid.level0(),   pyramid.levels(),  pyramid.ior(), !pyramid.specular_level(0).empty(),
-                         pyramid.has_coat(), pyramid.has_sheen(), pyramid.has_anisotropy()};
+                         SpecularLayer* specular, ParamCoat* coat, SheenLayer* sheen, AnisotropyLayer* anisotropy,
+                         float* transmission) {
+  const ParamStore store{pyramid.level0(),     pyramid.levels(),       pyramid.ior(),
+                         !pyramid.specular_level(0).empty(), pyramid.has_coat(), pyramid.has_sheen(),
+                         pyramid.has_anisotropy(), pyramid.has_transmission()};
   return filter_params_of(
       store,
       [&](int level, int i, int j, ParamSpecular* s, ParamCoat* c, SheenLayer* h,
-          AnisotropyLayer* a) -> const ParamTexel& {
+          AnisotropyLayer* a, float* tr) -> const ParamTexel& {
         if (s) {
           const SpecularLayer l = pyramid.specular(level, i, j);
           *s = {l.specular, l.color};
@@ -190,17 +192,20 @@ ParamTexel filter_params(const ParamPyramid& pyramid, const Footprint& footprint
         if (c) *c = *pyramid.coat(level, i, j);
         if (h) *h = *pyramid.sheen(level, i, j);
         if (a) *a = *pyramid.anisotropy(level, i, j);
+        if (tr) *tr = *pyramid.transmission(level, i, j);
         return pyramid.texel(level, i, j);
       },
-      footprint, wrap, max_probes, specular, coat, sheen, anisotropy);
+      footprint, wrap, max_probes, specular, coat, sheen, anisotropy, transmission);
 }
 
 Lobe lookup_param(const ParamPyramid& pyramid, const Footprint& footprint, TextureFilter filter, WrapModes wrap,
                   int max_probes) {
   SpecularLayer layer;
   AnisotropyLayer aniso;
-  const ParamTexel t = filter_params(pyramid, footprint, wrap, max_probes, &layer, nullptr, nullptr, &aniso);
-  return param_lobe(t, filter, layer, aniso);
+  float transmission = 0.0f;
+  const ParamTexel t =
+      filter_params(pyramid, footprint, wrap, max_probes, &layer, nullptr, nullptr, &aniso, &transmission);
+  return param_lobe(t, filter, layer, aniso, transmission);
 }
 
 }  // namespace svbrdf

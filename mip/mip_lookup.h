@@ -70,11 +70,13 @@ LobeMixtureBsdf lookup_brdf(const MipData& mip, const Footprint& footprint, floa
 // with `coat`, of the clear coat (ParamCoat{} for a material without one); with `sheen`, of the sheen
 // (SheenLayer{}, colour 0, for a material without one); with `anisotropy`, of the anisotropy as
 // param_pyramid.h anisotropy_from_below averages it (AnisotropyLayer{}, strength 0, for a material
-// without one).
+// without one); with `transmission`, of the mean transmission (0 for a material that does not transmit).
 ParamTexel filter_params(const ParamPyramid& pyramid, const Footprint& footprint, WrapModes wrap = {},
                          int max_probes = kMaxProbes, SpecularLayer* specular = nullptr, ParamCoat* coat = nullptr,
-                         SheenLayer* sheen = nullptr, AnisotropyLayer* anisotropy = nullptr);
-// The same over any store of a parameter pyramid's texels: `texel(level, i, j, specular, coat, sheen, anisotropy)`
+                         SheenLayer* sheen = nullptr, AnisotropyLayer* anisotropy = nullptr,
+                         float* transmission = nullptr);
+// The same over any store of a parameter pyramid's texels:
+// `texel(level, i, j, specular, coat, sheen, anisotropy, transmission)`
 // gives a ParamTexel and fills the layers asked for (not null); the pyramid's level 0, its level count
 // and ior, and which layers it has, given. filter_params is this over ParamPyramid; the out-of-core
 // texture (mip.h) reads records with it, so both sum the same values in the same order.
@@ -82,18 +84,20 @@ struct ParamStore {
   Extent level0{};
   int levels = 0;
   float ior = 1.5f;
-  bool specular = false, coat = false, sheen = false, anisotropy = false;
+  bool specular = false, coat = false, sheen = false, anisotropy = false, transmission = false;
 };
 template <class Texel>
 ParamTexel filter_params_of(const ParamStore& store, const Texel& texel, const Footprint& footprint,
                             WrapModes wrap, int max_probes, SpecularLayer* specular, ParamCoat* coat,
-                            SheenLayer* sheen, AnisotropyLayer* anisotropy = nullptr) {
+                            SheenLayer* sheen, AnisotropyLayer* anisotropy = nullptr,
+                            float* transmission = nullptr) {
   ParamTexel sum;
   sum.normal = glm::vec3(0.0f);
   if (specular) *specular = {1.0f, glm::vec3(1.0f), store.ior};
   if (coat) *coat = {};
   if (sheen) *sheen = {};
   if (anisotropy) *anisotropy = {};
+  if (transmission) *transmission = 0.0f;
   if (store.levels == 0) return sum;
   const FilterTaps taps = filter_taps(store.level0, store.levels, footprint, wrap, max_probes);
   const bool layer = specular && store.specular;
@@ -102,16 +106,18 @@ ParamTexel filter_params_of(const ParamStore& store, const Texel& texel, const F
   if (coated) coat->normal = glm::vec3(0.0f);
   const bool sheened = sheen && store.sheen;
   const bool stretched = anisotropy && store.anisotropy;
+  const bool transmits = transmission && store.transmission;
   ParamSpecular s;
   ParamCoat c;
   SheenLayer h;
   AnisotropyLayer a;
+  float tr = 0.0f;
   glm::dvec2 axial(0.0);  // Σ weight·axial_anisotropy (param_pyramid.h)
   for (int k = 0; k < taps.count; ++k) {
     const FilterTap& t = taps.taps[static_cast<std::size_t>(k)];
     const ParamTexel& p =
         texel(t.level, t.i, t.j, layer ? &s : nullptr, coated ? &c : nullptr, sheened ? &h : nullptr,
-              stretched ? &a : nullptr);
+              stretched ? &a : nullptr, transmits ? &tr : nullptr);
     sum.base_color += t.weight * p.base_color;
     sum.metallic += t.weight * p.metallic;
     sum.roughness += t.weight * p.roughness;
@@ -130,6 +136,7 @@ ParamTexel filter_params_of(const ParamStore& store, const Texel& texel, const F
       sheen->roughness += t.weight * h.roughness;
     }
     if (stretched) axial += double(t.weight) * axial_anisotropy(a);
+    if (transmits) *transmission += t.weight * tr;
   }
   if (stretched) *anisotropy = from_axial_anisotropy(axial);
   return sum;

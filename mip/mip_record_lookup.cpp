@@ -20,14 +20,14 @@ struct RecordParams {
   const MipRecords& r;
   mutable ParamTexel texel;
   const ParamTexel& operator()(int level, int i, int j, ParamSpecular* s, ParamCoat* c, SheenLayer* h,
-                               AnisotropyLayer* a) const {
-    decode_params(r.layout, r.source->record(level, i, j), texel, s, c, h, a);
+                               AnisotropyLayer* a, float* t) const {
+    decode_params(r.layout, r.source->record(level, i, j), texel, s, c, h, a, t);
     return texel;
   }
 };
 
 ParamStore store_of(const MipRecordLayout& l) {
-  return {l.extent, l.levels, l.ior, l.specular, l.coat, l.sheen, l.anisotropy};
+  return {l.extent, l.levels, l.ior, l.specular, l.coat, l.sheen, l.anisotropy, l.transmission};
 }
 
 }  // namespace
@@ -48,11 +48,12 @@ std::span<const Lobe> MipTexture::record_lobes(const Choice& c, Scratch& scratch
     SpecularLayer layer;
     ParamCoat coat;
     AnisotropyLayer aniso;
+    float transmission = 0.0f;
     ParamTexel t = filter_params_of(store_of(l), RecordParams{r, {}}, c.footprint, wrap(), kMaxProbes, &layer,
-                                    &coat, &scratch.sheen, &aniso);
+                                    &coat, &scratch.sheen, &aniso, &transmission);
     t.base_color *= c.tint;
     const ParamLobes p = param_lobes(t, c.filter, layer, l.coat ? &coat : nullptr, l.sheen ? &scratch.sheen : nullptr,
-                                     l.anisotropy ? &aniso : nullptr);
+                                     l.anisotropy ? &aniso : nullptr, transmission);
     scratch.lobe[0] = p.base;
     if (p.coated) scratch.coat = p.coat;
     return {scratch.lobe, 1};
@@ -62,7 +63,8 @@ std::span<const Lobe> MipTexture::record_lobes(const Choice& c, Scratch& scratch
   ParamSpecular specular;
   ParamCoat coat;
   AnisotropyLayer aniso;
-  decode_params(l, record, t, &specular, &coat, &scratch.sheen, &aniso);
+  float transmission = 0.0f;
+  decode_params(l, record, t, &specular, &coat, &scratch.sheen, &aniso, &transmission);
   if (c.level >= 1) {
     const RecordTexel texel =
         decode_brdf(l, c.level, record, scratch.lobe, scratch.coat_lobe, scratch.correction);
@@ -75,7 +77,7 @@ std::span<const Lobe> MipTexture::record_lobes(const Choice& c, Scratch& scratch
   }
   // Level 0, as mip.cpp makes its lobe from the parameter pyramid's texel.
   scratch.lobe[0] = lobe_from_texel(t.base_color * c.tint, t.metallic, t.roughness, t.normal, 1.0f,
-                                    SpecularLayer{specular.specular, specular.color, l.ior}, aniso);
+                                    SpecularLayer{specular.specular, specular.color, l.ior}, aniso, transmission);
   if (l.coat) {
     scratch.lobe[0].coat = std::clamp(coat.clearcoat, 0.0f, 1.0f);
     scratch.coat = coat_lobe(CoatLayer{coat.clearcoat, coat.roughness, coat.normal});

@@ -19,7 +19,7 @@ using mip_file_channels::Role;
 
 namespace {
 
-constexpr const char* kFormat = "svbrdf mip records 2";
+constexpr const char* kFormat = "svbrdf mip records 3";
 
 // The roles of a lobe's half channels, in the MIP file's order (its direction word comes first).
 std::vector<std::uint8_t> half_roles(const std::vector<LobeChannel>& channels) {
@@ -76,6 +76,7 @@ MipRecordLayout MipRecordLayout::of(const ParamPyramid& param, const BrdfPyramid
   o.coat = param.has_coat();
   o.sheen = param.has_sheen();
   o.anisotropy = param.has_anisotropy();
+  o.transmission = param.has_transmission();
   o.ior = param.ior();
   o.level.resize(static_cast<std::size_t>(o.levels));
   if (!brdf) {
@@ -122,8 +123,8 @@ std::string MipRecordLayout::describe(const std::string& key) const {
   std::ostringstream s;
   s << kFormat << " key " << key << " extent " << extent.width << ' ' << extent.height << " levels " << levels
     << " brdf " << brdf << " tint " << tint << " specular " << specular << " coat " << coat << " sheen "
-    << sheen << " anisotropy " << anisotropy << " ior " << bits_of(ior) << " max_lobes " << max_lobes << " radial " << bits_of(radial_inner)
-    << ' ' << bits_of(radial_outer);
+    << sheen << " anisotropy " << anisotropy << " transmission " << transmission << " ior " << bits_of(ior)
+    << " max_lobes " << max_lobes << " radial " << bits_of(radial_inner) << ' ' << bits_of(radial_outer);
   for (const Level& v : level)
     s << " level " << v.slots << ' ' << v.coat_slots << ' ' << v.lobe_specular << ' ' << v.lobe_tint << ' '
       << v.lobe_stretch << ' ' << v.lobe_transmission << ' ' << v.lobe_transmission90 << ' ' << v.radial;
@@ -152,7 +153,8 @@ std::optional<MipRecordLayout> MipRecordLayout::parse(const std::string& text, c
   bool ok = expect("key") && (s >> stored_key) && expect("extent") &&
             (s >> o.extent.width >> o.extent.height) && expect("levels") && (s >> o.levels) &&
             expect("brdf") && flag(o.brdf) && expect("tint") && flag(o.tint) && expect("specular") &&
-            flag(o.specular) && expect("coat") && flag(o.coat) && expect("sheen") && flag(o.sheen) && expect("anisotropy") && flag(o.anisotropy) &&
+            flag(o.specular) && expect("coat") && flag(o.coat) && expect("sheen") && flag(o.sheen) &&
+            expect("anisotropy") && flag(o.anisotropy) && expect("transmission") && flag(o.transmission) &&
             expect("ior") && (s >> ior) && expect("max_lobes") && (s >> o.max_lobes) && expect("radial") &&
             (s >> inner >> outer);
   if (!ok) return fail("its description is not a MIP record layout");
@@ -215,6 +217,7 @@ void encode_records(const MipRecordLayout& layout, const ParamPyramid& param, co
         const AnisotropyLayer& a = *param.anisotropy(l, i, j);
         for (const float x : {a.strength, a.direction.x, a.direction.y}) *w++ = bits_of(x);
       }
+      if (layout.transmission) *w++ = bits_of(*param.transmission(l, i, j));
       if (!lobes) continue;
       const std::span<const Lobe> texel = brdf->level(l).texel_lobes(t);
       const std::span<const Lobe> coat_texel =
@@ -236,7 +239,8 @@ void encode_records(const MipRecordLayout& layout, const ParamPyramid& param, co
 }
 
 void decode_params(const MipRecordLayout& layout, const std::uint32_t* w, ParamTexel& p,
-                   ParamSpecular* specular, ParamCoat* coat, SheenLayer* sheen, AnisotropyLayer* anisotropy) {
+                   ParamSpecular* specular, ParamCoat* coat, SheenLayer* sheen, AnisotropyLayer* anisotropy,
+                   float* transmission) {
   p.base_color = {float_of(w[0]), float_of(w[1]), float_of(w[2])};
   p.metallic = float_of(w[3]);
   p.roughness = float_of(w[4]);
@@ -254,7 +258,11 @@ void decode_params(const MipRecordLayout& layout, const std::uint32_t* w, ParamT
     if (sheen) *sheen = {{float_of(w[0]), float_of(w[1]), float_of(w[2])}, float_of(w[3])};
     w += MipRecordLayout::kSheenWords;
   }
-  if (layout.anisotropy && anisotropy) *anisotropy = {float_of(w[0]), {float_of(w[1]), float_of(w[2])}};
+  if (layout.anisotropy) {
+    if (anisotropy) *anisotropy = {float_of(w[0]), {float_of(w[1]), float_of(w[2])}};
+    w += MipRecordLayout::kAnisotropyWords;
+  }
+  if (layout.transmission && transmission) *transmission = float_of(w[0]);
 }
 
 RecordTexel decode_brdf(const MipRecordLayout& layout, int l, const std::uint32_t* w, Lobe* lobes,

@@ -37,10 +37,13 @@ MeanNormal mean_normal(const glm::vec3& mean, TextureFilter filter) {
 
 }  // namespace
 
-Lobe param_lobe(const ParamTexel& t, TextureFilter filter, const SpecularLayer& layer, const AnisotropyLayer& aniso) {
+Lobe param_lobe(const ParamTexel& t, TextureFilter filter, const SpecularLayer& layer, const AnisotropyLayer& aniso,
+                float transmission) {
   const MeanNormal m = mean_normal(t.normal, filter);
-  Lobe l = lobe_from_texel(t.base_color, t.metallic, t.roughness, m.n, 1.0f, layer, aniso);
+  Lobe l = lobe_from_texel(t.base_color, t.metallic, t.roughness, m.n, 1.0f, layer, aniso, transmission);
   l.alpha2 = std::min(1.0f, l.alpha2 + m.widen);
+  // The transmission goes through the widened shape too: a texel's transmits through its own α² (lobe.h).
+  if (l.transmission_alpha2 > 0.0f) l.transmission_alpha2 = l.alpha2;
   return l;
 }
 
@@ -52,9 +55,9 @@ Lobe param_coat_lobe(const ParamCoat& c, TextureFilter filter) {
 }
 
 ParamLobes param_lobes(const ParamTexel& t, TextureFilter filter, const SpecularLayer& layer, const ParamCoat* coat,
-                       const SheenLayer* sheen, const AnisotropyLayer* aniso) {
+                       const SheenLayer* sheen, const AnisotropyLayer* aniso, float transmission) {
   ParamLobes out;
-  out.base = param_lobe(t, filter, layer, aniso ? *aniso : AnisotropyLayer{});
+  out.base = param_lobe(t, filter, layer, aniso ? *aniso : AnisotropyLayer{}, transmission);
   if (sheen) {
     out.sheen = *sheen;
     out.base.sheen = sheen_share(*sheen);
@@ -119,6 +122,18 @@ std::vector<ParamSpecular> specular_from_below(Extent level0, int level, const s
       c += w * glm::dvec3(t.color);
     });
     return ParamSpecular{static_cast<float>(s / total), glm::vec3(c / total)};
+  });
+}
+
+// The transmission's means, as params_from_below takes the parameters'.
+std::vector<float> transmission_from_below(Extent level0, int level, const std::vector<float>& fine) {
+  return level_from_below(level0, level, fine, [](const auto& children) {
+    double total = 0, t = 0;
+    children([&](double w, float x) {
+      total += w;
+      t += w * x;
+    });
+    return static_cast<float>(t / total);
   });
 }
 
@@ -202,6 +217,11 @@ ParamPyramid ParamPyramid::level0_only(const MaterialTexels& m) {
     for (std::size_t k = 0; k < m.size(); ++k) aniso[k] = m.anisotropy_layer(k);
     p.anisotropy_.push_back(std::move(aniso));
   }
+  if (m.has_transmission()) {
+    std::vector<float> transmission(m.size());
+    for (std::size_t k = 0; k < m.size(); ++k) transmission[k] = m.transmission_at(k);
+    p.transmission_.push_back(std::move(transmission));
+  }
   return p;
 }
 
@@ -212,6 +232,7 @@ void ParamPyramid::build_coarse_levels() {
     if (!coat_.empty()) coat_.push_back(coat_from_below(level0_, level, coat_.back()));
     if (!sheen_.empty()) sheen_.push_back(sheen_from_below(level0_, level, sheen_.back()));
     if (!anisotropy_.empty()) anisotropy_.push_back(anisotropy_from_below(level0_, level, anisotropy_.back()));
+    if (!transmission_.empty()) transmission_.push_back(transmission_from_below(level0_, level, transmission_.back()));
   }
 }
 
@@ -262,6 +283,12 @@ MaterialTexels ParamPyramid::level0_texels() const {
     for (std::size_t k = 0; k < base.size(); ++k)
       m.anisotropy[k] = anisotropy_.front()[k].strength, m.anisotropy_direction[k] = anisotropy_.front()[k].direction;
   }
+  if (!transmission_.empty()) {
+    // Every texel's own; the factor only says that the material transmits (transmission_at reads the
+    // texels').
+    m.transmission_factor = 1.0f;
+    m.transmission = transmission_.front();
+  }
   return m;
 }
 
@@ -269,7 +296,8 @@ ParamPyramid ParamPyramid::from_levels(Extent level0, std::vector<std::vector<Pa
                                        std::vector<std::vector<ParamSpecular>> specular, float ior,
                                        std::vector<std::vector<ParamCoat>> coat,
                                        std::vector<std::vector<SheenLayer>> sheen,
-                                       std::vector<std::vector<AnisotropyLayer>> anisotropy) {
+                                       std::vector<std::vector<AnisotropyLayer>> anisotropy,
+                                       std::vector<std::vector<float>> transmission) {
   if (static_cast<int>(levels.size()) != level_count(level0))
     throw Error("parameter pyramid: " + std::to_string(levels.size()) + " levels for a " +
                 std::to_string(level0.width) + "x" + std::to_string(level0.height) + " level 0 (expected " +
@@ -286,6 +314,8 @@ ParamPyramid ParamPyramid::from_levels(Extent level0, std::vector<std::vector<Pa
       throw Error("parameter pyramid: the sheen's level " + std::to_string(l) + " has the wrong size");
     if (!anisotropy.empty() && (anisotropy.size() != levels.size() || anisotropy[l].size() != levels[l].size()))
       throw Error("parameter pyramid: the anisotropy's level " + std::to_string(l) + " has the wrong size");
+    if (!transmission.empty() && (transmission.size() != levels.size() || transmission[l].size() != levels[l].size()))
+      throw Error("parameter pyramid: the transmission's level " + std::to_string(l) + " has the wrong size");
   }
   ParamPyramid p;
   p.level0_ = level0;
@@ -294,6 +324,7 @@ ParamPyramid ParamPyramid::from_levels(Extent level0, std::vector<std::vector<Pa
   p.coat_ = std::move(coat);
   p.sheen_ = std::move(sheen);
   p.anisotropy_ = std::move(anisotropy);
+  p.transmission_ = std::move(transmission);
   p.ior_ = ior;
   return p;
 }

@@ -54,8 +54,10 @@ struct ParamCoat {
 // filter reads as param (no widening). `layer` is the texel's specular layer (plain by default).
 // `aniso` is the texel's mean anisotropy (none by default), whose stretch the lobe takes as a level-0
 // texel's (lobe.h lobe_from_texel), the filter's widening added to its α² as to an isotropic one's.
+// `transmission` is the texel's mean transmission T (none by default), which the lobe carries as a
+// level-0 texel of it does (lobe.h lobe_from_texel, "Transmission").
 Lobe param_lobe(const ParamTexel& t, TextureFilter filter, const SpecularLayer& layer = {},
-                const AnisotropyLayer& aniso = {});
+                const AnisotropyLayer& aniso = {}, float transmission = 0.0f);
 // The coat lobe (coat_layer.h) a parameter texel's mean coat stands for under the same filter: weight
 // the mean clearcoat, normal = normalize(mean coat normal), α from the mean roughness, widened as
 // param_lobe widens the base's from the coat normals' shortened mean. The base lobe's coat share
@@ -74,9 +76,11 @@ struct ParamLobes {
   bool coated = false;
   SheenLayer sheen;      // the mean sheen (colour 0: none)
 };
-// A material with an anisotropy (`aniso` not null) shades its mean (anisotropy_from_below).
+// A material with an anisotropy (`aniso` not null) shades its mean (anisotropy_from_below), one that
+// transmits its mean transmission (0 for a material that does not).
 ParamLobes param_lobes(const ParamTexel& t, TextureFilter filter, const SpecularLayer& layer, const ParamCoat* coat,
-                       const SheenLayer* sheen = nullptr, const AnisotropyLayer* aniso = nullptr);
+                       const SheenLayer* sheen = nullptr, const AnisotropyLayer* aniso = nullptr,
+                       float transmission = 0.0f);
 
 // The sheen means of level `level` ≥ 1 from those of level − 1: each the mean of its children's colours
 // and perceptual roughnesses weighted by the level-0 texels they cover, in double, as the parameters'.
@@ -118,7 +122,8 @@ class ParamPyramid {
                                   std::vector<std::vector<ParamSpecular>> specular = {}, float ior = 1.5f,
                                   std::vector<std::vector<ParamCoat>> coat = {},
                                   std::vector<std::vector<SheenLayer>> sheen = {},
-                                  std::vector<std::vector<AnisotropyLayer>> anisotropy = {});
+                                  std::vector<std::vector<AnisotropyLayer>> anisotropy = {},
+                                  std::vector<std::vector<float>> transmission = {});
 
   int levels() const { return static_cast<int>(levels_.size()); }
   Extent level0() const { return level0_; }
@@ -182,6 +187,20 @@ class ParamPyramid {
   }
   static constexpr int kBytesPerAnisotropyTexel = 3 * 4;  // 3 floats, for an anisotropic material
 
+  // The transmission (KHR_materials_transmission, thin-walled), a pyramid of its means beside the
+  // parameters' for a material that transmits (empty otherwise): the mean T of the covered level-0
+  // texels, linear in them as the parameters are (lobe.h: τ and τ90 are linear in T); level 0's are
+  // the texels' own.
+  bool has_transmission() const { return !transmission_.empty(); }
+  std::span<const float> transmission_level(int level) const {
+    return transmission_.empty() ? std::span<const float>() : transmission_[static_cast<std::size_t>(level)];
+  }
+  const float* transmission(int level, int i, int j) const {
+    if (transmission_.empty()) return nullptr;
+    return &transmission_[static_cast<std::size_t>(level)][static_cast<std::size_t>(j) * extent(level).width + i];
+  }
+  static constexpr int kBytesPerTransmissionTexel = 4;  // 1 float, for a material that transmits
+
  private:
   Extent level0_{};
   std::vector<std::vector<ParamTexel>> levels_;
@@ -189,6 +208,7 @@ class ParamPyramid {
   std::vector<std::vector<ParamCoat>> coat_;          // empty: no coat
   std::vector<std::vector<SheenLayer>> sheen_;        // empty: no sheen
   std::vector<std::vector<AnisotropyLayer>> anisotropy_;  // empty: isotropic
+  std::vector<std::vector<float>> transmission_;          // empty: no transmission
   float ior_ = 1.5f;
 };
 

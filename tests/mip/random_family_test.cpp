@@ -131,13 +131,14 @@ void check_seed(const SeedBars& bars) {
 // dents (e_mean and albedo 0.7 % at level 6); a rough anisotropic metal (0.62) with 28° dents (the
 // horizon: albedo +5 % head-on; e_mean 0.044 and e_rel 0.047 at level 5, where the stretched lobes'
 // merges add to the dents'; its paint, 28 % of the texels, transmits 0.42: transmitted e_log 0.0001 and
-// flux +1.3 % at level 6, against the reflection's 0.004 and +3.3 % on the same pairs); a glossy ribbed metal (α = 0.005, 18° ribs along one axis: spikes that
+// flux +1.3 % at level 6, against the reflection's 0.004 and +3.3 % on the same pairs; param, whose lobes
+// carry the mean transmission, comes to 2.0× brdf's e_log there, 0.0080 against 0.0040); a glossy ribbed metal (α = 0.005, 18° ribs along one axis: spikes that
 // isotropic lobes cannot place, e_log 0.33 from level 3, 3.4× better than param); a glossy metal whose
 // strong anisotropy (0.98) swirls by ±42° over 21 texels (e_log 0.09 at level 6, half param's; e_mean
 // 1.3; albedo −5 % at 75°).
 TEST(RandomFamily, FiveSeedsAt64MeetTheirBars) {
   for (const SeedBars& b : {SeedBars{17, 0.01, 0.013, 0.02, 0.005, 10}, SeedBars{19, 0.01, 0.01, 0.02, 0.01, 2},
-                            SeedBars{14, 0.01, 0.1, 0.13, 0.1, 2}, SeedBars{18, 0.4, 1.0, 0.02, 0.05, 2},
+                            SeedBars{14, 0.01, 0.1, 0.13, 0.1, 1.5}, SeedBars{18, 0.4, 1.0, 0.02, 0.05, 2},
                             SeedBars{9, 0.12, 1.7, 0.23, 0.07, 1.5}})
     check_seed(b);
 }
