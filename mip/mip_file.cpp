@@ -100,13 +100,15 @@ std::uint64_t least_exr_bytes(const OIIO::ImageSpec& spec) {
 namespace {
 
 // The channels a level's texel holds, in the order the spec lists them: the parameters (and the
-// specular layer's, coat's and sheen's means), `slots` lobes of `lobe` channels each, the radial correction,
-// `coat_slots` coat lobes.
+// specular layer's, coat's, sheen's, anisotropy's and transmission's means), `slots` lobes of `lobe` channels
+// each, the radial correction, `coat_slots` coat lobes.
 struct LevelChannels {
-  bool specular = false, coat = false, sheen = false, anisotropy = false, radial = false;
+  bool specular = false, coat = false, sheen = false, anisotropy = false, transmission = false, radial = false;
   int slots = 0, coat_slots = 0;
   std::vector<LobeChannel> lobe;
-  std::size_t first_lobe() const { return 8 + (specular ? 4 : 0) + (coat ? 5 : 0) + (sheen ? 4 : 0) + (anisotropy ? 3 : 0); }
+  std::size_t first_lobe() const {
+    return 8 + (specular ? 4 : 0) + (coat ? 5 : 0) + (sheen ? 4 : 0) + (anisotropy ? 3 : 0) + (transmission ? 1 : 0);
+  }
   std::size_t first_radial() const { return first_lobe() + std::size_t(slots) * lobe.size(); }
   std::size_t first_coat_lobe() const { return first_radial() + (radial ? RadialGrid::kNodes : 0); }
 };
@@ -142,6 +144,7 @@ void pack_rows(const ParamPyramid& param, const BrdfPyramid& brdf, int level, co
   const auto coat = param.coat_level(level);
   const auto sheen = param.sheen_level(level);
   const auto aniso = param.anisotropy_level(level);
+  const auto transmission = param.transmission_level(level);
   const std::vector<LobeChannel> coat_channels = coat_lobe_channels();
   const std::size_t first = static_cast<std::size_t>(y0) * e.width, last = static_cast<std::size_t>(y1) * e.width;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(first, last, kPackGrain), [&](const tbb::blocked_range<std::size_t>& texels) {
@@ -168,6 +171,7 @@ void pack_rows(const ParamPyramid& param, const BrdfPyramid& brdf, int level, co
         const AnisotropyLayer& a = aniso[t];
         for (const float v : {a.strength, a.direction.x, a.direction.y}) put_float(px, layout, next++, v);
       }
+      if (ch.transmission) put_float(px, layout, next++, transmission[t]);
       if (level == 0) continue;
       const BrdfLevel& bl = brdf.level(level);
       put_lobes(px, layout, ch.first_lobe(), ch.slots, bl.texel_lobes(t), ch.lobe);
@@ -205,6 +209,7 @@ void write_mip_file(const fs::path& path, const ParamPyramid& param, const BrdfP
     c.coat = param.has_coat();
     c.sheen = param.has_sheen();
     c.anisotropy = param.has_anisotropy();
+    c.transmission = param.has_transmission();
     if (level == 0) continue;
     const BrdfLevel& bl = brdf.level(level);
     c.slots = bl.slots;
@@ -248,6 +253,8 @@ void write_mip_file(const fs::path& path, const ParamPyramid& param, const BrdfP
       for (const char* c : kParamSheenChannels) add(c, OIIO::TypeDesc::FLOAT);
     if (ch.anisotropy)
       for (const char* c : kParamAnisotropyChannels) add(c, OIIO::TypeDesc::FLOAT);
+    if (ch.transmission)
+      for (const char* c : kParamTransmissionChannels) add(c, OIIO::TypeDesc::FLOAT);
     for (int k = 0; k < ch.slots; ++k)
       for (const LobeChannel& c : ch.lobe) add("lobe" + std::to_string(k) + "." + c.suffix, c.format);
     if (ch.radial)
@@ -386,6 +393,7 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
   std::vector<std::vector<ParamCoat>> coat_levels;
   std::vector<std::vector<SheenLayer>> sheen_levels;
   std::vector<std::vector<AnisotropyLayer>> anisotropy_levels;
+  std::vector<std::vector<float>> transmission_levels;
   std::vector<BrdfLevel> coarse, coarse_coat;
   for (int level = 0; level < levels; ++level) {
     const std::string at_level = "level " + std::to_string(level);
@@ -423,7 +431,8 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
       formats.push_back(f);
     };
     for (const char* c : kParamChannels) need(c);
-    // A layer's means (the specular layer's, the coat's, the sheen's, the anisotropy's): in every level
+    // A layer's means (the specular layer's, the coat's, the sheen's, the anisotropy's, the
+    // transmission's): in every level
     // or in none, as level 0 has them or not; its lobes' channels are per level (below).
     const auto means = [&](std::span<const char* const> channels, bool in_level0) {
       const bool here = index.count(channels[0]) > 0;
@@ -438,6 +447,7 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
     const bool coat = means(kParamCoatChannels, !coat_levels.empty());
     const bool sheen = means(kParamSheenChannels, !sheen_levels.empty());
     const bool anisotropy = means(kParamAnisotropyChannels, !anisotropy_levels.empty());
+    const bool transmission = means(kParamTransmissionChannels, !transmission_levels.empty());
     const int coat_slots = level > 0 && coat ? s.get_int_attribute(kCoatSlots, -1) : 0;
     if (coat_slots < 0 || coat_slots > kMaxLobes)
       throw input_error(where(path), at_level + " has " + std::to_string(coat_slots) + " coat lobe slots (" + kCoatSlots + ")");
@@ -491,6 +501,7 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
     std::vector<ParamCoat> coat_means(coat ? texels : 0);
     std::vector<SheenLayer> sheen_means(sheen ? texels : 0);
     std::vector<AnisotropyLayer> anisotropy_means(anisotropy ? texels : 0);
+    std::vector<float> transmission_means(transmission ? texels : 0);
     for (std::size_t t = 0; t < texels; ++t) {
       const std::size_t row = t / std::size_t(e.width);
       if (t % (std::size_t(rows) * e.width) == 0) {  // the next band
@@ -514,7 +525,8 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
       if (param_specular) specular[t] = {value(8), {value(9), value(10), value(11)}}, next = 12;
       if (coat) coat_means[t] = {value(next), value(next + 1), {value(next + 2), value(next + 3), value(next + 4)}}, next += 5;
       if (sheen) sheen_means[t] = {{value(next), value(next + 1), value(next + 2)}, value(next + 3)}, next += 4;
-      if (anisotropy) anisotropy_means[t] = {value(next), {value(next + 1), value(next + 2)}};
+      if (anisotropy) anisotropy_means[t] = {value(next), {value(next + 1), value(next + 2)}}, next += 3;
+      if (transmission) transmission_means[t] = value(next);
       if (level == 0) continue;
       // Texel t's lobes into `into`, from `n` slots of `channels` from `first` on.
       const auto read_lobes = [&](BrdfLevel& into, std::size_t first, int n, const std::vector<LobeChannel>& channels,
@@ -557,6 +569,7 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
     if (coat) coat_levels.push_back(std::move(coat_means));
     if (sheen) sheen_levels.push_back(std::move(sheen_means));
     if (anisotropy) anisotropy_levels.push_back(std::move(anisotropy_means));
+    if (transmission) transmission_levels.push_back(std::move(transmission_means));
   }
   if (in->seek_subimage(levels, 0))
     throw input_error(where(path), "has more subimages than the " + std::to_string(levels) + " levels of its level 0");
@@ -564,7 +577,8 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
   // The BRDF pyramid reads the sheen means the parameter pyramid stores (brdf_pyramid.h).
   std::vector<std::vector<SheenLayer>> brdf_sheen = sheen_levels;
   mip.param = ParamPyramid::from_levels(level0, std::move(param_levels), std::move(specular_levels), ior,
-                                        std::move(coat_levels), std::move(sheen_levels), std::move(anisotropy_levels));
+                                        std::move(coat_levels), std::move(sheen_levels), std::move(anisotropy_levels),
+                                        std::move(transmission_levels));
   // Level 0's texels are the parameter pyramid's (the same floats).
   mip.level0 = mip.param.level0_texels();
   mip.brdf = BrdfPyramid::from_levels(mip.level0, max_lobes, std::move(coarse),

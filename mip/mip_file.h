@@ -27,6 +27,9 @@
 // texel's own; above, param_pyramid.h anisotropy_from_below):
 //   param.anisotropy            mean anisotropy strength                                 float
 //   param.anisotropy.X/Y        its unit direction in the tangent frame                  float
+// and, in every level of a material that transmits (KHR_materials_transmission, thin-walled), 4 bytes
+// (level 0: the texel's own T; above, the mean of the covered texels'):
+//   param.transmission          mean transmission T                                      float
 // and, for L ≥ 1, for each lobe slot k = 0 .. S_L − 1 (lobe.h for the meaning), 26 bytes:
 //   lobeK.weight                fraction of the texel's area, times the lobe's specular-flux
 //                               factor (0: empty slot; slots are packed from 0)          half
@@ -105,7 +108,7 @@
 
 namespace svbrdf {
 
-inline constexpr int kMipFileVersion = 14;
+inline constexpr int kMipFileVersion = 15;
 
 // Throws svbrdf::Error naming the file when it cannot be written. A non-empty `cache_key` is stored as
 // svbrdf:cache_key.

@@ -37,6 +37,8 @@ inline constexpr const char* kParamSheenChannels[4] = {"param.sheen.R", "param.s
 // The anisotropy's means, in every level of an anisotropic material (mip_file.h).
 inline constexpr const char* kParamAnisotropyChannels[3] = {"param.anisotropy", "param.anisotropy.X",
                                                             "param.anisotropy.Y"};
+// The transmission's mean, in every level of a material that transmits (mip_file.h).
+inline constexpr const char* kParamTransmissionChannels[1] = {"param.transmission"};
 // The attribute (int, on every subimage ≥ 1 of a coated material's file) of a level's coat lobe slots.
 inline constexpr const char* kCoatSlots = "svbrdf:coat_slots";
 

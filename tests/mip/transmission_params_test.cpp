@@ -1,8 +1,8 @@
 // The parameter pyramid's transmission (mip/param_pyramid.h: the mean T of the covered level-0 texels,
 // KHR_materials_transmission thin-walled): level 0 given back as the texels' own floats; the coarse
 // means against closed forms; the stored levels' shapes checked; the filters' mean over a footprint;
-// level-0 lookups that are the texel's own lobe (exact_reference.h level0_lobe); and the records' word,
-// read back bit for bit.
+// level-0 lookups that are the texel's own lobe (exact_reference.h level0_lobe); and the MIP file's
+// channel param.transmission and the records' word, each read back bit for bit.
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -16,10 +16,11 @@
 #include "base/error.h"
 #include "mip/exact_reference.h"
 #include "mip/mip.h"
-#include "mip/mip_data.h"
+#include "mip/mip_file.h"
 #include "mip/mip_lookup.h"
 #include "mip/mip_records.h"
 #include "mip/param_pyramid.h"
+#include "tests/common/temp_dir.h"
 #include "tests/mip/memory_records.h"
 
 namespace svbrdf {
@@ -217,6 +218,35 @@ TEST(TransmissionParams, ALevel0LookupIsTheTexelsLevel0Lobe) {
     }
   EXPECT_GT(transmits, 0);
   EXPECT_GT(brdf, 0);
+}
+
+// The MIP file carries the parameter pyramid's transmission in param.transmission, every level, read
+// back bit for bit with the parameters, and level 0's texels transmit as before the trip. (The lobes'
+// own transmission is the BRDF pyramid's, not compared here.) The parameter filters count its float
+// in a texel's bytes.
+TEST(TransmissionParams, TheMipFileCarriesTheMeans) {
+  testing::TempDir dir;
+  for (const int size : {8, 6}) {
+    SCOPED_TRACE("size " + std::to_string(size));
+    const MaterialTexels m = transmitting(size, size, true);
+    const MipData a = build_mip(m);
+    // A parameter texel's bytes: the parameters' 8 floats, the anisotropy's 3 and the transmission's 1.
+    EXPECT_EQ(bytes_per_texel(a, TextureFilter::param, 1), (8 + 3 + 1) * 4);
+    const auto path = dir / ("transmission" + std::to_string(size) + ".exr");
+    write_mip_file(path, a);
+    const MipData b = read_mip_file(path);
+    ASSERT_TRUE(b.param.has_transmission());
+    ASSERT_EQ(b.levels(), a.levels());
+    for (int l = 0; l < a.levels(); ++l) {
+      const auto ta = a.param.transmission_level(l), tb = b.param.transmission_level(l);
+      ASSERT_EQ(ta.size(), tb.size());
+      EXPECT_EQ(std::memcmp(ta.data(), tb.data(), ta.size_bytes()), 0) << "level " << l;
+      const auto pa = a.param.level(l), pb = b.param.level(l);
+      EXPECT_EQ(std::memcmp(pa.data(), pb.data(), pa.size_bytes()), 0) << "level " << l;
+    }
+    ASSERT_TRUE(b.level0.has_transmission());
+    for (std::size_t k = 0; k < m.size(); ++k) EXPECT_TRUE(same_bits(level0_lobe(m, k), level0_lobe(b.level0, k)));
+  }
 }
 
 // The records hold the transmission's mean in one word after the parameters' 8 and the anisotropy's 3,
