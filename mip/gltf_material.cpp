@@ -46,7 +46,9 @@ MaterialTexels load_gltf_material_texels(const std::filesystem::path& path, cons
 std::string mip_unsupported(const MaterialDesc& m) {
   if (m.unlit) return "KHR_materials_unlit (no BRDF to filter)";
   // A factor of 0 is no layer whatever its texture (the factor multiplies it, render/surface.cpp).
-  if (m.transmission > 0.0f) return "KHR_materials_transmission";
+  // A thin wall's transmission is a lobe's (mip/lobe.h "Transmission"); a volume's is a rough refraction,
+  // which neither the lobes nor the renderer's level 0 model (it refracts as a smooth interface).
+  if (m.transmission > 0.0f && m.has_volume()) return "KHR_materials_transmission into a KHR_materials_volume";
   if (m.diffuse_roughness > 0.0f) return "KHR_materials_diffuse_roughness (the MIP lobes are Lambertian)";
   if (m.diffuse_transmission > 0.0f) return "KHR_materials_diffuse_transmission (the MIP lobes reflect only)";
   if (m.iridescence > 0.0f) return "KHR_materials_iridescence (the MIP lobes' Fresnel is Schlick's)";

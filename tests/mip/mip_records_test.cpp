@@ -22,8 +22,8 @@ namespace {
 
 using testing_records::Records;
 
-// A random-family material with a textured sheen, given a specular layer and a patchy clear coat
-// (formulas of the texel index), so every part of a record is exercised.
+// A random-family material with a textured sheen, given a specular layer, a patchy clear coat and a
+// transmission (formulas of the texel index), so every part of a record is exercised.
 MaterialTexels layered(int size) {
   std::uint64_t seed = 1;
   while (!draw_random_material(seed).sheen_textured || !draw_random_material(seed).anisotropy_textured) ++seed;
@@ -43,6 +43,11 @@ MaterialTexels layered(int size) {
     const float a = 0.2f * std::sin(float(k));
     m.clearcoat_normal[k] = glm::normalize(glm::vec3(a, -0.5f * a, 1.0f));
   }
+  // A thin-walled transmission in stripes (its τ90 ≠ 0 under the specular layer above), on a base at most
+  // half metal (a metal transmits nothing).
+  m.transmission_factor = 1.0f;
+  m.transmission.resize(m.size());
+  for (std::size_t k = 0; k < m.size(); ++k) m.transmission[k] = (k / 4) % 2 ? 0.8f : 0.0f, m.metallic[k] *= 0.5f;
   return m;
 }
 
@@ -102,6 +107,7 @@ TEST(MipRecords, LookupsEqualTheTextureInMemoryBitForBit) {
       memory.prepare(TextureFilter::param);
       const MipRecordLayout layout = memory.record_layout();
       ASSERT_TRUE(layout.brdf && layout.coat && layout.sheen && layout.specular);
+      ASSERT_TRUE(layout.level[1].lobe_transmission && layout.level[1].lobe_transmission90);
       ASSERT_EQ(layout.tint, tint);
       const MipTexture records(layout, std::make_unique<Records>(memory, layout), WrapMode::repeat,
                                WrapMode::mirrored_repeat);

@@ -312,9 +312,11 @@ TEST(MipFilters, TextureGridRules) {
     warned(std::move(s), "wrap mode");
   }
   {
+    // A thin wall's transmission is filtered (mip_transmission_test.cpp); into a volume, refused.
     Scene s = periodic_quad(8);
     s.materials[0].transmission = 0.5f;
-    warned(std::move(s), "KHR_materials_transmission");
+    s.materials[0].thickness = 0.1f;
+    warned(std::move(s), "KHR_materials_transmission into a KHR_materials_volume");
   }
   {
     // A factor of 0 is no transmission (nor diffuse roughness), whatever its texture: filtered, no warning.

@@ -137,16 +137,21 @@ inline Scene checker_quad(int size = 256) {
 const glm::vec3 kWi = tilted(35, 20);  // toward the light
 constexpr float kE0 = 2.0f;            // its irradiance
 
-// The quad under the sun from kWi, seen by an orthographic camera from `view` (a unit direction
+// A sun of irradiance kE0 toward `wi` (from the quad).
+inline LightDesc sun(const glm::vec3& wi) {
+  LightDesc l;
+  l.type = LightDesc::Type::directional;
+  l.intensity = kE0;
+  l.direction = -wi;
+  return l;
+}
+
+// The quad under the sun from kWi (a scene with lights of its own: under those instead), seen by an orthographic camera from `view` (a unit direction
 // toward the camera) with half height 1 at 32×32 pixels: head-on, a pixel spans 1/16 of the square,
 // 256·4/8/16 = 8 texels of a 256² texture: level 3. `with_mips` false renders it with no MIP data.
 inline Film render_quad(Scene s, TextureFilter filter, int spp, const glm::vec3& view = {0, 0, 1}, float footprint_scale = 1.0f,
                  int threads = 0, bool aovs = false, bool with_mips = true) {
-  LightDesc sun;
-  sun.type = LightDesc::Type::directional;
-  sun.intensity = kE0;
-  sun.direction = -kWi;
-  s.lights.push_back(sun);
+  if (s.lights.empty()) s.lights.push_back(sun(kWi));
   s.cameras.push_back(ortho_camera(5.0f * view, {0, 0, 0}, 1.0f, std::abs(view.y) > 0.9f ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0)));
   SceneSetup setup;
   setup.width = setup.height = 32;
