@@ -54,7 +54,7 @@ Scene anisotropy_quad() {
 // f_eff of texel (i, j) under its anisotropy, about the geometric normal: SurfaceBsdf.
 glm::dvec3 anisotropic_f_eff(int i, int j, const glm::vec3& wi, const glm::vec3& wo) {
   if (wi.z <= 0 || wo.z <= 0) return glm::dvec3(0);
-  const TexelSpec& t = j % 2 ? (i % 2 ? kD : kC) : (i % 2 ? kB : kA);
+  const TexelSpec& t = pattern_texel(i, j);
   ShadingParams p;
   p.base_color = linear(t.srgb), p.metallic = t.metallic, p.roughness = t.roughness;
   p.anisotropy = strength(i, j), p.anisotropy_direction = direction(i, j);
@@ -63,10 +63,7 @@ glm::dvec3 anisotropic_f_eff(int i, int j, const glm::vec3& wi, const glm::vec3&
 
 // The exact coarse texel of level 3 (every block is the same): the mean of its 64 texels' f_eff.
 glm::dvec3 mean_f_eff(const glm::vec3& wi, const glm::vec3& wo) {
-  glm::dvec3 mean(0);
-  for (int j = 0; j < 8; ++j)
-    for (int i = 0; i < 8; ++i) mean += anisotropic_f_eff(i, j, wi, wo) / 64.0;
-  return mean;
+  return block_mean([&](int i, int j) { return anisotropic_f_eff(i, j, wi, wo); });
 }
 
 // Before the stretched lobes the renderer warned that such a material is "shaded with level0 lookups".

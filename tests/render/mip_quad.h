@@ -120,9 +120,20 @@ Scene textured_quad(int size, At at) {
   return s;
 }
 
+// Texel (i, j) of the 2×2 pattern A B / C D.
+inline const TexelSpec& pattern_texel(int i, int j) { return j % 2 ? (i % 2 ? kD : kC) : (i % 2 ? kB : kA); }
+
 // The 2×2 pattern A B / C D everywhere: every texel of level ≥ 1 covers the same texels.
-inline Scene periodic_quad(int size = 256) {
-  return textured_quad(size, [](int i, int j) { return (j % 2 ? (i % 2 ? kD : kC) : (i % 2 ? kB : kA)); });
+inline Scene periodic_quad(int size = 256) { return textured_quad(size, pattern_texel); }
+
+// The mean of f(i, j) over the 8 × 8 texels of a level-3 texel of a quad whose texture repeats every 8
+// texels (every coarse texel then covers the same ones).
+template <class F>
+glm::dvec3 block_mean(const F& f) {
+  glm::dvec3 mean(0);
+  for (int j = 0; j < 8; ++j)
+    for (int i = 0; i < 8; ++i) mean += f(i, j) / 64.0;
+  return mean;
 }
 
 // Blocks of 8×8 texels (the texels of level 3) in a checkerboard: the pattern A B / C D on even
@@ -130,7 +141,7 @@ inline Scene periodic_quad(int size = 256) {
 inline Scene checker_quad(int size = 256) {
   return textured_quad(size, [](int i, int j) {
     if ((i / 8 + j / 8) % 2) return kE;
-    return (j % 2 ? (i % 2 ? kD : kC) : (i % 2 ? kB : kA));
+    return pattern_texel(i, j);
   });
 }
 

@@ -32,10 +32,9 @@ float transmission(int i, int j) {
 // The roughness of texel (i, j): A B C D's scaled by 0.5, 0.8, 1.25 or 1.6 in another pattern than the
 // transmission's, so that the lobes a coarse texel merges differ in shape (a merge of equal shapes would
 // be exact whatever its τ).
-const TexelSpec& texel(int i, int j) { return j % 2 ? (i % 2 ? kD : kC) : (i % 2 ? kB : kA); }
 float roughness(int i, int j) {
   constexpr float kScale[4] = {0.5f, 0.8f, 1.25f, 1.6f};
-  return texel(i, j).roughness * kScale[(i + j / 2) % 4];
+  return pattern_texel(i, j).roughness * kScale[(i + j / 2) % 4];
 }
 
 // The quad with flat normals (the tangent frame is the shading frame), the roughness above and the
@@ -59,7 +58,7 @@ Scene transmitting_quad() {
 
 // f_eff of texel (i, j) about the geometric normal (flat): SurfaceBsdf's, for wi on either side.
 glm::dvec3 texel_f_eff(int i, int j, const glm::vec3& wi, const glm::vec3& wo) {
-  const TexelSpec& t = texel(i, j);
+  const TexelSpec& t = pattern_texel(i, j);
   ShadingParams p;
   p.base_color = linear(t.srgb), p.metallic = t.metallic, p.roughness = roughness(i, j);
   p.transmission = transmission(i, j);
@@ -68,10 +67,7 @@ glm::dvec3 texel_f_eff(int i, int j, const glm::vec3& wi, const glm::vec3& wo) {
 
 // The exact coarse texel of level 3 (every block is the same): the mean of its 64 texels' f_eff.
 glm::dvec3 mean_f_eff(const glm::vec3& wi, const glm::vec3& wo) {
-  glm::dvec3 mean(0);
-  for (int j = 0; j < 8; ++j)
-    for (int i = 0; i < 8; ++i) mean += texel_f_eff(i, j, wi, wo) / 64.0;
-  return mean;
+  return block_mean([&](int i, int j) { return texel_f_eff(i, j, wi, wo); });
 }
 
 const glm::vec3 kBehind(kWi.x, kWi.y, -kWi.z);  // toward a sun behind the quad
