@@ -258,7 +258,7 @@ UnionTerms union_terms(std::span<const Member> u) {
 namespace {
 // rough_distance's transmission term. Two lobes of transmitted amplitudes a and b (per channel, sum
 // S = a + b) and shapes T_a, T_b merge into one shape T_m near f·T_a + (1 − f)·T_b, f = Σa/ΣS the
-// share of the amplitude (the merge's α²_T is the amplitude-weighted harmonic mean: lobe.h). Channel c
+// share of the amplitude (the merge keeps the amplitude-weighted tail and peak: lobe.h). Channel c
 // keeps a_c·T_a + b_c·T_b − S_c·T_m = S_c·(f_c − f)·(T_a − T_b) of its colour's own mixture (f_c =
 // a_c/S_c), and one shape for the mixture loses Ward's S_c²·f·(1 − f)·|T_a − T_b|² more; |T_a − T_b|²
 // is rough_distance's shape term in the log-roughness, ln(α²_T,a/α²_T,b)²/4 over 2·(α²_T,a + α²_T,b +
