@@ -80,7 +80,9 @@ TEST(TransmissionStorage, TheMipFileCarriesTheLobesTransmissionBitForBit) {
       for (const Lobe& lobe : la) {
         transmitting_lobes += transmits(lobe);
         with_t90 += lobe.transmission90 != glm::vec3(0.0f);
-        if (transmits(lobe)) EXPECT_GT(lobe.transmission_alpha2, 0.0f);
+        if (transmits(lobe)) {
+          EXPECT_GT(lobe.transmission_alpha2, 0.0f);
+        }
       }
       // The channels: τ and α_T where some lobe transmits, τ90 where some lobe's is not 0; every byte
       // beside the parameters' is one bytes_per_texel counts.
@@ -104,8 +106,11 @@ TEST(TransmissionStorage, TheMipFileCarriesTheLobesTransmissionBitForBit) {
     }
     EXPECT_GT(transmitting_lobes, 0);
     // The plain layer's τ90 is 0 (lobe.h lobe_from_texel), and a file of one stores none.
-    if (layered) EXPECT_GT(with_t90, 0);
-    else EXPECT_EQ(with_t90, 0);
+    if (layered) {
+      EXPECT_GT(with_t90, 0);
+    } else {
+      EXPECT_EQ(with_t90, 0);
+    }
   }
 }
 
