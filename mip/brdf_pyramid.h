@@ -56,43 +56,30 @@ struct BrdfLevel {
     }
     return out;
   }
+  // Whether some lobe of the level satisfies `has`.
+  template <class Has>
+  bool any_lobe(const Has& has) const {
+    for (std::size_t t = 0; t < counts.size(); ++t)
+      for (const Lobe& l : texel_lobes(t))
+        if (has(l)) return true;
+    return false;
+  }
   // Whether some lobe has the specular layer's factors (ρ90 ≠ 0 or F90 ≠ 1: lobe.h), which the MIP file
   // then stores in kBytesPerSpecularLayer more bytes a slot.
   bool specular_layer() const {
-    for (std::size_t t = 0; t < counts.size(); ++t)
-      for (const Lobe& l : texel_lobes(t))
-        if (l.f90 != 1.0f || l.diffuse90 != glm::vec3(0.0f)) return true;
-    return false;
+    return any_lobe([](const Lobe& l) { return l.f90 != 1.0f || l.diffuse90 != glm::vec3(0.0f); });
   }
   // Whether some lobe has f0_tint ≠ 0 (a tintable pyramid of a material with metal), which the MIP file
   // then stores in kBytesPerTintLayer more bytes a slot.
-  bool tint_layer() const {
-    for (std::size_t t = 0; t < counts.size(); ++t)
-      for (const Lobe& l : texel_lobes(t))
-        if (l.f0_tint != glm::vec3(0.0f)) return true;
-    return false;
-  }
+  bool tint_layer() const { return any_lobe([](const Lobe& l) { return l.f0_tint != glm::vec3(0.0f); }); }
   // Whether some lobe is stretched (lobe.h, "Stretched shapes"), which the MIP file then stores in
   // kBytesPerStretch more bytes a slot.
-  bool stretch_layer() const {
-    for (std::size_t t = 0; t < counts.size(); ++t)
-      for (const Lobe& l : texel_lobes(t))
-        if (l.stretch != 1.0f) return true;
-    return false;
-  }
+  bool stretch_layer() const { return any_lobe([](const Lobe& l) { return l.stretch != 1.0f; }); }
   // Whether some lobe transmits (lobe.h "Transmission"), and whether some lobe's τ90 is not 0, which the
   // MIP file then stores in kBytesPerTransmission and kBytesPerTransmission90 more bytes a slot.
-  bool transmission_layer() const {
-    for (std::size_t t = 0; t < counts.size(); ++t)
-      for (const Lobe& l : texel_lobes(t))
-        if (transmits(l)) return true;
-    return false;
-  }
+  bool transmission_layer() const { return any_lobe([](const Lobe& l) { return transmits(l); }); }
   bool transmission90_layer() const {
-    for (std::size_t t = 0; t < counts.size(); ++t)
-      for (const Lobe& l : texel_lobes(t))
-        if (l.transmission90 != glm::vec3(0.0f)) return true;
-    return false;
+    return any_lobe([](const Lobe& l) { return l.transmission90 != glm::vec3(0.0f); });
   }
   // Makes room for `texels` texels, all empty.
   void reset(Extent e, std::size_t texels) {
