@@ -104,7 +104,11 @@ double sheen_lambda(double cos_theta, double alpha) { return lambda_of(lambda_fi
 
 double sheen_visibility(double cos_i, double cos_o, double alpha) {
   const LambdaFit fit = lambda_fit(alpha);
-  return 1.0 / ((1.0 + lambda_of(fit, cos_i) + lambda_of(fit, cos_o)) * 4.0 * cos_i * cos_o);
+  return sheen_visibility_of(lambda_of(fit, cos_i), lambda_of(fit, cos_o), cos_i, cos_o);
+}
+
+double sheen_visibility_of(double lambda_i, double lambda_o, double cos_i, double cos_o) {
+  return 1.0 / ((1.0 + lambda_i + lambda_o) * 4.0 * cos_i * cos_o);
 }
 
 Rgb sheen_brdf(const glm::vec3& wi, const glm::vec3& wo, const Rgb& sheen_color, float sheen_roughness) {

@@ -39,6 +39,9 @@ double sheen_lambda(double cos_theta, double alpha);
 // The sheen visibility V = G2 / (4 cos θi cos θo) with the height-correlated Smith
 // G2 = 1 / (1 + Λ(ωi) + Λ(ωo)) (the extension's "Charlie" sheen visibility); cosines > 0.
 double sheen_visibility(double cos_i, double cos_o, double alpha);
+// The same V from the two directions' Λ = sheen_lambda(cos, α), for callers that evaluate many pairs
+// over a few directions and take each direction's Λ once (the same expression: equal bit for bit).
+double sheen_visibility_of(double lambda_i, double lambda_o, double cos_i, double cos_o);
 
 // f_sheen(wi, wo) = sheenColor · D(h) · V (1/sr; the sheen Fresnel is 1, as the extension allows).
 // 0 when either direction is at or below the horizon. Reciprocal.

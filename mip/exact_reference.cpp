@@ -43,14 +43,7 @@ void accumulate_level0_double(const MaterialTexels& m, std::size_t k, double sca
   static thread_local BrdfTable f, f_coated;
   f.assign(DirectionGrid::kPairs, glm::dvec3(0));
   accumulate_lobe_double(base, 1.0, f);
-  const DirectionGrid& g = DirectionGrid::get();
-  const SheenLayer sheen = m.sheen_layer(k);
-  const glm::dvec3 n = glm::normalize(glm::dvec3(base.normal));
-  for (int q = 0; q < DirectionGrid::kPairs; ++q) {
-    const SheenTerms s = sheen_terms(sheen, n, g.pair_d(q));
-    glm::dvec3& v = f[static_cast<std::size_t>(q)];
-    v = s.scaling * v + s.f;
-  }
+  apply_sheen(m.sheen_layer(k), glm::normalize(glm::dvec3(base.normal)), f);
   if (!coat.present()) {
     for (std::size_t q = 0; q < f.size(); ++q) table[q] += scale * f[q];
     return;

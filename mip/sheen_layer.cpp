@@ -1,23 +1,59 @@
 #include "mip/sheen_layer.h"
 
 #include <algorithm>
+#include <array>
 
 #include "appearance/sheen.h"
+#include "mip/direction_grid.h"
 
 namespace svbrdf {
 
-SheenTerms sheen_terms(const SheenLayer& sheen, const glm::dvec3& n, const PairTerms<double>& p) {
+namespace {
+
+// What sheen_terms needs of one direction w: its cosine to n, and where it faces n its Λ and E.
+struct SheenSide {
+  double c = 0, lambda = 0;
+  float albedo = 0;
+};
+
+SheenSide sheen_side(const SheenLayer& sheen, double alpha, const glm::dvec3& n, const glm::dvec3& w) {
+  SheenSide s;
+  s.c = glm::dot(n, w);
+  if (!(s.c > 0)) return s;
+  s.lambda = sheen_lambda(s.c, alpha);
+  s.albedo = sheen_albedo(static_cast<float>(s.c), sheen.roughness);
+  return s;
+}
+
+SheenTerms terms_of(const SheenLayer& sheen, double alpha, const glm::dvec3& n, const PairTerms<double>& p,
+                    const SheenSide& i, const SheenSide& o) {
   SheenTerms t;
-  const double ci = glm::dot(n, p.wi), co = glm::dot(n, p.wo);
-  if (!p.valid || !(ci > 0) || !(co > 0)) return t;
-  const double alpha = sheen_alpha(sheen.roughness);
-  const double lobe = sheen_distribution(glm::dot(n, p.h), alpha) * sheen_visibility(ci, co, alpha);
-  t.f = glm::dvec3(sheen.color) * (lobe * ci * p.inv_wi_z);
+  if (!p.valid || !(i.c > 0) || !(o.c > 0)) return t;
+  const double lobe = sheen_distribution(glm::dot(n, p.h), alpha) * sheen_visibility_of(i.lambda, o.lambda, i.c, o.c);
+  t.f = glm::dvec3(sheen.color) * (lobe * i.c * p.inv_wi_z);
   const double c = std::max(sheen.color.r, std::max(sheen.color.g, sheen.color.b));
-  const double e = std::max(sheen_albedo(static_cast<float>(co), sheen.roughness),
-                            sheen_albedo(static_cast<float>(ci), sheen.roughness));
-  t.scaling = std::clamp(1.0 - c * e, 0.0, 1.0);
+  t.scaling = std::clamp(1.0 - c * std::max(o.albedo, i.albedo), 0.0, 1.0);
   return t;
+}
+
+}  // namespace
+
+SheenTerms sheen_terms(const SheenLayer& sheen, const glm::dvec3& n, const PairTerms<double>& p) {
+  const double alpha = sheen_alpha(sheen.roughness);
+  return terms_of(sheen, alpha, n, p, sheen_side(sheen, alpha, n, p.wi), sheen_side(sheen, alpha, n, p.wo));
+}
+
+void apply_sheen(const SheenLayer& sheen, const glm::dvec3& n, std::span<glm::dvec3> f) {
+  const DirectionGrid& g = DirectionGrid::get();
+  const double alpha = sheen_alpha(sheen.roughness);
+  std::array<SheenSide, DirectionGrid::kDirections> side;
+  for (int d = 0; d < DirectionGrid::kDirections; ++d) side[std::size_t(d)] = sheen_side(sheen, alpha, n, g.direction(d));
+  for (int q = 0; q < DirectionGrid::kPairs; ++q) {
+    const SheenTerms s = terms_of(sheen, alpha, n, g.pair_d(q), side[std::size_t(DirectionGrid::wi_index(q))],
+                                  side[std::size_t(DirectionGrid::wo_index(q))]);
+    glm::dvec3& v = f[static_cast<std::size_t>(q)];
+    v = s.scaling * v + s.f;
+  }
 }
 
 std::vector<SheenLayer> sheen_level0(const MaterialTexels& m) {

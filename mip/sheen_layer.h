@@ -35,6 +35,7 @@
 // roughness, and the base lobes' normals standing for their texels'. At K base lobes the MIP file stores
 // 2·K bytes (σ_k as a half) beside the parameter pyramid's 16 bytes of sheen means (mip_file.h).
 #include <algorithm>
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -54,6 +55,12 @@ struct SheenTerms {
 // The sheen terms of a texel with sheen `sheen` about its unit shading normal n, in double precision
 // (E, a table of floats, at the cosines rounded to float): the exact reference's.
 SheenTerms sheen_terms(const SheenLayer& sheen, const glm::dvec3& n, const PairTerms<double>& p);
+
+// f ← s·f + f_sheen (sheen_terms) at every pair of the direction grid, f the table of the material
+// below the sheen (direction_grid.h). Equal to sheen_terms pair by pair, bit for bit; each direction's
+// cosine, Λ and E are taken once rather than once a pair (the exact reference spends most of a sheen
+// texel's time on them otherwise).
+void apply_sheen(const SheenLayer& sheen, const glm::dvec3& n, std::span<glm::dvec3> f);
 
 // A texel's sheen share: max(C) of its colour, clamped to [0, 1] as the scaling is (Lobe::sheen).
 inline float sheen_share(const SheenLayer& s) { return std::clamp(std::max(s.color.r, std::max(s.color.g, s.color.b)), 0.0f, 1.0f); }
