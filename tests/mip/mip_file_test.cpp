@@ -293,19 +293,24 @@ TEST(MipFile, RefusesOtherVersionsForeignAndMissingFiles) {
 TEST(MipFile, TheFuzzCorpusSeedsAreFilesOfThisVersion) {
   const std::filesystem::path corpus = std::filesystem::path(SVBRDF_SOURCE_DIR) / "fuzz/corpus/mip_file";
   int files = 0;
-  bool layered = false;
+  bool layered = false, transmits = false;
   for (const auto& e : std::filesystem::directory_iterator(corpus)) {
     ++files;
     try {
       const MipData mip = read_mip_file(e.path());
-      layered = layered || (mip.level0.has_coat() && mip.level0.has_sheen() && !mip.level0.plain_specular() &&
-                            mip.level0.has_anisotropy());
+      const bool all = mip.level0.has_coat() && mip.level0.has_sheen() && !mip.level0.plain_specular() &&
+                       mip.level0.has_anisotropy();
+      layered = layered || all;
+      // The lobes' transmission channels (mip_file_channels.h) in a coarse level, beside every other layer's.
+      transmits = transmits || (all && mip.level0.has_transmission() && mip.brdf.levels() > 1 &&
+                                mip.brdf.level(1).transmission_layer());
     } catch (const Error& err) {
       ADD_FAILURE() << err.what();
     }
   }
   EXPECT_GE(files, 3);
   EXPECT_TRUE(layered) << "no seed carries the specular, coat, sheen and anisotropy layers";
+  EXPECT_TRUE(transmits) << "no seed carries a thin wall's transmission with the other layers";
 }
 
 // Sets the svbrdf:mip_version attribute of every part of a MIP file to `version`, in place: in each
