@@ -19,10 +19,10 @@ glm::dvec3 level0_eval(const MaterialTexels& m, std::size_t k, const PairTerms<d
 }
 
 glm::dvec3 level0_transmission_eval(const MaterialTexels& m, std::size_t k, const glm::dvec3& wi, const glm::dvec3& wo) {
-  if (!m.has_transmission()) return glm::dvec3(0);
+  if (!m.has_transmission() && !m.has_diffuse_transmission()) return glm::dvec3(0);
   const Lobe base = level0_lobe(m, k);
   const LobeShape<double> s = lobe_shape<double>(base);
-  glm::dvec3 f = lobe_transmission_eval<double>(base, s, wi, wo);
+  glm::dvec3 f = lobe_transmission_eval<double>(base, s, wi, wo) + lobe_diffuse_transmission_eval<double>(base, s, wi, wo);
   if (f == glm::dvec3(0)) return f;
   if (m.has_sheen()) f *= sheen_terms(m.sheen_layer(k), s.n, transmission_pair(s, wi, wo)).scaling;
   Lobe scratch;

@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "mip/coat_layer.h"
+#include "mip/diffuse_transmission.h"
 #include "mip/direction_grid.h"
 #include "mip/lobe.h"
 #include "mip/pyramid_shape.h"
@@ -16,11 +17,14 @@
 
 namespace svbrdf {
 
-// The level-0 lobe of texel k of a material (exactly f_eff of that texel, its anisotropy and its
-// thin-walled transmission included).
+// The level-0 lobe of texel k of a material (exactly f_eff of that texel, its anisotropy, its
+// thin-walled transmission and its diffuse transmission included).
 inline Lobe level0_lobe(const MaterialTexels& m, std::size_t k) {
+  const float transmission = m.has_transmission() ? m.transmission_at(k) : 0.0f;
   Lobe l = lobe_from_texel(m.base_color[k], m.metallic[k], m.roughness[k], m.normal[k], 1.0f, m.specular_layer(k),
-                           m.anisotropy_layer(k), m.has_transmission() ? m.transmission_at(k) : 0.0f);
+                           m.anisotropy_layer(k), transmission);
+  if (m.has_diffuse_transmission())
+    add_diffuse_transmission(l, m.metallic[k], m.specular_layer(k), transmission, m.diffuse_transmission_layer(k));
   if (m.has_coat()) l.coat = std::clamp(m.coat_layer(k).weight, 0.0f, 1.0f);
   if (m.has_sheen()) l.sheen = sheen_share(m.sheen_layer(k));
   return l;
@@ -37,8 +41,9 @@ inline CoatTexel level0_coat(const MaterialTexels& m, std::size_t k, Lobe& scrat
 // precision.
 glm::dvec3 level0_eval(const MaterialTexels& m, std::size_t k, const PairTerms<double>& p);
 // The same for wi below and wo above the geometric surface: the texel's thin-walled transmission (lobe.h,
-// "Transmission") under its sheen's albedo scaling at the mirrored pair and its coat's 1 − c·Fc(wo), as
-// the renderer's surface BSDF layers it (appearance/gltf_surface_bsdf.h); 0 without a transmission.
+// "Transmission") and its diffuse transmission (diffuse_transmission.h) under its sheen's albedo scaling
+// at the mirrored pair and its coat's 1 − c·Fc(wo), as the renderer's surface BSDF layers them
+// (appearance/gltf_surface_bsdf.h); 0 without either.
 glm::dvec3 level0_transmission_eval(const MaterialTexels& m, std::size_t k, const glm::dvec3& wi, const glm::dvec3& wo);
 // table += scale · the same over the direction grid's pairs.
 void accumulate_level0_double(const MaterialTexels& m, std::size_t k, double scale, std::span<glm::dvec3> table);

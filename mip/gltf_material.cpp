@@ -114,6 +114,15 @@ MaterialImages material_images(const MaterialDesc& d, const std::function<SlotIm
     in.transmission_name = at + ".extensions.KHR_materials_transmission.transmissionTexture";
     in.transmission_factor = d.transmission;
   }
+  if (d.diffuse_transmission > 0.0f) {
+    const std::string dt = at + ".extensions.KHR_materials_diffuse_transmission.";
+    in.diffuse_transmission = image(d.diffuse_transmission_texture, false);
+    in.diffuse_transmission_name = dt + "diffuseTransmissionTexture";
+    in.diffuse_transmission_factor = d.diffuse_transmission;
+    in.diffuse_transmission_color = image(d.diffuse_transmission_color_texture, true, &in.diffuse_transmission_color_is_linear);
+    in.diffuse_transmission_color_name = dt + "diffuseTransmissionColorTexture";
+    in.diffuse_transmission_color_factor = d.diffuse_transmission_color;
+  }
   return in;
 }
 

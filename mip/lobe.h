@@ -130,6 +130,10 @@ struct Lobe {
   float transmission_alpha2 = 0.0f;     // the transmission's GGX α² ("Transmission" above); 0 without one
   float transmission_alpha2_hi = 0.0f;  // > transmission_alpha2: its shape is the log-uniform band
                                         // [transmission_alpha2, transmission_alpha2_hi]
+  // A diffuse transmission (KHR_materials_diffuse_transmission): the factors of the lobe's Lambertian
+  // BTDF at w = 0 and w = 1, 0 without one (mip/diffuse_transmission.h).
+  glm::vec3 diffuse_transmission{0.0f};
+  glm::vec3 diffuse_transmission90{0.0f};
 };
 
 // The glTF layering of KHR_materials_specular (its "fresnel_mix", appearance/gltf.h gltf_layers):

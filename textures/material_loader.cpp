@@ -44,6 +44,8 @@ MaterialTexels decode_material_texels(const MaterialImages& in, const ColorConfi
   check_factor(in.anisotropy_strength, true, "anisotropy strength");
   if (!std::isfinite(in.anisotropy_rotation)) throw input_error("anisotropy rotation", "must be finite");
   check_factor(in.transmission_factor, true, "transmission factor");
+  check_factor(in.diffuse_transmission_factor, true, "diffuse transmission factor");
+  for (int c = 0; c < 3; ++c) check_factor(in.diffuse_transmission_color_factor[c], true, "diffuse transmission color factor");
   if (!std::isfinite(in.ior) || in.ior < 0.0f) throw input_error("ior", "must be finite and ≥ 0, got " + std::to_string(in.ior));
 
   // The common size: the first present image sets it, every other must match it.
@@ -84,6 +86,12 @@ MaterialTexels decode_material_texels(const MaterialImages& in, const ColorConfi
   // The transmission's likewise, only where its factor is not 0 (the extension's "no transmission").
   const bool transmission = in.transmission_factor > 0.0f;
   if (transmission) take(in.transmission, in.transmission_name);
+  // The diffuse transmission's likewise, only where its factor is not 0.
+  const bool diffuse_transmission = in.diffuse_transmission_factor > 0.0f;
+  if (diffuse_transmission) {
+    take(in.diffuse_transmission, in.diffuse_transmission_name);
+    take(in.diffuse_transmission_color, in.diffuse_transmission_color_name);
+  }
   for (const auto& [img, name] : {std::pair{in.normal, &in.normal_name}, std::pair{coat ? in.clearcoat_normal : nullptr, &in.clearcoat_normal_name}})
     if (img && img->channels < 3)
       throw input_error(*name, "a normal map needs RGB channels, this image has " + std::to_string(img->channels));
@@ -204,6 +212,31 @@ MaterialTexels decode_material_texels(const MaterialImages& in, const ColorConfi
         for (int i = 0; i < out.width; ++i)
           out.transmission[out.index(i, j)] =
               std::clamp(texel(*in.transmission, i, j).r * in.transmission_factor, 0.0f, 1.0f);
+      });
+    }
+  }
+
+  // The diffuse transmission: per texel only where its textures make it vary. The share is clamped as
+  // SurfaceBsdf clamps the renderer's diffuseTransmissionFactor · A; the colour, as the renderer's, is not.
+  if (diffuse_transmission) {
+    out.diffuse_transmission_factor = in.diffuse_transmission_factor;
+    out.diffuse_transmission_color_factor = in.diffuse_transmission_color_factor;
+    if (in.diffuse_transmission) {
+      out.diffuse_transmission.resize(out.size());
+      for_rows(out.height, out.width, [&](int j) {
+        for (int i = 0; i < out.width; ++i)
+          out.diffuse_transmission[out.index(i, j)] =
+              std::clamp(texel(*in.diffuse_transmission, i, j).a * in.diffuse_transmission_factor, 0.0f, 1.0f);
+      });
+    }
+    if (in.diffuse_transmission_color) {
+      Image linear = *in.diffuse_transmission_color;
+      if (!in.diffuse_transmission_color_is_linear) color.srgb_texture_to_linear(linear);
+      out.diffuse_transmission_color.resize(out.size());
+      for_rows(out.height, out.width, [&](int j) {
+        for (int i = 0; i < out.width; ++i)
+          out.diffuse_transmission_color[out.index(i, j)] =
+              glm::vec3(texel(linear, i, j)) * in.diffuse_transmission_color_factor;
       });
     }
   }

@@ -6,8 +6,9 @@
 //   roughness  = metallicRoughnessTexture.g · roughnessFactor      (glTF: roughness in G)
 //   normal     = normalize((2·normalTexture.rgb − 1)·(s, s, 1)), s = normalTexture.scale
 // the specular layer of KHR_materials_specular and _ior, the clear coat of KHR_materials_clearcoat, the
-// sheen of KHR_materials_sheen, the anisotropy of KHR_materials_anisotropy and the transmission of
-// KHR_materials_transmission (MaterialImages below).
+// sheen of KHR_materials_sheen, the anisotropy of KHR_materials_anisotropy, the transmission of
+// KHR_materials_transmission and the diffuse transmission of KHR_materials_diffuse_transmission
+// (MaterialImages below).
 // A missing texture contributes its factor alone (normal: (0, 0, 1)). All present textures must
 // have the same size, which is the result's size (1×1 when there is none). Texels are read at
 // their own (i, j): no filtering, no texture transform (the level-0 texel grid is the image's).
@@ -86,6 +87,17 @@ struct MaterialImages {
   const Image* transmission = nullptr;
   std::string transmission_name = "transmission texture";
   float transmission_factor = 0.0f;
+  // KHR_materials_diffuse_transmission (MaterialTexels::diffuse_transmission_layer), read only where the
+  // factor is not 0, as render/surface.cpp shades it and SurfaceBsdf clamps it:
+  //   share  = diffuseTransmissionTexture.a · diffuseTransmissionFactor, clamped to [0, 1]
+  //   colour = sRGB→linear(diffuseTransmissionColorTexture.rgb) · diffuseTransmissionColorFactor
+  const Image* diffuse_transmission = nullptr;
+  std::string diffuse_transmission_name = "diffuse transmission texture";
+  float diffuse_transmission_factor = 0.0f;
+  const Image* diffuse_transmission_color = nullptr;
+  std::string diffuse_transmission_color_name = "diffuse transmission color texture";
+  bool diffuse_transmission_color_is_linear = false;  // as base_color_is_linear
+  glm::vec3 diffuse_transmission_color_factor{1.0f};
 };
 
 // Throws svbrdf::Error naming the image for different sizes or a normal map with fewer than three

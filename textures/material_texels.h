@@ -50,6 +50,15 @@ struct AnisotropyLayer {
   glm::vec2 direction{1.0f, 0.0f};
 };
 
+// The diffuse transmission at a texel (KHR_materials_diffuse_transmission): the share of the diffuse
+// base transmitted (diffuseTransmissionFactor · diffuseTransmissionTexture.a, in [0, 1]) and the
+// transmitted light's linear colour (diffuseTransmissionColorFactor · diffuseTransmissionColorTexture.rgb).
+// Share 0 transmits nothing.
+struct DiffuseTransmissionLayer {
+  float share = 0.0f;
+  glm::vec3 color{1.0f};
+};
+
 struct MaterialTexels {
   int width = 0;
   int height = 0;
@@ -88,6 +97,12 @@ struct MaterialTexels {
   // where the factor holds. 0 transmits nothing.
   std::vector<float> transmission;
   float transmission_factor = 0.0f;
+  // The diffuse transmission, per texel where its textures make it vary (as the transmission):
+  // `diffuse_transmission` and `diffuse_transmission_color` are empty where the factors hold.
+  std::vector<float> diffuse_transmission;
+  std::vector<glm::vec3> diffuse_transmission_color;  // linear Rec.709
+  float diffuse_transmission_factor = 0.0f;
+  glm::vec3 diffuse_transmission_color_factor{1.0f};
 
   MaterialTexels() = default;
   MaterialTexels(int w, int h)
@@ -130,6 +145,12 @@ struct MaterialTexels {
   // Texel k's transmission, and whether the material transmits at all.
   float transmission_at(std::size_t k) const { return transmission.empty() ? transmission_factor : transmission[k]; }
   bool has_transmission() const { return transmission_factor > 0.0f; }
+  // Texel k's diffuse transmission, and whether the material transmits diffusely at all.
+  DiffuseTransmissionLayer diffuse_transmission_layer(std::size_t k) const {
+    return {diffuse_transmission.empty() ? diffuse_transmission_factor : diffuse_transmission[k],
+            diffuse_transmission_color.empty() ? diffuse_transmission_color_factor : diffuse_transmission_color[k]};
+  }
+  bool has_diffuse_transmission() const { return diffuse_transmission_factor > 0.0f; }
   bool plain_specular() const {
     return specular.empty() && specular_color.empty() &&
            SpecularLayer{specular_factor, specular_color_factor, ior}.plain();

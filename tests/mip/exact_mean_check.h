@@ -13,15 +13,17 @@
 namespace svbrdf::testing_directions {
 
 // 200 trials over levels 1–3 of `m` (a square material of at least 8×8 texels): a random texel and a
-// random pair of directions, the reference against the mean of f_eff(x, y, wi, wo) over the level-0
-// texels (x, y) it covers, to 1e-6 relative.
+// random pair of directions (wi below the surface where `wi_below`: the transmissions'), the reference
+// against the mean of f_eff(x, y, wi, wo) over the level-0 texels (x, y) it covers, to 1e-6 relative.
 template <class FEff>
-void expect_coarse_exact_is_the_mean(const MaterialTexels& m, Rng& rng, const FEff& f_eff) {
+void expect_coarse_exact_is_the_mean(const MaterialTexels& m, Rng& rng, const FEff& f_eff, bool wi_below = false) {
   const ExactReference exact(m);
   for (int trial = 0; trial < 200; ++trial) {
     const int level = 1 + trial % 3, n = m.width >> level;
     const int i = int(rng.next_u32() % unsigned(n)), j = int(rng.next_u32() % unsigned(n));
-    const glm::dvec3 wi = random_above(rng), wo = random_above(rng);
+    glm::dvec3 wi = random_above(rng);
+    const glm::dvec3 wo = random_above(rng);
+    if (wi_below) wi.z = -wi.z;
     glm::dvec3 sum(0);
     for (int y = j << level; y < (j + 1) << level; ++y)
       for (int x = i << level; x < (i + 1) << level; ++x) sum += f_eff(x, y, wi, wo);
