@@ -14,7 +14,9 @@
 // reflection's ρ and ρ90 take 1 − d. Its f_eff is f·max(0, −n·wi)·[n·wo > 0]/|wi.z|.
 //
 // τd and τd90 are linear in the texels' parameters as ρ is: a merge averages them by weight and divides
-// them by its flux rescaling as it does ρ (lobe_reduction.cpp), so weight·τd is the exact mean amplitude.
+// them by its flux rescaling as it does ρ (lobe_reduction.cpp), so weight·τd is the exact mean
+// amplitude, then scales them to keep the union's flux where amplitude and normal correlate
+// (diffuse_transmission_flux).
 // A lobe transmits, for wi below and wo above the geometric surface,
 //   weight·(τd + (τd90 − τd)·w(n̂·wo))/π · E[max(0, −n·wi)]·P(n·wo > 0) / |wi.z|,
 // its two sides those of the mirrored pair (wi mirrored through n̂'s plane, as the thin-walled
@@ -56,6 +58,16 @@ inline void add_diffuse_transmission(Lobe& l, float metallic, const SpecularLaye
   l.diffuse_transmission90 = (k * k90) * dt.color;
   l.diffuse *= 1.0f - d;
   l.diffuse90 *= 1.0f - d;
+}
+
+// The flux a lobe transmits diffusely, per channel, from a uniform far hemisphere at w = 0:
+// weight·τd·(1 + n̄_z)/2, n̄ its unnormalized mean normal. One texel's BTDF τd/π over the far hemisphere
+// gives τd/π·∫_{wi.z < 0} max(0, −n·wi) dwi = τd·(1 + n_z)/2 (the irradiance of a plane tilted by θ
+// from a uniform hemisphere, π·(1 + cos θ)/2), linear in its normal, so a lobe standing for texels of
+// one τd transmits their mean. Where τd and the normals correlate, the mean of the products is not the
+// product of the means: a merge scales its τd to keep its members' sum (lobe_reduction.cpp).
+inline glm::dvec3 diffuse_transmission_flux(const Lobe& l) {
+  return double(l.weight) * glm::dvec3(l.diffuse_transmission) * ((1.0 + double(l.normal.z)) / 2.0);
 }
 
 // weight · f_eff of a lobe's diffuse transmission (the top of this file) for wi below and wo above the

@@ -7,6 +7,7 @@
 #include "appearance/sampling.h"
 #include "appearance/sheen.h"
 #include "mip/coat_layer.h"
+#include "mip/diffuse_transmission.h"
 #include "mip/sheen_layer.h"
 
 namespace svbrdf {
@@ -40,6 +41,8 @@ bool LobeMixtureBsdf::fill_slot(int at, const Lobe& l) {
   k.diffuse_albedo = scale * (0.96f * mean3(l.diffuse) + 0.05f * mean3(l.diffuse90));
   k.spec_albedo = scale * (mean3(l.f0) + 0.1f * (l.f90 - mean3(l.f0)));
   k.trans_albedo = scale * (mean3(l.transmission) + 0.1f * (mean3(l.transmission90) - mean3(l.transmission)));
+  k.dtrans_albedo = scale * (mean3(l.diffuse_transmission) +
+                             0.1f * (mean3(l.diffuse_transmission90) - mean3(l.diffuse_transmission)));
   return true;
 }
 
@@ -52,7 +55,7 @@ void LobeMixtureBsdf::assign(std::span<const Lobe> lobes, std::span<const Lobe> 
   transmits_ = false;
   for (const Lobe& l : lobes)
     if (count_ < kMaxLobes && fill_slot(count_, l)) {
-      transmits_ = transmits_ || transmits(l);
+      transmits_ = transmits_ || transmits(l) || diffuse_transmits(l);
       ++count_;
     }
   for (const Lobe& l : coat)
@@ -71,15 +74,19 @@ void LobeMixtureBsdf::set_sheen(const SheenLayer& sheen) {
 }
 
 Rgb LobeMixtureBsdf::transmission_eval(const glm::vec3& wi, const glm::vec3& wo) const {
-  // Each base lobe's transmission (lobe.h) under its sheen's scaling at the mirrored pair, less what
-  // the coat reflects of it: coated_eval's layering with no coat term below the surface. The radial
-  // correction is the reflection's and takes no part.
+  // Each base lobe's transmission (lobe.h) and diffuse transmission (diffuse_transmission.h) under its
+  // sheen's scaling at the mirrored pair, less what the coat reflects of them: coated_eval's layering
+  // with no coat term below the surface. The radial correction is the reflection's and takes no part.
+  // Both have the mirrored pair's sides, so either's `sides` is the sheen's.
   Rgb f(0), coated(0);
   for (int k = 0; k < count_; ++k) {
     const Slot& sk = slot(k);
-    if (!transmits(sk.lobe)) continue;
-    float sides;
-    Rgb fk = lobe_transmission_eval(sk.lobe, sk.shape, wi, wo, 1.0f, &sides);
+    const bool specular = transmits(sk.lobe), diffuse = diffuse_transmits(sk.lobe);
+    if (!specular && !diffuse) continue;
+    float sides = 0;
+    Rgb fk(0);
+    if (specular) fk = lobe_transmission_eval(sk.lobe, sk.shape, wi, wo, 1.0f, &sides);
+    if (diffuse) fk += lobe_diffuse_transmission_eval(sk.lobe, sk.shape, wi, wo, &sides);
     if (sheen_on_ && sides > 0) {
       const PairTerms<float> m = transmission_pair(sk.shape, wi, wo);
       fk *= sheen_lobe_terms(sk.lobe, sk.shape, m, sides, sheen_roughness_).scaling;
@@ -142,12 +149,15 @@ LobeMixtureBsdf::Choice LobeMixtureBsdf::choice(const glm::vec3& wo) const {
     const bool spec_ok = glm::dot(slot(k).shape.n, wo) > 1e-4f;
     const float d = slot(k).diffuse_albedo, s = spec_ok ? slot(k).spec_albedo : 0.0f;
     const float t = spec_ok && k < count_ && transmits_ ? slot(k).trans_albedo : 0.0f;
-    const float all = d + s + t;
+    // The diffuse transmission's cosine sampler needs no view above the lobe's horizon (as the diffuse's).
+    const float dt = k < count_ && transmits_ ? slot(k).dtrans_albedo : 0.0f;
+    const float all = d + s + t + dt;
     c.lobe[i] = all;
     c.diffuse[i] = all > 0 ? d / all : 1.0f;
     c.transmit[i] = t > 0 ? t / all : 0.0f;  // no division per lobe and hit where nothing transmits
+    c.dtrans[i] = dt > 0 ? dt / all : 0.0f;
     total += all;
-    transmitted += t;
+    transmitted += t + dt;
   }
   if (sheen_on_ && wo.z > 0) {
     c.sheen = sheen_albedo_ * sheen_albedo(wo.z, sheen_roughness_);
@@ -167,10 +177,15 @@ float LobeMixtureBsdf::transmission_pdf(const Choice& c, const glm::vec3& wi, co
   // isometry: the density of wi is the reflection's at the mirrored wi'.
   for (int k = 0; k < count_; ++k) {
     const std::size_t i = static_cast<std::size_t>(k);
-    if (!(c.lobe[i] > 0) || !(c.transmit[i] > 0)) continue;
+    if (!(c.lobe[i] > 0) || !(c.transmit[i] > 0)) continue;  // (the diffuse transmission's below)
     const LobeShape<float> ts = transmission_shape(slot(k).lobe, slot(k).shape);
     const PairTerms<float> m = transmission_pair(ts, wi, wo);
     if (m.valid && glm::dot(wo, m.h) > 0) pdf += c.lobe[i] * c.transmit[i] * specular_pdf(ts, wo, m.h);
+  }
+  // Each lobe's diffuse transmission: its diffuse sampler mirrored through its plane, cosine about −n̂.
+  for (int k = 0; k < count_; ++k) {
+    const std::size_t i = static_cast<std::size_t>(k);
+    if (c.dtrans[i] > 0) pdf += c.lobe[i] * c.dtrans[i] * cosine_hemisphere_pdf(-glm::dot(slot(k).shape.n, wi));
   }
   return pdf;
 }
@@ -206,7 +221,8 @@ float LobeMixtureBsdf::pdf_with(const Choice& c, const glm::vec3& wi, const glm:
     if (!(c.lobe[i] > 0)) continue;
     const LobeShape<float>& sh = slot(k).shape;
     float p = c.diffuse[i] * cosine_hemisphere_pdf(glm::dot(sh.n, wi));
-    if (c.diffuse[i] + c.transmit[i] < 1.0f && h_ok) p += (1.0f - c.diffuse[i] - c.transmit[i]) * specular_pdf(sh, wo, h);
+    if (c.diffuse[i] + c.dtrans[i] + c.transmit[i] < 1.0f && h_ok)
+      p += (1.0f - c.diffuse[i] - c.dtrans[i] - c.transmit[i]) * specular_pdf(sh, wo, h);
     pdf += c.lobe[i] * p;
   }
   return pdf;
@@ -249,14 +265,20 @@ BsdfSample LobeMixtureBsdf::sample(const glm::vec3& wo, const SampleU& u) const 
     const Frame fr = sh.stretched ? Frame{sh.st, sh.sb, sh.n} : Frame::from_normal(sh.n);
     if (ux < c.diffuse[i]) {
       wi = fr.to_world(sample_cosine_hemisphere(uv));
+    } else if (ux < c.diffuse[i] + c.dtrans[i]) {
+      // The diffuse transmission: the diffuse part's direction mirrored through the lobe's plane.
+      glm::vec3 r = sample_cosine_hemisphere(uv);
+      r.z = -r.z;
+      wi = fr.to_world(r);
+      below = true;
     } else {
       const glm::vec3 wo_l = fr.to_local(wo);
       // The specular part's and the transmission's share of the lobe's choice after its diffuse part:
       // each draws the same visible normals, the transmission mirrors the reflected direction through
       // the lobe's plane (lobe.h). A roughness mixture or a transmission's band (lobe.h) is sampled half
       // from each end of its α² range.
-      const float spec = 1.0f - c.diffuse[i] - c.transmit[i];
-      float v = ux - c.diffuse[i];
+      const float spec = 1.0f - c.diffuse[i] - c.dtrans[i] - c.transmit[i];
+      float v = ux - c.diffuse[i] - c.dtrans[i];
       below = c.transmit[i] > 0 && v >= spec;
       if (below) v -= spec;
       const LobeShape<float> ts = below ? transmission_shape(slot(picked).lobe, sh) : sh;

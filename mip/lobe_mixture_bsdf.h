@@ -25,7 +25,10 @@
 // attenuation. The sampler chooses a lobe's transmission in proportion to its estimate mean(τ), draws
 // the lobe's visible normals and mirrors the reflected direction through the lobe's plane (an isometry:
 // the density is the reflection's at the mirrored direction); the defensive share goes below the
-// surface in proportion to the transmission's share of the estimates.
+// surface in proportion to the transmission's share of the estimates. A diffuse transmission
+// (KHR_materials_diffuse_transmission, diffuse_transmission.h) is evaluated beside it, under the same
+// layers, and sampled as the lobe's diffuse part mirrored through the lobe's plane (cosine-weighted
+// about −n̂), chosen in proportion to its estimate mean(τd).
 //
 // A texel with a sheen (KHR_materials_sheen, sheen_layer.h: set_sheen) scales each base lobe by its
 // albedo scaling and adds the sheen about the base lobes' normals, under the coat where there is one;
@@ -74,7 +77,8 @@ class LobeMixtureBsdf final : public Bsdf {
   // colour 0 or no lobe with a share: none. assign() clears it.
   void set_sheen(const SheenLayer& sheen);
   bool has_sheen() const { return sheen_on_; }
-  // Whether some base lobe transmits (lobe.h, "Transmission"): eval is then non-zero below the surface.
+  // Whether some base lobe transmits (lobe.h, "Transmission", or diffusely, diffuse_transmission.h): eval
+  // is then non-zero below the surface.
   bool has_transmission() const { return transmits_; }
 
   int size() const { return count_; }
@@ -101,6 +105,7 @@ class LobeMixtureBsdf final : public Bsdf {
     std::array<float, kSlots> lobe{};     // probability of lobe k (sums to 1 − kDefensive)
     std::array<float, kSlots> diffuse{};  // within lobe k, probability of its diffuse part
     std::array<float, kSlots> transmit{};  // within lobe k, probability of its transmission
+    std::array<float, kSlots> dtrans{};    // within lobe k, probability of its diffuse transmission
     float sheen = 0;                      // probability of the sheen's uniform sampler
     float below = 0;                      // within the defensive share, probability below the surface
   };
@@ -117,7 +122,7 @@ class LobeMixtureBsdf final : public Bsdf {
   struct Slot {
     Lobe lobe;
     LobeShape<float> shape;
-    float diffuse_albedo, spec_albedo, trans_albedo;
+    float diffuse_albedo, spec_albedo, trans_albedo, dtrans_albedo;
   };
   // Slots past count_ + coat_count_ stay uninitialized: a hit fills one to four of them, and
   // value-initializing all of them (~0.7 KB per hit for eight) was a measurable share of the render
@@ -136,7 +141,7 @@ class LobeMixtureBsdf final : public Bsdf {
   const RadialGrid* grid_ = nullptr;
   bool own_correction_ = false;  // correction_copy_ is the correction (a copy moves with the object)
   RadialCorrection correction_copy_;
-  bool transmits_ = false;  // some base lobe transmits
+  bool transmits_ = false;  // some base lobe transmits, specularly or diffusely
   bool sheen_on_ = false;
   float sheen_roughness_ = 0.0f;
   Rgb sheen_scale_{0.0f};  // C̄ / Σ_k w_k·σ_k (sheen_layer.h)

@@ -10,6 +10,7 @@
 
 #include "base/math.h"
 #include "mip/albedo_table.h"
+#include "mip/diffuse_transmission.h"
 #include "mip/lobe_fit.h"
 #include "mip/merge_cost.h"
 #include "mip/reduction_numerics.h"
@@ -38,6 +39,7 @@ MergeBase merge_base(std::span<const Member> u) {
   // Shares by one reciprocal: this runs for every candidate merge of every texel.
   const double inv_w = 1.0 / w;
   glm::dvec3 diffuse(0), f0(0), f0_tint(0), diffuse90(0), transmission(0), transmission90(0), nbar(0);
+  glm::dvec3 dtrans(0), dtrans90(0);  // the diffuse transmission's τd and τd90 (diffuse_transmission.h)
   double f90 = 0, coat = 0, sheen = 0;
   double t_amp = 0, t_tail = 0, t_peak = 0;  // the transmission's amplitude and its moments' sums (below)
   bool plain = true;  // every member's F90 is 1: the mean is 1 exactly, not a rounding of it
@@ -51,6 +53,8 @@ MergeBase merge_base(std::span<const Member> u) {
     diffuse90 += t * glm::dvec3(x.lobe->diffuse90);
     transmission += t * glm::dvec3(x.lobe->transmission);
     transmission90 += t * glm::dvec3(x.lobe->transmission90);
+    dtrans += t * glm::dvec3(x.lobe->diffuse_transmission);
+    dtrans90 += t * glm::dvec3(x.lobe->diffuse_transmission90);
     const double a = t * (double(x.lobe->transmission.r) + x.lobe->transmission.g + x.lobe->transmission.b);
     if (a > 0 && x.lobe->transmission_alpha2 > 0) {
       const TransmissionMoments tm = transmission_moments(*x.lobe);
@@ -71,6 +75,8 @@ MergeBase merge_base(std::span<const Member> u) {
   m.diffuse90 = glm::vec3(diffuse90);
   m.transmission = glm::vec3(transmission);
   m.transmission90 = glm::vec3(transmission90);
+  m.diffuse_transmission = glm::vec3(dtrans);
+  m.diffuse_transmission90 = glm::vec3(dtrans90);
   // The members transmit about −wo whatever their normals' tilts (a thin wall passes light straight
   // through; lobe.h "Transmission"), so the union's transmission is their shapes untilted: the shape of
   // their amplitude-weighted tail and peak moments.
@@ -193,9 +199,11 @@ Merged merge_pair(const Lobe& a, const Summary& sa, const Lobe& b, const Summary
 }
 
 // Keeps the union's specular albedo: scales the merged lobe's weight (which scales its specular part)
-// and divides its ρ and ρ90 by the same factor (which leaves its diffuse part as it was); then scales
+// and divides its ρ and ρ90, and its diffuse transmission's τd and τd90, by the same factor (which
+// leaves its diffuse parts as they were: weight·ρ and weight·τd the union's means); then scales
 // its τ and τ90 so that it transmits what the union transmits (transmission_flux: its transmission
-// shape is not its reflection's, merge_base). Applied when a merge is made, not while costs are
+// shape is not its reflection's, merge_base), and its τd and τd90 so that it transmits diffusely what
+// the union does (diffuse_transmission_flux). Applied when a merge is made, not while costs are
 // estimated (it changes them by a few percent of the amplitude only).
 void keep_specular_flux(std::span<const Member> u, Merged& m) {
   // A lobe made by an earlier merge knows its flux (it was set to keep its lobes' there).
@@ -208,6 +216,10 @@ void keep_specular_flux(std::span<const Member> u, Merged& m) {
     m.lobe.weight = static_cast<float>(m.lobe.weight * scale);
     m.lobe.diffuse = glm::vec3(glm::dvec3(m.lobe.diffuse) / scale);
     m.lobe.diffuse90 = glm::vec3(glm::dvec3(m.lobe.diffuse90) / scale);
+    if (diffuse_transmits(m.lobe)) {
+      m.lobe.diffuse_transmission = glm::vec3(glm::dvec3(m.lobe.diffuse_transmission) / scale);
+      m.lobe.diffuse_transmission90 = glm::vec3(glm::dvec3(m.lobe.diffuse_transmission90) / scale);
+    }
     // What of the summary the weight and ρ enter (its shape is unchanged).
     const double len = glm::length(glm::dvec3(m.lobe.normal));
     m.summary.weight = m.lobe.weight;
@@ -215,6 +227,17 @@ void keep_specular_flux(std::span<const Member> u, Merged& m) {
     m.summary.f0 = mean3(m.lobe.f0);
     m.summary.amp = specular_amp(m.lobe.weight, len, m.summary.f0, m.summary.f90);
     m.summary.flux = want;
+  }
+  if (diffuse_transmits(m.lobe)) {
+    glm::dvec3 want_d(0);
+    for (const Member& x : u) want_d += diffuse_transmission_flux(*x.lobe);
+    const glm::dvec3 have_d = diffuse_transmission_flux(m.lobe);
+    for (int c = 0; c < 3; ++c)
+      if (have_d[c] > 0 && want_d[c] > 0) {
+        const double scale = want_d[c] / have_d[c];
+        m.lobe.diffuse_transmission[c] = static_cast<float>(m.lobe.diffuse_transmission[c] * scale);
+        m.lobe.diffuse_transmission90[c] = static_cast<float>(m.lobe.diffuse_transmission90[c] * scale);
+      }
   }
   if (transmits(m.lobe)) {
     double want_t = 0;

@@ -118,6 +118,8 @@ void round_to_stored(Lobe& lobe) {
   for (int c = 0; c < 3; ++c) {
     lobe.transmission[c] = to_half(lobe.transmission[c]);
     lobe.transmission90[c] = to_half(lobe.transmission90[c]);
+    lobe.diffuse_transmission[c] = to_half(lobe.diffuse_transmission[c]);
+    lobe.diffuse_transmission90[c] = to_half(lobe.diffuse_transmission90[c]);
   }
   // As α: α_T ≥ 1e-3, and its square is exact in a float; a band's upper end the same way, a band
   // narrower than a half's step a GGX.
