@@ -24,7 +24,7 @@ void profile_of(const DShape& sh, std::array<double, kProfileSteps>& out) {
   static const Steps steps = [] {
     Steps s;
     for (std::size_t j = 0; j < kProfileSteps; ++j) {
-      s.t[j] = std::pow(10.0, -6.0 + 7.0 * double(j) / (kProfileSteps - 1));
+      s.t[j] = profile_step(j);
       s.q[j] = (1 + s.t[j]) * (1 + s.t[j]) / kPiD;
     }
     return s;
@@ -139,8 +139,15 @@ namespace {
 //   the L2 error       Σ_ij t_i·t_j·⟨T_i, T_j⟩ − 2·Σ_i t_i·T_m·⟨T_i, T_m⟩ + T_m²·⟨T_m, T_m⟩,
 //   the peak           Σ t_i·P_i/π − T_m·P_m/π, weighted as the reflection's,
 //   the core widths    Σ t_i·A_i − T_m·A_m (the tail coefficients),
-//   the log profile    of Σ t_i·D_i against T_m·D_m, weighted as the reflection's by T_m²;
-// averaged over the channels.
+//   the log profile    of Σ t_i·D_i against T_m·D_m, weighted as the reflection's by T_m², its mean
+//                      over the steps at and above the resolution (tan²θ ≥ α²_res);
+// averaged over the channels. The profile's steps below the resolution are left out: every transmission
+// lobe, the merged one too, is centred on the one straight-through direction, so what lies within α_res
+// of it is a single peak, which the cost model sees, as it sees every lobe, blurred to α²_res — by its
+// height (the peak term, P, which the merge keeps) and its flux (which the merge keeps) — and not by its
+// shape. The reflection's profile keeps them: its lobes' peaks lie about their own normals, apart. With
+// them, the cost spent lobes on sub-resolution transmission shapes that the reflection then lacked
+// (docs/mip-algorithm.md §4.6 has the figures).
 double trans_cost(std::span<const Member> u, const UnionTerms& t, const Summary& m, double peak_weight) {
   if (!(t.trans_self > 0)) return 0.0;
   glm::dvec3 Tm(0.0), peak(0.0), width(0.0);
@@ -159,7 +166,7 @@ double trans_cost(std::span<const Member> u, const UnionTerms& t, const Summary&
   for (int c = 0; c < 3; ++c) {
     if (!(Tm[c] > 0)) continue;
     double e = 0;
-    for (std::size_t j = 0; j < kProfileSteps; ++j) {
+    for (std::size_t j = kResolvedProfileStep; j < kProfileSteps; ++j) {
       double ex = 0;
       for (const Member& x : u) ex += x.sum->trans[c] * x.sum->trans_profile[j];
       const double ap = Tm[c] * m.trans_profile[j];
@@ -168,7 +175,7 @@ double trans_cost(std::span<const Member> u, const UnionTerms& t, const Summary&
     profile += Tm[c] * Tm[c] * e;
   }
   return l2 + (peak_weight * glm::dot(peak, peak) + glm::dot(width, width) / kWidthNorm +
-               kProfileWeight * profile / kProfileSteps) / 3;
+               kProfileWeight * profile / (kProfileSteps - kResolvedProfileStep)) / 3;
 }
 }  // namespace
 

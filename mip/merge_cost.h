@@ -32,6 +32,11 @@ constexpr double kWholePeakWeight = 1e-5;
 // The weight of the log-profile term of union_cost (the shape between peak and tail), and its steps.
 constexpr double kProfileWeight = 25.0;
 constexpr std::size_t kProfileSteps = 15;
+// The profile's step j: tan²θ = 10^(−6 + 7j/(kProfileSteps − 1)), two steps a decade from 10⁻⁶ to 10.
+inline double profile_step(std::size_t j) { return std::pow(10.0, -6.0 + 7.0 * double(j) / (kProfileSteps - 1)); }
+// The first step at the resolution, tan²θ = 10⁻² = kResolutionAlpha2: the transmission's log profile
+// starts there (trans_cost in merge_cost.cpp); the steps below it are the 8 under the resolution.
+constexpr std::size_t kResolvedProfileStep = 8;
 
 // A lobe's specular amplitude, its share of the reflected flux for the cost model: F0 plus a little
 // for Fresnel's rise toward grazing angles (toward F90), times its weight and cosine factor (the mean
@@ -157,7 +162,8 @@ double union_spec_norm2(std::span<const Member> u);
 // The transmission's terms of union_cost (trans_cost in merge_cost.cpp) are the reflection's, taken per
 // colour channel and averaged over the channels (the transmitted colour is all in the lobes, which no
 // diffuse part carries, so lobes whose τ differ in colour as well as in width cannot share one shape):
-// the L2 error of the Gaussian model, the peak, the core widths and the log profile. A thin wall
+// the L2 error of the Gaussian model, the peak, the core widths and the log profile, the last over the
+// steps at and above the resolution only (kResolvedProfileStep). A thin wall
 // passes light straight through whatever the normals' tilt (lobe.h "Transmission"), so every
 // transmission lobe is centred on the same direction, ⟨T_a, T_b⟩ = trans_inner(α²_T,a, α²_T,b) (α²_T
 // the core's width 1/P), the Gaussian model of spec_inner at tan²θ = 0, and each is at its own peak,
