@@ -60,8 +60,10 @@ double stretch_albedo_factor(double r) { return std::pow(0.5 * (std::pow(r, 0.9)
 double transmission_flux(const Lobe& lobe) {
   if (!transmits(lobe)) return 0.0;
   const SpecAlbedoTable& t = SpecAlbedoTable::get();
-  const double k = lobe.stretch > 1.0f ? stretch_albedo_factor(lobe.stretch) : 1.0;
-  const double lo = double(lobe.transmission_alpha2 > 0.0f ? lobe.transmission_alpha2 : lobe.alpha2) * k;
+  const bool own = lobe.transmission_alpha2 > 0.0f;  // its own shape (lobe.h transmission_shape)
+  const float r = own ? lobe.transmission_stretch : lobe.stretch;
+  const double k = r > 1.0f ? stretch_albedo_factor(r) : 1.0;
+  const double lo = double(own ? lobe.transmission_alpha2 : lobe.alpha2) * k;
   const double f0 = mean3(lobe.transmission), f90 = mean3(lobe.transmission90);
   double albedo = 0;
   if (lobe.transmission_alpha2 > 0.0f && lobe.transmission_alpha2_hi > lobe.transmission_alpha2 * 1.0001f) {

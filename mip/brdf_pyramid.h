@@ -81,6 +81,9 @@ struct BrdfLevel {
   bool transmission90_layer() const {
     return any_lobe([](const Lobe& l) { return l.transmission90 != glm::vec3(0.0f); });
   }
+  // Whether some lobe's transmission is stretched (lobe.h "Transmission"), which the MIP file then
+  // stores in kBytesPerTransmissionStretch more bytes a slot.
+  bool transmission_stretch_layer() const { return any_lobe([](const Lobe& l) { return l.transmission_stretch != 1.0f; }); }
   // Makes room for `texels` texels, all empty.
   void reset(Extent e, std::size_t texels) {
     extent = e;

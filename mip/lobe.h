@@ -74,7 +74,10 @@
 // merge averages them as it averages ρ. The shape is another matter: a thin wall passes light straight
 // through whatever its normal's tilt (at wi = −wo the mirrored half vector is the texel's normal), so
 // the texels' normals, which spread the union's reflection, do not spread its transmission. A lobe
-// transmits through a shape of its own, about its normal, with its spread's horizons and its stretch:
+// transmits through a shape of its own, about its normal, with its spread's horizons and a stretch of
+// its own (transmission_stretch, its texels' anisotropy: at level 0 the reflection's; a merge's the
+// det-1 scaling of its members' amplitude-weighted α_T²·S_T, where the reflection's stretch adds the
+// normals' offsets 2·ττᵀ, slope_stretch.h, which a thin wall's transmission does not see):
 // GGX of transmission_alpha2 (its α² at level 0), or the reflection's log-uniform band over
 // [transmission_alpha2, transmission_alpha2_hi]. A merge gives it the union's tail and peak moments,
 // A = E[α²] and P = E[1/α²] over the members' amplitudes (a band's are L(l, h) and L/(l·h)): GGX of
@@ -130,6 +133,10 @@ struct Lobe {
   float transmission_alpha2 = 0.0f;     // the transmission's GGX α² ("Transmission" above); 0 without one
   float transmission_alpha2_hi = 0.0f;  // > transmission_alpha2: its shape is the log-uniform band
                                         // [transmission_alpha2, transmission_alpha2_hi]
+  // The transmission's own slope stretch (as stretch_dir and stretch above): its texels' anisotropy
+  // without the spread of their normals, which the reflection's stretch holds ("Transmission" above).
+  glm::vec2 transmission_stretch_dir{1.0f, 0.0f};
+  float transmission_stretch = 1.0f;
   // A diffuse transmission (KHR_materials_diffuse_transmission): the factors of the lobe's Lambertian
   // BTDF at w = 0 and w = 1, 0 without one (mip/diffuse_transmission.h).
   glm::vec3 diffuse_transmission{0.0f};
@@ -185,6 +192,7 @@ inline Lobe lobe_from_texel(const glm::vec3& base_color, float metallic, float r
       l.transmission = (0.96f * t) * l.diffuse;
       l.diffuse *= 1.0f - t;
       l.transmission_alpha2 = l.alpha2;
+      l.transmission_stretch = l.stretch, l.transmission_stretch_dir = l.stretch_dir;
     }
     return l;
   }
@@ -202,6 +210,7 @@ inline Lobe lobe_from_texel(const glm::vec3& base_color, float metallic, float r
     l.diffuse *= 1.0f - t;
     l.diffuse90 *= 1.0f - t;
     l.transmission_alpha2 = l.alpha2;
+    l.transmission_stretch = l.stretch, l.transmission_stretch_dir = l.stretch_dir;
   }
   return l;
 }
@@ -306,6 +315,23 @@ void set_band(LobeShape<T>& s, float lo, float hi, bool with_nodes) {
   }
 }
 
+// A shape's stretch of ratio r along dir (s.n set): dir projected onto n̂'s tangent plane; a direction
+// along n̂ itself (n̂ in the x–y plane, no lobe a texel makes) takes the plane's direction across z.
+// r ≤ 1 is none.
+template <class T>
+void set_shape_stretch(LobeShape<T>& s, float r, const glm::vec2& dir) {
+  s.stretched = false;
+  if (!(r > 1.0f)) return;
+  const glm::vec<3, T> d(T(dir.x), T(dir.y), T(0));
+  glm::vec<3, T> t = d - s.n * glm::dot(s.n, d);
+  if (!(glm::dot(t, t) > T(1e-12))) t = glm::cross(s.n, glm::vec<3, T>(0, 0, 1));
+  s.st = glm::normalize(t);
+  s.sb = glm::cross(s.n, s.st);
+  s.r = T(r);
+  s.inv_r = T(1) / s.r;
+  s.stretched = true;
+}
+
 // with_nodes: also the quadrature nodes lobe_brdf's V needs (not lobe_d).
 template <class T>
 LobeShape<T> lobe_shape(const Lobe& lobe, bool with_nodes = true) {
@@ -319,18 +345,7 @@ LobeShape<T> lobe_shape(const Lobe& lobe, bool with_nodes = true) {
   const T var = s.len < T(1) ? (T(1) - s.len) * inv_len : T(0);
   s.sigma = var > T(1e-7) ? std::sqrt(var) : T(0);
   s.alpha2 = T(lobe.alpha2);
-  if (lobe.stretch > 1.0f) {
-    // stretch_dir projected onto n̂'s tangent plane; a direction along n̂ itself (n̂ in the x–y plane,
-    // no lobe a texel makes) takes the plane's direction across z.
-    const glm::vec<3, T> d(T(lobe.stretch_dir.x), T(lobe.stretch_dir.y), T(0));
-    glm::vec<3, T> t = d - s.n * glm::dot(s.n, d);
-    if (!(glm::dot(t, t) > T(1e-12))) t = glm::cross(s.n, glm::vec<3, T>(0, 0, 1));
-    s.st = glm::normalize(t);
-    s.sb = glm::cross(s.n, s.st);
-    s.r = T(lobe.stretch);
-    s.inv_r = T(1) / s.r;
-    s.stretched = true;
-  }
+  set_shape_stretch(s, lobe.stretch, lobe.stretch_dir);
   s.ggx = std::clamp(T(lobe.ggx), T(0), T(1));
   s.skirt = std::max(T(1), T(lobe.skirt));
   if (lobe.alpha2_hi > lobe.alpha2 * 1.0001f) {
@@ -551,12 +566,14 @@ inline bool transmits(const Lobe& l) {
 }
 
 // The shape a lobe transmits through ("Transmission" at the top): GGX of its transmission_alpha2 (its own
-// α² where it has none) or its band, about the lobe's normal, with the lobe's spread and stretch.
+// α² where it has none) or its band, about the lobe's normal, with the lobe's spread and the
+// transmission's own stretch.
 template <class T>
 LobeShape<T> transmission_shape(const Lobe& lobe, LobeShape<T> s) {
   const bool own = lobe.transmission_alpha2 > 0.0f;
   s.alpha2 = T(own ? lobe.transmission_alpha2 : lobe.alpha2);
   s.ggx = 1, s.skirt = 1, s.alpha2_hi = 0, s.lmean = 0, s.two_point = false;
+  if (own) set_shape_stretch(s, lobe.transmission_stretch, lobe.transmission_stretch_dir);
   if (own && lobe.transmission_alpha2_hi > lobe.transmission_alpha2 * 1.0001f) {
     s.alpha2_hi = T(lobe.transmission_alpha2_hi);
     set_band(s, lobe.transmission_alpha2, lobe.transmission_alpha2_hi, true);
@@ -576,29 +593,6 @@ inline TransmissionMoments transmission_moments(const Lobe& l) {
   const double hi = l.transmission_alpha2_hi, L = (hi - lo) / std::log(hi / lo);
   return {L, L / (lo * hi)};
 }
-// Gives a lobe the transmission shape of moments A and P ("Transmission" at the top): GGX of α² = 1/P
-// where A·P ≤ 1 + 1e-6, else the band with l·h = A/P and sinh(s)/s = √(A·P), s = ln(h/l)/2 (its
-// L(l, h) = √(l·h)·sinh(s)/s = A and L/(l·h) = P). Newton from s₀ = √(6(√(A·P) − 1)), which is past the
-// root (sinh(s)/s ≥ 1 + s²/6) of a convex increasing function, so it descends to it monotonically.
-inline void set_transmission_shape(Lobe& l, double tail, double peak) {
-  const double k = std::sqrt(tail * peak);
-  if (!(k > 1.0 + 1e-6)) {
-    l.transmission_alpha2 = static_cast<float>(1.0 / peak);
-    l.transmission_alpha2_hi = 0.0f;
-    return;
-  }
-  double x = std::sqrt(6.0 * (k - 1.0));
-  for (int i = 0; i < 60; ++i) {
-    const double sh = std::sinh(x), f = sh / x - k, df = (std::cosh(x) * x - sh) / (x * x);
-    const double step = f / df;
-    x -= step;
-    if (!(step > 1e-12 * x)) break;
-  }
-  const double g = std::sqrt(tail / peak);
-  l.transmission_alpha2 = static_cast<float>(g * std::exp(-x));
-  l.transmission_alpha2_hi = static_cast<float>(g * std::exp(x));
-}
-
 // The pair a lobe's transmission reflects: wi (below the geometric surface) mirrored through the plane
 // of the lobe's normal n̂, with wo; inv_wi_z is 1/|wi.z|, the f_eff factor's denominator of the
 // transmitted direction. Invalid unless wi is below and wo above the geometric surface.

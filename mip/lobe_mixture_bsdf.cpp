@@ -262,17 +262,18 @@ BsdfSample LobeMixtureBsdf::sample(const glm::vec3& wo, const SampleU& u) const 
     const std::size_t i = static_cast<std::size_t>(picked);
     const LobeShape<float>& sh = slot(picked).shape;
     // A stretched lobe's frame has its stretch direction for x (lobe.h); any frame about n otherwise.
-    const Frame fr = sh.stretched ? Frame{sh.st, sh.sb, sh.n} : Frame::from_normal(sh.n);
+    const auto frame_of = [](const LobeShape<float>& s) {
+      return s.stretched ? Frame{s.st, s.sb, s.n} : Frame::from_normal(s.n);
+    };
     if (ux < c.diffuse[i]) {
-      wi = fr.to_world(sample_cosine_hemisphere(uv));
+      wi = frame_of(sh).to_world(sample_cosine_hemisphere(uv));
     } else if (ux < c.diffuse[i] + c.dtrans[i]) {
       // The diffuse transmission: the diffuse part's direction mirrored through the lobe's plane.
       glm::vec3 r = sample_cosine_hemisphere(uv);
       r.z = -r.z;
-      wi = fr.to_world(r);
+      wi = frame_of(sh).to_world(r);
       below = true;
     } else {
-      const glm::vec3 wo_l = fr.to_local(wo);
       // The specular part's and the transmission's share of the lobe's choice after its diffuse part:
       // each draws the same visible normals, the transmission mirrors the reflected direction through
       // the lobe's plane (lobe.h). A roughness mixture or a transmission's band (lobe.h) is sampled half
@@ -281,10 +282,13 @@ BsdfSample LobeMixtureBsdf::sample(const glm::vec3& wo, const SampleU& u) const 
       float v = ux - c.diffuse[i] - c.dtrans[i];
       below = c.transmit[i] > 0 && v >= spec;
       if (below) v -= spec;
+      // The transmission's shape has its own stretch (lobe.h "Transmission"), so its own frame.
       const LobeShape<float> ts = below ? transmission_shape(slot(picked).lobe, sh) : sh;
+      const Frame fr = frame_of(ts);
+      const glm::vec3 wo_l = fr.to_local(wo);
       const bool upper = ts.alpha2_hi > 0 && v >= 0.5f * (below ? c.transmit[i] : spec);
       const float alpha = std::sqrt(upper ? ts.alpha2_hi : ts.alpha2);
-      const glm::vec2 axes = sh.stretched ? glm::vec2(alpha * std::sqrt(sh.r), alpha * std::sqrt(sh.inv_r)) : glm::vec2(alpha);
+      const glm::vec2 axes = ts.stretched ? glm::vec2(alpha * std::sqrt(ts.r), alpha * std::sqrt(ts.inv_r)) : glm::vec2(alpha);
       const glm::vec3 h = sample_ggx_visible(axes, wo_l, uv);
       glm::vec3 r = 2.0f * glm::dot(wo_l, h) * h - wo_l;
       if (below) r.z = -r.z;

@@ -31,6 +31,35 @@ struct MergeBase {
   Summary summary;  // all but the shape's
 };
 
+// The union's transmission stretch, which merge_union's stretch of the reflection is not: a thin wall's
+// transmission is its texels' shapes untilted (lobe.h "Transmission"), so its slopes spread as the
+// amplitude-weighted mean of the members' α_T²·S_T alone, without the 2·ττᵀ of their normals' offsets
+// (slope_stretch.h). Sets m's transmission stretch to it and takes the tail sum in its frame, each
+// member's A·tr(S_m⁻¹·S_k)/2 as merge_union takes the reflection's; the peaks are unchanged.
+void transmission_stretch(std::span<const Member> u, Lobe& m, double& t_tail) {
+  Sym2 spread{0, 0, 0};
+  const auto amplitude = [](const Lobe& l) {
+    return double(l.weight) * (double(l.transmission.r) + l.transmission.g + l.transmission.b);
+  };
+  for (const Member& x : u) {
+    const double a = amplitude(*x.lobe);
+    if (!(a > 0) || !(x.lobe->transmission_alpha2 > 0)) continue;
+    const Sym2 s = transmission_stretch_matrix(*x.lobe);
+    const double k = a * transmission_moments(*x.lobe).tail;
+    spread.xx += k * s.xx, spread.xy += k * s.xy, spread.yy += k * s.yy;
+  }
+  set_stretch(m.transmission_stretch, m.transmission_stretch_dir, spread);
+  const Sym2 s_inv = transmission_stretch_matrix(m).inverse_det1();
+  double w = 0;
+  for (const Member& x : u) w += x.lobe->weight;
+  t_tail = 0;
+  for (const Member& x : u) {
+    const double a = amplitude(*x.lobe) / w;
+    if (!(a > 0) || !(x.lobe->transmission_alpha2 > 0)) continue;
+    t_tail += a * transmission_moments(*x.lobe).tail * 0.5 * trace_of_product(s_inv, transmission_stretch_matrix(*x.lobe));
+  }
+}
+
 MergeBase merge_base(std::span<const Member> u) {
   MergeBase mb;
   Lobe& m = mb.lobe;
@@ -42,6 +71,7 @@ MergeBase merge_base(std::span<const Member> u) {
   glm::dvec3 dtrans(0), dtrans90(0);  // the diffuse transmission's τd and τd90 (diffuse_transmission.h)
   double f90 = 0, coat = 0, sheen = 0;
   double t_amp = 0, t_tail = 0, t_peak = 0;  // the transmission's amplitude and its moments' sums (below)
+  bool t_stretched = false;                   // some member's transmission is stretched
   bool plain = true;  // every member's F90 is 1: the mean is 1 exactly, not a rounding of it
   Summary& s = mb.summary;
   s.rho = s.f0 = 0;
@@ -59,6 +89,7 @@ MergeBase merge_base(std::span<const Member> u) {
     if (a > 0 && x.lobe->transmission_alpha2 > 0) {
       const TransmissionMoments tm = transmission_moments(*x.lobe);
       t_amp += a, t_tail += a * tm.tail, t_peak += a * tm.peak;
+      if (x.lobe->transmission_stretch > 1.0f) t_stretched = true;
     }
     f90 += t * x.lobe->f90;
     coat += t * x.lobe->coat;
@@ -80,6 +111,7 @@ MergeBase merge_base(std::span<const Member> u) {
   // The members transmit about −wo whatever their normals' tilts (a thin wall passes light straight
   // through; lobe.h "Transmission"), so the union's transmission is their shapes untilted: the shape of
   // their amplitude-weighted tail and peak moments.
+  if (t_stretched) transmission_stretch(u, m, t_tail);
   if (t_amp > 0) set_transmission_shape(m, t_tail / t_amp, t_peak / t_amp);
   m.coat = static_cast<float>(coat);
   m.sheen = static_cast<float>(sheen);
@@ -278,6 +310,25 @@ bool near_duplicates(const Lobe& a, const Lobe& b) {
 
 }  // namespace
 }  // namespace reduction
+
+void set_transmission_shape(Lobe& l, double tail, double peak) {
+  const double k = std::sqrt(tail * peak);
+  if (!(k > 1.0 + 1e-6)) {
+    l.transmission_alpha2 = static_cast<float>(1.0 / peak);
+    l.transmission_alpha2_hi = 0.0f;
+    return;
+  }
+  double x = std::sqrt(6.0 * (k - 1.0));
+  for (int i = 0; i < 60; ++i) {
+    const double sh = std::sinh(x), f = sh / x - k, df = (std::cosh(x) * x - sh) / (x * x);
+    const double step = f / df;
+    x -= step;
+    if (!(step > 1e-12 * x)) break;
+  }
+  const double g = std::sqrt(tail / peak);
+  l.transmission_alpha2 = static_cast<float>(g * std::exp(-x));
+  l.transmission_alpha2_hi = static_cast<float>(g * std::exp(x));
+}
 
 Lobe merge_lobes(const Lobe& a, const Lobe& b, float spread_scale) {
   using namespace reduction;

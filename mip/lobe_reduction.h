@@ -66,6 +66,12 @@ struct ReductionOptions {
   double lean_peak_share_spread = kLeanPeakShareSpread;
 };
 
+// Gives a lobe the transmission shape of moments A and P (lobe.h "Transmission"): GGX of α² = 1/P
+// where A·P ≤ 1 + 1e-6, else the band with l·h = A/P and sinh(s)/s = √(A·P), s = ln(h/l)/2 (its
+// L(l, h) = √(l·h)·sinh(s)/s = A and L/(l·h) = P). Newton from s₀ = √(6(√(A·P) − 1)), which is past the
+// root (sinh(s)/s ≥ 1 + s²/6) of a convex increasing function, so it descends to it monotonically.
+void set_transmission_shape(Lobe& l, double tail, double peak);
+
 Lobe merge_lobes(const Lobe& a, const Lobe& b, float spread_scale = 1.0f);
 
 // Reduces lobes[0, n) in place to at most options.max_lobes lobes (n ≤ 9·kMaxLobes), sorted by weight,

@@ -216,7 +216,8 @@ void write_mip_file(const fs::path& path, const ParamPyramid& param, const BrdfP
     c.radial = !bl.correction.empty();
     c.lobe = lobe_channels({.specular = bl.specular_layer(), .tint = brdf.tintable() && bl.tint_layer(), .coat = c.coat,
                             .sheen = c.sheen, .stretch = bl.stretch_layer(), .transmission = bl.transmission_layer(),
-                            .transmission90 = bl.transmission90_layer()});
+                            .transmission90 = bl.transmission90_layer(),
+                            .transmission_stretch = bl.transmission_stretch_layer()});
     c.coat_slots = c.coat ? brdf.coat_level(level).slots : 0;
   }
   // Each level is packed twice a band of rows at a time, for its checksum (the headers come first) and
@@ -460,7 +461,8 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
     const std::vector<LobeChannel> lobe_ch = lobe_channels(
         {.specular = lobe_layer("lobe0.F90"), .tint = tint_channels, .coat = coat, .sheen = sheen,
          .stretch = lobe_layer("lobe0.stretch"), .transmission = lobe_layer("lobe0.transmission.R"),
-         .transmission90 = lobe_layer("lobe0.transmission90.R")});
+         .transmission90 = lobe_layer("lobe0.transmission90.R"),
+         .transmission_stretch = lobe_layer("lobe0.transmission.stretch")});
     const std::vector<LobeChannel> coat_ch = coat_lobe_channels();
     const auto need_lobes = [&](const char* prefix, int n, const std::vector<LobeChannel>& channels) {
       for (int k = 0; k < n; ++k)

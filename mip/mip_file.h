@@ -73,6 +73,10 @@
 // and, in a level where some lobe's τ90 ≠ 0 (a transmitting material whose specular layer is not
 // plain), 6 bytes more a slot:
 //   lobeK.transmission90.R/G/B  τ90, the BTDF factor at w = 1                             half
+// and, in a level where some lobe's transmission is stretched (its texels' anisotropy, without the
+// normals' spread that the lobe's own stretch holds; lobe.h "Transmission"), 6 bytes more a slot:
+//   lobeK.transmission.stretch, lobeK.transmission.stretch.dirHi/dirLo
+//                               the transmission's stretch, coded as lobeK.stretch's      half
 // and, for L ≥ kFirstCorrectedLevel (4), 24 bytes (radial_correction.h):
 //   radial.R0 .. radial.R11     the texel's radial correction: the ratio of its true radial
 //                               profile of reflected light to its lobes' (gated beyond 10°)
@@ -108,7 +112,7 @@
 
 namespace svbrdf {
 
-inline constexpr int kMipFileVersion = 15;
+inline constexpr int kMipFileVersion = 16;
 
 // Throws svbrdf::Error naming the file when it cannot be written. A non-empty `cache_key` is stored as
 // svbrdf:cache_key.

@@ -54,6 +54,7 @@ enum class Role {
   stretch, stretch_dir_hi, stretch_dir_lo,      // the stretch's (kStretchLobeChannels)
   transmission_r, transmission_g, transmission_b, transmission_alpha, transmission_alpha_hi,  // (kTransmissionLobeChannels)
   transmission90_r, transmission90_g, transmission90_b,                // (kTransmission90LobeChannels)
+  transmission_stretch, transmission_stretch_dir_hi, transmission_stretch_dir_lo,  // (kTransmissionStretchLobeChannels)
   count
 };
 struct LobeChannel {
@@ -125,6 +126,13 @@ constexpr LobeChannel kTransmission90LobeChannels[] = {
     {"transmission90.G", Role::transmission90_g, kHalf},
     {"transmission90.B", Role::transmission90_b, kHalf},
 };
+// The transmission's own stretch, 6 bytes (kBytesPerTransmissionStretch), coded as kStretchLobeChannels,
+// in levels where some lobe's transmission is stretched.
+constexpr LobeChannel kTransmissionStretchLobeChannels[] = {
+    {"transmission.stretch", Role::transmission_stretch, kHalf},
+    {"transmission.stretch.dirHi", Role::transmission_stretch_dir_hi, kHalf},
+    {"transmission.stretch.dirLo", Role::transmission_stretch_dir_lo, kHalf},
+};
 // A coat lobe's channels, 14 bytes (kBytesPerCoatLobe), named "coatK.<suffix>": a lobe's without its
 // colours, which the extension fixes (stored_lobe.h set_coat_colours).
 constexpr LobeChannel kCoatLobeChannels[] = {
@@ -140,7 +148,7 @@ inline constexpr const char* kTint = "svbrdf:tint";
 // The layers a level's lobe slots carry beyond kLobeChannels.
 struct LobeLayers {
   bool specular = false, tint = false, coat = false, sheen = false, stretch = false;
-  bool transmission = false, transmission90 = false;
+  bool transmission = false, transmission90 = false, transmission_stretch = false;
 };
 // The channels of a level's lobe slots, with the layers' it has.
 inline std::vector<LobeChannel> lobe_channels(const LobeLayers& l) {
@@ -155,6 +163,7 @@ inline std::vector<LobeChannel> lobe_channels(const LobeLayers& l) {
   add(l.stretch, kStretchLobeChannels);
   add(l.transmission, kTransmissionLobeChannels);
   add(l.transmission90, kTransmission90LobeChannels);
+  add(l.transmission_stretch, kTransmissionStretchLobeChannels);
   return c;
 }
 inline std::vector<LobeChannel> coat_lobe_channels() {
@@ -196,6 +205,10 @@ inline LobeValues pack_lobe(const Lobe& l) {
   out[Role::stretch] = lobe_stretch_code(l);
   const std::uint32_t dir = lobe_stretch_direction_code(l);
   out[Role::stretch_dir_hi] = static_cast<float>(dir >> 10), out[Role::stretch_dir_lo] = static_cast<float>(dir & 1023u);
+  out[Role::transmission_stretch] = lobe_transmission_stretch_code(l);
+  const std::uint32_t t_dir = lobe_transmission_stretch_direction_code(l);
+  out[Role::transmission_stretch_dir_hi] = static_cast<float>(t_dir >> 10);
+  out[Role::transmission_stretch_dir_lo] = static_cast<float>(t_dir & 1023u);
   return out;
 }
 inline Lobe unpack_lobe(const LobeValues& in) {
@@ -221,6 +234,9 @@ inline Lobe unpack_lobe(const LobeValues& in) {
   // an undefined conversion.
   const auto ten_bits = [](float v) { return v >= 1.0f ? static_cast<std::uint32_t>(std::min(v, 1023.0f)) : 0u; };
   set_lobe_stretch_code(l, in[Role::stretch], (ten_bits(in[Role::stretch_dir_hi]) << 10) | ten_bits(in[Role::stretch_dir_lo]));
+  set_lobe_transmission_stretch_code(
+      l, in[Role::transmission_stretch],
+      (ten_bits(in[Role::transmission_stretch_dir_hi]) << 10) | ten_bits(in[Role::transmission_stretch_dir_lo]));
   return l;
 }
 

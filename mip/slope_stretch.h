@@ -41,12 +41,18 @@ struct Sym2 {
 // tr(A·B) of two symmetric matrices.
 inline double trace_of_product(const Sym2& a, const Sym2& b) { return a.xx * b.xx + 2 * a.xy * b.xy + a.yy * b.yy; }
 
-// A lobe's stretch S (the identity for r = 1).
-inline Sym2 stretch_matrix(const Lobe& l) {
-  if (!(l.stretch > 1.0f)) return {};
-  const double r = l.stretch, c = l.stretch_dir.x, s = l.stretch_dir.y, inv_r = 1.0 / r;
-  const double n2 = c * c + s * s;  // stretch_dir is unit; divided out all the same
+// The stretch S of ratio `ratio` along `dir` (the identity for ratio ≤ 1).
+inline Sym2 stretch_matrix(float ratio, const glm::vec2& dir) {
+  if (!(ratio > 1.0f)) return {};
+  const double r = ratio, c = dir.x, s = dir.y, inv_r = 1.0 / r;
+  const double n2 = c * c + s * s;  // dir is unit; divided out all the same
   return {(r * c * c + inv_r * s * s) / n2, (r - inv_r) * c * s / n2, (r * s * s + inv_r * c * c) / n2};
+}
+// A lobe's stretch S.
+inline Sym2 stretch_matrix(const Lobe& l) { return stretch_matrix(l.stretch, l.stretch_dir); }
+// A lobe's transmission stretch (lobe.h "Transmission").
+inline Sym2 transmission_stretch_matrix(const Lobe& l) {
+  return stretch_matrix(l.transmission_stretch, l.transmission_stretch_dir);
 }
 
 // The stretch's logarithm as a vector, ln r·(cos 2φ, sin 2φ) with φ the stretch direction's angle: the
@@ -58,12 +64,12 @@ inline glm::dvec2 stretch_log(const Lobe& l) {
   return std::log(double(l.stretch)) * glm::dvec2((c * c - s * s) / n2, 2 * c * s / n2);
 }
 
-// Sets a lobe's stretch to a positive-definite matrix scaled to det 1: r the larger eigenvalue, the
-// direction its eigenvector. Stretches below 1 + 1e-6 are none.
-inline void set_stretch(Lobe& l, const Sym2& m) {
+// Sets a stretch (ratio, dir) to a positive-definite matrix scaled to det 1: the ratio the larger
+// eigenvalue, the direction its eigenvector. Stretches below 1 + 1e-6 are none.
+inline void set_stretch(float& ratio, glm::vec2& dir, const Sym2& m) {
   const double d = m.det();
-  l.stretch = 1.0f;
-  l.stretch_dir = glm::vec2(1.0f, 0.0f);
+  ratio = 1.0f;
+  dir = glm::vec2(1.0f, 0.0f);
   if (!(d > 0) || !(m.trace() > 0)) return;
   const double inv = 1.0 / std::sqrt(d);
   const double half_diff = 0.5 * (m.xx - m.yy) * inv, off = m.xy * inv;
@@ -71,9 +77,10 @@ inline void set_stretch(Lobe& l, const Sym2& m) {
   const double r = 0.5 * m.trace() * inv + rad;
   if (!(r > 1.0 + 1e-6)) return;
   const double phi = 0.5 * std::atan2(off, half_diff);
-  l.stretch = static_cast<float>(r);
-  l.stretch_dir = glm::vec2(static_cast<float>(std::cos(phi)), static_cast<float>(std::sin(phi)));
+  ratio = static_cast<float>(r);
+  dir = glm::vec2(static_cast<float>(std::cos(phi)), static_cast<float>(std::sin(phi)));
 }
+inline void set_stretch(Lobe& l, const Sym2& m) { set_stretch(l.stretch, l.stretch_dir, m); }
 
 // A unit normal's slope in the geometric tangent frame, (x, y)/z (z > 0 for every normal a texel has).
 inline glm::dvec2 normal_slope(const glm::dvec3& n) {

@@ -70,8 +70,8 @@ void set_lobe_skirt_code(Lobe& lobe, float code) {
     lobe.skirt = code;
 }
 
-float lobe_stretch_code(const Lobe& lobe) {
-  const double ln_r = lobe.stretch > 1.0f ? std::log(double(lobe.stretch)) : 0.0;
+float stretch_code(float stretch) {
+  const double ln_r = stretch > 1.0f ? std::log(double(stretch)) : 0.0;
   return ln_r < kLeastStoredLnStretch ? 0.0f : to_half(static_cast<float>(ln_r));
 }
 
@@ -79,25 +79,25 @@ namespace {
 constexpr double kStretchDirectionStep = 3.14159265358979323846 / double(1u << kStretchDirectionBits);
 }
 
-std::uint32_t lobe_stretch_direction_code(const Lobe& lobe) {
+std::uint32_t stretch_direction_code(const glm::vec2& direction) {
   // The direction is axial (φ and φ + π stretch alike): φ in [0, π).
-  double phi = std::atan2(double(lobe.stretch_dir.y), double(lobe.stretch_dir.x));
+  double phi = std::atan2(double(direction.y), double(direction.x));
   if (phi < 0) phi += 3.14159265358979323846;
   const auto k = static_cast<std::uint64_t>(std::llround(phi / kStretchDirectionStep));
   return static_cast<std::uint32_t>(k % (std::uint64_t(1) << kStretchDirectionBits));
 }
 
-void set_lobe_stretch_code(Lobe& lobe, float code, std::uint32_t direction) {
+void set_stretch_code(float& stretch, glm::vec2& direction, float code, std::uint32_t direction_code) {
   if (!(code > 0.0f)) {
-    lobe.stretch = 1.0f;
-    lobe.stretch_dir = glm::vec2(1.0f, 0.0f);
+    stretch = 1.0f;
+    direction = glm::vec2(1.0f, 0.0f);
     return;
   }
-  const double phi = double(direction) * kStretchDirectionStep;
+  const double phi = double(direction_code) * kStretchDirectionStep;
   // At most e^16 (no lobe a texel makes comes near it: r ≤ 1/α_min = 1000), so that a corrupt code
   // gives a finite stretch.
-  lobe.stretch = static_cast<float>(std::exp(std::min(double(code), 16.0)));
-  lobe.stretch_dir = glm::vec2(static_cast<float>(std::cos(phi)), static_cast<float>(std::sin(phi)));
+  stretch = static_cast<float>(std::exp(std::min(double(code), 16.0)));
+  direction = glm::vec2(static_cast<float>(std::cos(phi)), static_cast<float>(std::sin(phi)));
 }
 
 void round_to_stored(Lobe& lobe) {
@@ -133,6 +133,7 @@ void round_to_stored(Lobe& lobe) {
   if (!(lobe.transmission_alpha2_hi > lobe.transmission_alpha2)) lobe.transmission_alpha2_hi = 0.0f;
   lobe.normal = round_normal(lobe.normal);
   set_lobe_stretch_code(lobe, lobe_stretch_code(lobe), lobe_stretch_direction_code(lobe));
+  set_lobe_transmission_stretch_code(lobe, lobe_transmission_stretch_code(lobe), lobe_transmission_stretch_direction_code(lobe));
   const float skirt_code = lobe_skirt_code(lobe);
   set_lobe_shape_code(lobe, lobe_shape_code(lobe));
   set_lobe_skirt_code(lobe, skirt_code);

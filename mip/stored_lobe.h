@@ -34,14 +34,27 @@ void set_lobe_skirt_code(Lobe& lobe, float code);
 // e^code lies within 6e-8 of the code, and a half's spacing there is ≥ 9.5e-7.
 inline constexpr double kLeastStoredLnStretch = 1e-3;
 inline constexpr int kStretchDirectionBits = 20;
-float lobe_stretch_code(const Lobe& lobe);
-std::uint32_t lobe_stretch_direction_code(const Lobe& lobe);
-void set_lobe_stretch_code(Lobe& lobe, float code, std::uint32_t direction);
+float stretch_code(float stretch);
+std::uint32_t stretch_direction_code(const glm::vec2& direction);
+void set_stretch_code(float& stretch, glm::vec2& direction, float code, std::uint32_t direction_code);
+inline float lobe_stretch_code(const Lobe& lobe) { return stretch_code(lobe.stretch); }
+inline std::uint32_t lobe_stretch_direction_code(const Lobe& lobe) { return stretch_direction_code(lobe.stretch_dir); }
+inline void set_lobe_stretch_code(Lobe& lobe, float code, std::uint32_t direction) {
+  set_stretch_code(lobe.stretch, lobe.stretch_dir, code, direction);
+}
+// The same of the transmission's own stretch (lobe.h "Transmission").
+inline float lobe_transmission_stretch_code(const Lobe& lobe) { return stretch_code(lobe.transmission_stretch); }
+inline std::uint32_t lobe_transmission_stretch_direction_code(const Lobe& lobe) {
+  return stretch_direction_code(lobe.transmission_stretch_dir);
+}
+inline void set_lobe_transmission_stretch_code(Lobe& lobe, float code, std::uint32_t direction) {
+  set_stretch_code(lobe.transmission_stretch, lobe.transmission_stretch_dir, code, direction);
+}
 
 // Rounds a lobe to what the MIP file stores: weight, colors (f0_tint and the transmission's τ and τ90 among
 // them), its coat and sheen shares, α and the transmission's α_T and α_T,hi (the square roots of alpha2,
 // transmission_alpha2 and transmission_alpha2_hi), shape code and skirt as half floats, the normal as
-// stored_normal.h codes it, its stretch as above.
+// stored_normal.h codes it, its stretch and its transmission's stretch as above.
 void round_to_stored(Lobe& lobe);
 
 // The same for a coat lobe (coat_layer.h), whose colours the file does not store: F0 = 0.04 and F90 = 1
@@ -67,5 +80,8 @@ inline constexpr int kBytesPerStretch = 2 + 4;
 // some lobe's is not 0 (a transmitting material whose specular layer is not plain).
 inline constexpr int kBytesPerTransmission = 5 * 2;
 inline constexpr int kBytesPerTransmission90 = 3 * 2;
+// The transmission's own stretch, as kBytesPerStretch, in levels where some lobe's transmission is
+// stretched.
+inline constexpr int kBytesPerTransmissionStretch = kBytesPerStretch;
 
 }  // namespace svbrdf

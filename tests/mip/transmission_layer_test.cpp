@@ -275,6 +275,36 @@ TEST(TransmissionLayer, AMergeKeepsTheUnionsTailAndPeak) {
   }
 }
 
+// A merge's transmission takes its members' stretch (lobe.h "Transmission"), not the reflection's,
+// which also holds the spread of the members' normals: two anisotropic lobes tilted ±20° across their
+// stretch merge into a reflection stretched further and a transmission stretched as each member. Two
+// lobes stretched by r along x and along y transmit, merged, through the mean of their slope matrices,
+// α²·(r + 1/r)/2 on each axis: isotropic, with the tail moment A = α²·(r + 1/r)/2 and the peak 1/α².
+TEST(TransmissionLayer, AMergeTakesTheMembersTransmissionStretchNotTheirNormalsSpread) {
+  const auto lobe = [](const glm::vec3& n, const glm::vec2& dir) {
+    return lobe_from_texel(glm::vec3(0.8f, 0.5f, 0.3f), 0.0f, 0.3f, n, 0.5f, {}, AnisotropyLayer{0.5f, dir}, 0.8f);
+  };
+  const float t = std::sin(0.349066f), c = std::cos(0.349066f);
+  const Lobe a = lobe(glm::vec3(t, 0, c), glm::vec2(0, 1)), b = lobe(glm::vec3(-t, 0, c), glm::vec2(0, 1));
+  ASSERT_GT(a.stretch, 1.5f);
+  const Lobe tilted = merge_lobes(a, b);
+  EXPECT_GT(std::abs(std::log(tilted.stretch) - std::log(a.stretch)), 0.5) << "the normals' spread across the stretch";
+  EXPECT_NEAR(tilted.transmission_stretch, a.transmission_stretch, 1e-5 * a.transmission_stretch);
+  EXPECT_NEAR(std::abs(tilted.transmission_stretch_dir.y), 1.0f, 1e-6f);
+  EXPECT_NEAR(tilted.transmission_alpha2, a.transmission_alpha2, 1e-6 * a.transmission_alpha2);
+  EXPECT_EQ(tilted.transmission_alpha2_hi, 0.0f);
+
+  const Lobe x = lobe(glm::vec3(0, 0, 1), glm::vec2(1, 0)), y = lobe(glm::vec3(0, 0, 1), glm::vec2(0, 1));
+  const Lobe crossed = merge_lobes(x, y);
+  EXPECT_EQ(crossed.transmission_stretch, 1.0f);
+  const double a2 = x.transmission_alpha2, r = x.transmission_stretch;
+  const double lo = crossed.transmission_alpha2, hi = crossed.transmission_alpha2_hi;
+  ASSERT_GT(hi, lo);
+  const double L = (hi - lo) / std::log(hi / lo);
+  EXPECT_NEAR(L, a2 * (r + 1 / r) / 2, 1e-5 * L);
+  EXPECT_NEAR(L / (lo * hi), 1 / a2, 1e-5 / a2);
+}
+
 // A level-0 texel's mixture (one lobe) reflects and transmits what the renderer's surface BSDF does:
 // its directional albedo over each hemisphere, each by its own sampler, within 4σ. The texel's normal
 // is the geometric one (the surface's frame is then the lobes').

@@ -6,6 +6,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -62,12 +63,21 @@ Channels channels_of(const std::filesystem::path& path, int level) {
   return c;
 }
 
+// Seed 26 of the random family: an anisotropic glossy film brushed along a diagonal, part of it
+// transmitting, whose merged lobes' transmission stretch is not their reflection's (lobe.h "Transmission").
+constexpr std::uint64_t kAnisotropicSeed = 26;
+
 TEST(TransmissionStorage, TheMipFileCarriesTheLobesTransmissionBitForBit) {
   testing::TempDir dir;
-  for (const bool layered : {false, true}) {
-    SCOPED_TRACE(layered ? "specular layer" : "plain layer");
-    const MipData a = build_mip(transmitting(16, layered));
-    const auto path = dir / (std::string(layered ? "layered" : "plain") + ".exr");
+  ASSERT_GT(draw_random_material(kAnisotropicSeed).transmission, 0.0f);
+  ASSERT_GT(draw_random_material(kAnisotropicSeed).anisotropy, 0.0f);
+  int stretched_levels = 0;
+  for (const int variant : {0, 1, 2}) {
+    const bool layered = variant == 1;
+    SCOPED_TRACE(variant == 2 ? "anisotropic" : layered ? "specular layer" : "plain layer");
+    const MipData a = build_mip(variant == 2 ? random_material_texels(draw_random_material(kAnisotropicSeed), 16)
+                                             : transmitting(16, layered));
+    const auto path = dir / ("variant" + std::to_string(variant) + ".exr");
     write_mip_file(path, a);
     const MipData b = read_mip_file(path);
     ASSERT_EQ(b.levels(), a.levels());
@@ -90,16 +100,32 @@ TEST(TransmissionStorage, TheMipFileCarriesTheLobesTransmissionBitForBit) {
       const int slots = a.brdf.level(l).slots;
       EXPECT_EQ(c.has("lobe0.transmission.alpha"), a.brdf.level(l).transmission_layer());
       EXPECT_EQ(c.has("lobe0.transmission90.R"), a.brdf.level(l).transmission90_layer());
-      EXPECT_EQ(c.bytes_of("lobe", ".transmission."), a.brdf.level(l).transmission_layer() ? slots * kBytesPerTransmission : 0);
+      const bool t_stretch = a.brdf.level(l).transmission_stretch_layer();
+      stretched_levels += t_stretch;
+      EXPECT_EQ(c.has("lobe0.transmission.stretch"), t_stretch);
+      EXPECT_EQ(c.bytes_of("lobe", ".transmission.stretch"), t_stretch ? slots * kBytesPerTransmissionStretch : 0);
+      EXPECT_EQ(c.bytes_of("lobe", ".transmission."),
+                (a.brdf.level(l).transmission_layer() ? slots * kBytesPerTransmission : 0) +
+                    (t_stretch ? slots * kBytesPerTransmissionStretch : 0));
       EXPECT_EQ(c.bytes_of("lobe", ".transmission90."), a.brdf.level(l).transmission90_layer() ? slots * kBytesPerTransmission90 : 0);
       int stored = 0;
       for (std::size_t k = 0; k < c.names.size(); ++k) stored += c.names[k].rfind("param.", 0) == 0 ? 0 : c.bytes[k];
       EXPECT_EQ(a.brdf.bytes_per_texel(l), stored);
-      // The texels transmit as before the trip.
-      const glm::vec3 wi = glm::normalize(glm::vec3(0.2f, -0.3f, -0.9f)), wo = glm::normalize(glm::vec3(-0.1f, 0.2f, 0.9f));
+      // The texels transmit as before the trip: the first that transmits, seen straight through for the
+      // glossy anisotropic film.
+      const glm::vec3 wo = glm::normalize(glm::vec3(-0.1f, 0.2f, 0.9f));
+      const glm::vec3 wi = variant == 2 ? -wo : glm::normalize(glm::vec3(0.2f, -0.3f, -0.9f));
+      const Extent e = a.extent(l);
+      int at = 0;
+      while (at + 1 < e.width * e.height) {
+        const std::span<const Lobe> lobes = a.brdf.texel(l, at % e.width, at / e.width);
+        if (std::any_of(lobes.begin(), lobes.end(), [](const Lobe& x) { return transmits(x); })) break;
+        ++at;
+      }
       Lobe sa, sb, ca, cb;
-      const LobeMixtureBsdf ma(brdf_texel(a, l, 0, 0, sa), brdf_coat(a, l, 0, 0, ca).lobes),
-          mb(brdf_texel(b, l, 0, 0, sb), brdf_coat(b, l, 0, 0, cb).lobes);
+      const int i = at % e.width, j = at / e.width;
+      const LobeMixtureBsdf ma(brdf_texel(a, l, i, j, sa), brdf_coat(a, l, i, j, ca).lobes),
+          mb(brdf_texel(b, l, i, j, sb), brdf_coat(b, l, i, j, cb).lobes);
       const Rgb ea = ma.eval(wi, wo), eb = mb.eval(wi, wo);
       EXPECT_EQ(std::memcmp(&ea, &eb, sizeof ea), 0);
       EXPECT_GT(ea.g, 0.0f);
@@ -112,6 +138,7 @@ TEST(TransmissionStorage, TheMipFileCarriesTheLobesTransmissionBitForBit) {
       EXPECT_EQ(with_t90, 0);
     }
   }
+  EXPECT_GT(stretched_levels, 0);
 }
 
 // A material that transmits nowhere stores no transmission channel (its file is as before the layer).
@@ -147,6 +174,27 @@ TEST(TransmissionStorage, RoundingIsIdempotentAndHalfPrecise) {
   EXPECT_NE(l.transmission_alpha2, exact.transmission_alpha2);  // 0.31⁴ is no square of a half
   EXPECT_NEAR(std::sqrt(l.transmission_alpha2), std::sqrt(exact.transmission_alpha2),
               0x1p-11 * std::sqrt(exact.transmission_alpha2));
+}
+
+// The transmission's stretch is rounded as the reflection's (stored_lobe.h): ln r to a half, the
+// direction to a step of π/2^20; idempotent.
+TEST(TransmissionStorage, TheTransmissionsStretchRoundsAsTheReflections) {
+  Lobe l = lobe_from_texel(glm::vec3(0.7f, 0.4f, 0.2f), 0.0f, 0.31f, glm::vec3(0, 0, 1), 1.0f, {},
+                           AnisotropyLayer{0.6f, glm::normalize(glm::vec2(0.3f, 0.8f))}, 0.73f);
+  l.transmission_stretch = 2.7f;
+  l.transmission_stretch_dir = glm::normalize(glm::vec2(-0.6f, 0.5f));
+  const Lobe exact = l;
+  round_to_stored(l);
+  Lobe again = l;
+  round_to_stored(again);
+  EXPECT_EQ(std::memcmp(&l, &again, sizeof l), 0);
+  EXPECT_NE(l.transmission_stretch, exact.transmission_stretch);
+  EXPECT_NEAR(std::log(l.transmission_stretch), std::log(exact.transmission_stretch), 0x1p-11 * std::log(2.7));
+  const double turn = std::abs(std::atan2(l.transmission_stretch_dir.y, l.transmission_stretch_dir.x) -
+                               std::atan2(exact.transmission_stretch_dir.y, exact.transmission_stretch_dir.x));
+  EXPECT_LE(turn, 3.14159265358979 / (1 << 21) + 1e-6);
+  // Its own channels: not the reflection's stretch.
+  EXPECT_NE(l.transmission_stretch, l.stretch);
 }
 
 }  // namespace
