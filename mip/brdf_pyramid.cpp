@@ -264,7 +264,9 @@ int BrdfPyramid::bytes_per_texel(int level) const {
                     (l.tint_layer() ? kBytesPerTintLayer : 0) + (l.stretch_layer() ? kBytesPerStretch : 0) +
                     (l.transmission_layer() ? kBytesPerTransmission : 0) +
                     (l.transmission90_layer() ? kBytesPerTransmission90 : 0) +
-                    (l.transmission_stretch_layer() ? kBytesPerTransmissionStretch : 0)) +
+                    (l.transmission_stretch_layer() ? kBytesPerTransmissionStretch : 0) +
+                    (l.diffuse_transmission_layer() ? kBytesPerDiffuseTransmission : 0) +
+                    (l.diffuse_transmission90_layer() ? kBytesPerDiffuseTransmission90 : 0)) +
          (l.correction.empty() ? 0 : kBytesPerCorrection) + coat_bytes_per_texel(level) + sheen_bytes_per_texel(level);
 }
 

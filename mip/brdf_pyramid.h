@@ -84,6 +84,15 @@ struct BrdfLevel {
   // Whether some lobe's transmission is stretched (lobe.h "Transmission"), which the MIP file then
   // stores in kBytesPerTransmissionStretch more bytes a slot.
   bool transmission_stretch_layer() const { return any_lobe([](const Lobe& l) { return l.transmission_stretch != 1.0f; }); }
+  // Whether some lobe transmits diffusely (diffuse_transmission.h), and whether some lobe's τd90 is not 0,
+  // which the MIP file then stores in kBytesPerDiffuseTransmission and kBytesPerDiffuseTransmission90 more
+  // bytes a slot.
+  bool diffuse_transmission_layer() const {
+    return any_lobe([](const Lobe& l) { return l.diffuse_transmission != glm::vec3(0.0f); });
+  }
+  bool diffuse_transmission90_layer() const {
+    return any_lobe([](const Lobe& l) { return l.diffuse_transmission90 != glm::vec3(0.0f); });
+  }
   // Makes room for `texels` texels, all empty.
   void reset(Extent e, std::size_t texels) {
     extent = e;

@@ -217,7 +217,9 @@ void write_mip_file(const fs::path& path, const ParamPyramid& param, const BrdfP
     c.lobe = lobe_channels({.specular = bl.specular_layer(), .tint = brdf.tintable() && bl.tint_layer(), .coat = c.coat,
                             .sheen = c.sheen, .stretch = bl.stretch_layer(), .transmission = bl.transmission_layer(),
                             .transmission90 = bl.transmission90_layer(),
-                            .transmission_stretch = bl.transmission_stretch_layer()});
+                            .transmission_stretch = bl.transmission_stretch_layer(),
+                            .diffuse_transmission = bl.diffuse_transmission_layer(),
+                            .diffuse_transmission90 = bl.diffuse_transmission90_layer()});
     c.coat_slots = c.coat ? brdf.coat_level(level).slots : 0;
   }
   // Each level is packed twice a band of rows at a time, for its checksum (the headers come first) and
@@ -462,7 +464,9 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
         {.specular = lobe_layer("lobe0.F90"), .tint = tint_channels, .coat = coat, .sheen = sheen,
          .stretch = lobe_layer("lobe0.stretch"), .transmission = lobe_layer("lobe0.transmission.R"),
          .transmission90 = lobe_layer("lobe0.transmission90.R"),
-         .transmission_stretch = lobe_layer("lobe0.transmission.stretch")});
+         .transmission_stretch = lobe_layer("lobe0.transmission.stretch"),
+         .diffuse_transmission = lobe_layer("lobe0.diffuseTransmission.R"),
+         .diffuse_transmission90 = lobe_layer("lobe0.diffuseTransmission90.R")});
     const std::vector<LobeChannel> coat_ch = coat_lobe_channels();
     const auto need_lobes = [&](const char* prefix, int n, const std::vector<LobeChannel>& channels) {
       for (int k = 0; k < n; ++k)

@@ -77,6 +77,12 @@
 // normals' spread that the lobe's own stretch holds; lobe.h "Transmission"), 6 bytes more a slot:
 //   lobeK.transmission.stretch, lobeK.transmission.stretch.dirHi/dirLo
 //                               the transmission's stretch, coded as lobeK.stretch's      half
+// and, in a level where some lobe transmits diffusely (KHR_materials_diffuse_transmission;
+// diffuse_transmission.h), 6 bytes more a slot:
+//   lobeK.diffuseTransmission.R/G/B    τd, the Lambertian BTDF's factor at w = 0           half
+// and, in a level where some lobe's τd90 ≠ 0 (a diffusely transmitting material whose specular layer
+// is not plain), 6 bytes more a slot:
+//   lobeK.diffuseTransmission90.R/G/B  τd90, its factor at w = 1                          half
 // and, for L ≥ kFirstCorrectedLevel (4), 24 bytes (radial_correction.h):
 //   radial.R0 .. radial.R11     the texel's radial correction: the ratio of its true radial
 //                               profile of reflected light to its lobes' (gated beyond 10°)
@@ -112,7 +118,7 @@
 
 namespace svbrdf {
 
-inline constexpr int kMipFileVersion = 16;
+inline constexpr int kMipFileVersion = 17;
 
 // Throws svbrdf::Error naming the file when it cannot be written. A non-empty `cache_key` is stored as
 // svbrdf:cache_key.

@@ -1,7 +1,8 @@
 #pragma once
 // Private to mip/ (mip_file.cpp, mip_records.cpp): the channels of the MIP file as mip_file.h lists them —
-// the parameters', the lobes' by role, the specular, tint and coat layers', the sheen's, the stretch's and
-// the transmission's — and a lobe packed into them and unpacked; and a pixel's layout in a level's bytes.
+// the parameters', the lobes' by role, the specular, tint and coat layers', the sheen's, the stretch's, the
+// transmission's and the diffuse transmission's — and a lobe packed into them and unpacked; and a pixel's
+// layout in a level's bytes.
 #include <Imath/half.h>
 #include <OpenImageIO/typedesc.h>
 
@@ -55,6 +56,8 @@ enum class Role {
   transmission_r, transmission_g, transmission_b, transmission_alpha, transmission_alpha_hi,  // (kTransmissionLobeChannels)
   transmission90_r, transmission90_g, transmission90_b,                // (kTransmission90LobeChannels)
   transmission_stretch, transmission_stretch_dir_hi, transmission_stretch_dir_lo,  // (kTransmissionStretchLobeChannels)
+  diffuse_transmission_r, diffuse_transmission_g, diffuse_transmission_b,        // (kDiffuseTransmissionLobeChannels)
+  diffuse_transmission90_r, diffuse_transmission90_g, diffuse_transmission90_b,  // (kDiffuseTransmission90LobeChannels)
   count
 };
 struct LobeChannel {
@@ -133,6 +136,19 @@ constexpr LobeChannel kTransmissionStretchLobeChannels[] = {
     {"transmission.stretch.dirHi", Role::transmission_stretch_dir_hi, kHalf},
     {"transmission.stretch.dirLo", Role::transmission_stretch_dir_lo, kHalf},
 };
+// A diffuse transmission's τd, 6 bytes (kBytesPerDiffuseTransmission), in levels where some lobe transmits
+// diffusely (diffuse_transmission.h), and its τd90, 6 bytes (kBytesPerDiffuseTransmission90), in levels
+// where some lobe's is not 0.
+constexpr LobeChannel kDiffuseTransmissionLobeChannels[] = {
+    {"diffuseTransmission.R", Role::diffuse_transmission_r, kHalf},
+    {"diffuseTransmission.G", Role::diffuse_transmission_g, kHalf},
+    {"diffuseTransmission.B", Role::diffuse_transmission_b, kHalf},
+};
+constexpr LobeChannel kDiffuseTransmission90LobeChannels[] = {
+    {"diffuseTransmission90.R", Role::diffuse_transmission90_r, kHalf},
+    {"diffuseTransmission90.G", Role::diffuse_transmission90_g, kHalf},
+    {"diffuseTransmission90.B", Role::diffuse_transmission90_b, kHalf},
+};
 // A coat lobe's channels, 14 bytes (kBytesPerCoatLobe), named "coatK.<suffix>": a lobe's without its
 // colours, which the extension fixes (stored_lobe.h set_coat_colours).
 constexpr LobeChannel kCoatLobeChannels[] = {
@@ -149,6 +165,7 @@ inline constexpr const char* kTint = "svbrdf:tint";
 struct LobeLayers {
   bool specular = false, tint = false, coat = false, sheen = false, stretch = false;
   bool transmission = false, transmission90 = false, transmission_stretch = false;
+  bool diffuse_transmission = false, diffuse_transmission90 = false;
 };
 // The channels of a level's lobe slots, with the layers' it has.
 inline std::vector<LobeChannel> lobe_channels(const LobeLayers& l) {
@@ -164,6 +181,8 @@ inline std::vector<LobeChannel> lobe_channels(const LobeLayers& l) {
   add(l.transmission, kTransmissionLobeChannels);
   add(l.transmission90, kTransmission90LobeChannels);
   add(l.transmission_stretch, kTransmissionStretchLobeChannels);
+  add(l.diffuse_transmission, kDiffuseTransmissionLobeChannels);
+  add(l.diffuse_transmission90, kDiffuseTransmission90LobeChannels);
   return c;
 }
 inline std::vector<LobeChannel> coat_lobe_channels() {
@@ -196,6 +215,10 @@ inline LobeValues pack_lobe(const Lobe& l) {
   // exact, as α's: a stored α_T² is the square of a half or 0
   out[Role::transmission_alpha] = std::sqrt(l.transmission_alpha2);
   out[Role::transmission_alpha_hi] = std::sqrt(l.transmission_alpha2_hi);
+  for (int c = 0; c < 3; ++c) {
+    out[Role(int(Role::diffuse_transmission_r) + c)] = l.diffuse_transmission[c];
+    out[Role(int(Role::diffuse_transmission90_r) + c)] = l.diffuse_transmission90[c];
+  }
   const StoredNormal n = store_normal(l.normal);  // exact: the pyramid's normals are decoded codes
   out.direction = n.direction;
   out[Role::normal_deficit] = n.deficit;
@@ -226,6 +249,10 @@ inline Lobe unpack_lobe(const LobeValues& in) {
   // A corrupt α_T of 0 or NaN transmits through the lobe's own shape (lobe.h transmission_shape).
   l.transmission_alpha2 = in[Role::transmission_alpha] * in[Role::transmission_alpha];
   l.transmission_alpha2_hi = in[Role::transmission_alpha_hi] * in[Role::transmission_alpha_hi];
+  for (int c = 0; c < 3; ++c) {
+    l.diffuse_transmission[c] = in[Role(int(Role::diffuse_transmission_r) + c)];
+    l.diffuse_transmission90[c] = in[Role(int(Role::diffuse_transmission90_r) + c)];
+  }
   l.normal = load_normal(StoredNormal{in.direction, in[Role::normal_deficit]});
   l.alpha2 = in[Role::alpha] * in[Role::alpha];
   set_lobe_shape_code(l, in[Role::shape]);

@@ -19,7 +19,7 @@ using mip_file_channels::Role;
 
 namespace {
 
-constexpr const char* kFormat = "svbrdf mip records 4";
+constexpr const char* kFormat = "svbrdf mip records 5";
 
 // The roles of a lobe's half channels, in the MIP file's order (its direction word comes first).
 std::vector<std::uint8_t> half_roles(const std::vector<LobeChannel>& channels) {
@@ -97,6 +97,8 @@ MipRecordLayout MipRecordLayout::of(const ParamPyramid& param, const BrdfPyramid
     v.lobe_transmission = bl.transmission_layer();
     v.lobe_transmission90 = bl.transmission90_layer();
     v.lobe_transmission_stretch = bl.transmission_stretch_layer();
+    v.lobe_diffuse_transmission = bl.diffuse_transmission_layer();
+    v.lobe_diffuse_transmission90 = bl.diffuse_transmission90_layer();
     v.radial = !bl.correction.empty();
     corrected |= v.radial;
   }
@@ -111,7 +113,8 @@ void MipRecordLayout::find_roles() {
     roles.push_back(half_roles(mip_file_channels::lobe_channels(
         {.specular = v.lobe_specular, .tint = v.lobe_tint, .coat = coat, .sheen = sheen, .stretch = v.lobe_stretch,
          .transmission = v.lobe_transmission, .transmission90 = v.lobe_transmission90,
-         .transmission_stretch = v.lobe_transmission_stretch})));
+         .transmission_stretch = v.lobe_transmission_stretch, .diffuse_transmission = v.lobe_diffuse_transmission,
+         .diffuse_transmission90 = v.lobe_diffuse_transmission90})));
 }
 
 int MipRecordLayout::words(int l) const {
@@ -130,7 +133,7 @@ std::string MipRecordLayout::describe(const std::string& key) const {
   for (const Level& v : level)
     s << " level " << v.slots << ' ' << v.coat_slots << ' ' << v.lobe_specular << ' ' << v.lobe_tint << ' '
       << v.lobe_stretch << ' ' << v.lobe_transmission << ' ' << v.lobe_transmission90 << ' ' << v.lobe_transmission_stretch << ' '
-      << v.radial;
+      << v.lobe_diffuse_transmission << ' ' << v.lobe_diffuse_transmission90 << ' ' << v.radial;
   return s.str();
 }
 
@@ -175,7 +178,8 @@ std::optional<MipRecordLayout> MipRecordLayout::parse(const std::string& text, c
     Level v;
     if (!expect("level") || !(s >> v.slots >> v.coat_slots) || !flag(v.lobe_specular) || !flag(v.lobe_tint) ||
         !flag(v.lobe_stretch) || !flag(v.lobe_transmission) || !flag(v.lobe_transmission90) ||
-        !flag(v.lobe_transmission_stretch) || !flag(v.radial))
+        !flag(v.lobe_transmission_stretch) || !flag(v.lobe_diffuse_transmission) ||
+        !flag(v.lobe_diffuse_transmission90) || !flag(v.radial))
       return fail("its layout lists fewer levels than it has");
     const bool brdf_level = o.brdf && l > 0;
     if (v.slots < (brdf_level ? 1 : 0) || v.slots > (brdf_level ? kMaxLobes : 0) || v.coat_slots < 0 ||

@@ -54,7 +54,8 @@ struct MipRecordLayout {
     int slots = 0, coat_slots = 0;
     // The lobes' layers (mip_file_channels.h LobeLayers), the correction.
     bool lobe_specular = false, lobe_tint = false, lobe_stretch = false, lobe_transmission = false,
-         lobe_transmission90 = false, lobe_transmission_stretch = false, radial = false;
+         lobe_transmission90 = false, lobe_transmission_stretch = false, lobe_diffuse_transmission = false,
+         lobe_diffuse_transmission90 = false, radial = false;
   };
   std::vector<Level> level;  // one a level
   // Per level, the roles of a lobe's half channels (mip_file_channels.h), made by of() and parse().

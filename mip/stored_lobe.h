@@ -51,8 +51,8 @@ inline void set_lobe_transmission_stretch_code(Lobe& lobe, float code, std::uint
   set_stretch_code(lobe.transmission_stretch, lobe.transmission_stretch_dir, code, direction);
 }
 
-// Rounds a lobe to what the MIP file stores: weight, colors (f0_tint and the transmission's τ and τ90 among
-// them), its coat and sheen shares, α and the transmission's α_T and α_T,hi (the square roots of alpha2,
+// Rounds a lobe to what the MIP file stores: weight, colors (f0_tint, the transmission's τ and τ90 and the
+// diffuse transmission's τd and τd90 among them), its coat and sheen shares, α and the transmission's α_T and α_T,hi (the square roots of alpha2,
 // transmission_alpha2 and transmission_alpha2_hi), shape code and skirt as half floats, the normal as
 // stored_normal.h codes it, its stretch and its transmission's stretch as above.
 void round_to_stored(Lobe& lobe);
@@ -83,5 +83,10 @@ inline constexpr int kBytesPerTransmission90 = 3 * 2;
 // The transmission's own stretch, as kBytesPerStretch, in levels where some lobe's transmission is
 // stretched.
 inline constexpr int kBytesPerTransmissionStretch = kBytesPerStretch;
+// What a diffuse transmission adds to a stored lobe (diffuse_transmission.h): τd as three halves, in
+// levels where some lobe transmits diffusely, and τd90 as three halves, in levels where some lobe's is
+// not 0 (a diffusely transmitting material whose specular layer is not plain).
+inline constexpr int kBytesPerDiffuseTransmission = 3 * 2;
+inline constexpr int kBytesPerDiffuseTransmission90 = 3 * 2;
 
 }  // namespace svbrdf

@@ -15,11 +15,16 @@
 #include "mip/lobe_mixture_bsdf.h"
 #include "mip/mip_file.h"
 #include "mip/stored_lobe.h"
+#include "tests/mip/file_channels.h"
 #include "textures/random_material.h"
 #include "tests/common/temp_dir.h"
 
 namespace svbrdf {
 namespace {
+
+using testing_files::channels_of;
+using testing_files::Channels;
+using testing_files::expect_same_texel_value;
 
 // A dielectric of the random family given a transmission that varies by texel (stripes that transmit
 // nothing, 0.35 or 0.9) and, where `layered`, a specular layer that is not plain (so τ90 ≠ 0).
@@ -36,31 +41,6 @@ MaterialTexels transmitting(int size, bool layered) {
     m.specular_color.assign(m.size(), glm::vec3(1.0f, 0.9f, 0.8f));
   }
   return m;
-}
-
-// The channels of subimage `level` of a MIP file: names and byte sizes.
-struct Channels {
-  std::vector<std::string> names;
-  std::vector<int> bytes;
-  bool has(const std::string& name) const { return std::find(names.begin(), names.end(), name) != names.end(); }
-  // Bytes of the channels whose name starts with `prefix` and contains `part`.
-  int bytes_of(const std::string& prefix, const std::string& part = "") const {
-    int n = 0;
-    for (std::size_t c = 0; c < names.size(); ++c)
-      if (names[c].rfind(prefix, 0) == 0 && names[c].find(part) != std::string::npos) n += bytes[c];
-    return n;
-  }
-};
-Channels channels_of(const std::filesystem::path& path, int level) {
-  auto in = OIIO::ImageInput::open(path.string());
-  EXPECT_TRUE(in && in->seek_subimage(level, 0));
-  Channels c;
-  const OIIO::ImageSpec& s = in->spec();
-  for (int k = 0; k < s.nchannels; ++k) {
-    c.names.push_back(s.channelnames[std::size_t(k)]);
-    c.bytes.push_back(int(s.channelformat(k).size()));
-  }
-  return c;
 }
 
 // Seed 26 of the random family: an anisotropic glossy film brushed along a diagonal, part of it
@@ -115,20 +95,7 @@ TEST(TransmissionStorage, TheMipFileCarriesTheLobesTransmissionBitForBit) {
       // glossy anisotropic film.
       const glm::vec3 wo = glm::normalize(glm::vec3(-0.1f, 0.2f, 0.9f));
       const glm::vec3 wi = variant == 2 ? -wo : glm::normalize(glm::vec3(0.2f, -0.3f, -0.9f));
-      const Extent e = a.extent(l);
-      int at = 0;
-      while (at + 1 < e.width * e.height) {
-        const std::span<const Lobe> lobes = a.brdf.texel(l, at % e.width, at / e.width);
-        if (std::any_of(lobes.begin(), lobes.end(), [](const Lobe& x) { return transmits(x); })) break;
-        ++at;
-      }
-      Lobe sa, sb, ca, cb;
-      const int i = at % e.width, j = at / e.width;
-      const LobeMixtureBsdf ma(brdf_texel(a, l, i, j, sa), brdf_coat(a, l, i, j, ca).lobes),
-          mb(brdf_texel(b, l, i, j, sb), brdf_coat(b, l, i, j, cb).lobes);
-      const Rgb ea = ma.eval(wi, wo), eb = mb.eval(wi, wo);
-      EXPECT_EQ(std::memcmp(&ea, &eb, sizeof ea), 0);
-      EXPECT_GT(ea.g, 0.0f);
+      expect_same_texel_value(a, b, l, wi, wo, [](const Lobe& x) { return transmits(x); });
     }
     EXPECT_GT(transmitting_lobes, 0);
     // The plain layer's τ90 is 0 (lobe.h lobe_from_texel), and a file of one stores none.
