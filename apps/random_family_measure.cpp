@@ -161,7 +161,8 @@ SeedFigures measure_random_draw(const RandomMaterialDraw& draw, int size, const 
                                                       mip.param.specular(row.level, i, j), nullptr,
                                                       mip.param.sheen(row.level, i, j),
                                                       mip.param.anisotropy(row.level, i, j),
-                                                      transmission ? *transmission : 0.0f);
+                                                      transmission ? *transmission : 0.0f,
+                                                      mip.param.diffuse_transmission(row.level, i, j));
                      return grey(directional_albedo(std::span<const Lobe>(&l.base, 1), l.sheen, incident(a), kAlbedoStrata));
                    },
                    f.param);

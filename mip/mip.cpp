@@ -6,6 +6,7 @@
 #include "base/error.h"
 #include "mip/brdf_pyramid.h"
 #include "mip/coat_layer.h"
+#include "mip/diffuse_transmission.h"
 #include "mip/mip_file.h"
 #include "mip/mip_lookup.h"
 #include "mip/mip_records.h"
@@ -159,12 +160,14 @@ std::span<const Lobe> MipTexture::lobes(const Choice& c, Scratch& scratch) const
     ParamCoat coat;
     AnisotropyLayer aniso;
     float transmission = 0.0f;
+    DiffuseTransmissionLayer diffuse_transmission;
     ParamTexel t = filter_params(p.param, c.footprint, wrap(), kMaxProbes, &layer, &coat, &scratch.sheen, &aniso,
-                                 &transmission);
+                                 &transmission, &diffuse_transmission);
     t.base_color *= c.tint;
     const ParamLobes l = param_lobes(t, c.filter, layer, p.param.has_coat() ? &coat : nullptr,
                                      p.param.has_sheen() ? &scratch.sheen : nullptr,
-                                     p.param.has_anisotropy() ? &aniso : nullptr, transmission);
+                                     p.param.has_anisotropy() ? &aniso : nullptr, transmission,
+                                     p.param.has_diffuse_transmission() ? &diffuse_transmission : nullptr);
     scratch.lobe[0] = l.base;
     if (l.coated) scratch.coat = l.coat;
     return {scratch.lobe, 1};
@@ -181,9 +184,11 @@ std::span<const Lobe> MipTexture::lobes(const Choice& c, Scratch& scratch) const
   const ParamTexel& t = p.level0(c.i, c.j);
   const AnisotropyLayer* aniso = p.param.anisotropy(0, c.i, c.j);
   const float* transmission = p.param.transmission(0, c.i, c.j);
-  scratch.lobe[0] = lobe_from_texel(t.base_color * c.tint, t.metallic, t.roughness, t.normal, 1.0f,
-                                    p.param.specular(0, c.i, c.j), aniso ? *aniso : AnisotropyLayer{},
-                                    transmission ? *transmission : 0.0f);
+  const SpecularLayer layer = p.param.specular(0, c.i, c.j);
+  scratch.lobe[0] = lobe_from_texel(t.base_color * c.tint, t.metallic, t.roughness, t.normal, 1.0f, layer,
+                                    aniso ? *aniso : AnisotropyLayer{}, transmission ? *transmission : 0.0f);
+  if (const DiffuseTransmissionLayer* d = p.param.diffuse_transmission(0, c.i, c.j))
+    add_diffuse_transmission(scratch.lobe[0], t.metallic, layer, transmission ? *transmission : 0.0f, *d);
   if (const ParamCoat* coat = p.param.coat(0, c.i, c.j)) {
     // As exact_reference.h level0_lobe and level0_coat make them.
     scratch.lobe[0].coat = std::clamp(coat->clearcoat, 0.0f, 1.0f);

@@ -73,7 +73,7 @@ ParamLobes param_texel_lobes(const MipData& mip, TextureFilter filter, int level
   const float* transmission = mip.param.transmission(level, i, j);
   return param_lobes(mip.param.texel(level, i, j), filter, mip.param.specular(level, i, j), mip.param.coat(level, i, j),
                      mip.param.sheen(level, i, j), mip.param.anisotropy(level, i, j),
-                     transmission ? *transmission : 0.0f);
+                     transmission ? *transmission : 0.0f, mip.param.diffuse_transmission(level, i, j));
 }
 CoatTexel coat_of(const ParamLobes& l) {
   if (!l.coated || !(l.coat.weight > 0)) return {};
@@ -179,7 +179,8 @@ int bytes_per_texel(const MipData& mip, TextureFilter filter, int level) {
          (mip.param.has_coat() ? ParamPyramid::kBytesPerCoatTexel : 0) +
          (mip.param.has_sheen() ? ParamPyramid::kBytesPerSheenTexel : 0) +
          (mip.param.has_anisotropy() ? ParamPyramid::kBytesPerAnisotropyTexel : 0) +
-         (mip.param.has_transmission() ? ParamPyramid::kBytesPerTransmissionTexel : 0);
+         (mip.param.has_transmission() ? ParamPyramid::kBytesPerTransmissionTexel : 0) +
+         (mip.param.has_diffuse_transmission() ? ParamPyramid::kBytesPerDiffuseTransmissionTexel : 0);
 }
 
 }  // namespace svbrdf

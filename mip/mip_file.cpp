@@ -104,10 +104,12 @@ namespace {
 // each, the radial correction, `coat_slots` coat lobes.
 struct LevelChannels {
   bool specular = false, coat = false, sheen = false, anisotropy = false, transmission = false, radial = false;
+  bool diffuse_transmission = false;
   int slots = 0, coat_slots = 0;
   std::vector<LobeChannel> lobe;
   std::size_t first_lobe() const {
-    return 8 + (specular ? 4 : 0) + (coat ? 5 : 0) + (sheen ? 4 : 0) + (anisotropy ? 3 : 0) + (transmission ? 1 : 0);
+    return 8 + (specular ? 4 : 0) + (coat ? 5 : 0) + (sheen ? 4 : 0) + (anisotropy ? 3 : 0) + (transmission ? 1 : 0) +
+           (diffuse_transmission ? 4 : 0);
   }
   std::size_t first_radial() const { return first_lobe() + std::size_t(slots) * lobe.size(); }
   std::size_t first_coat_lobe() const { return first_radial() + (radial ? RadialGrid::kNodes : 0); }
@@ -145,6 +147,7 @@ void pack_rows(const ParamPyramid& param, const BrdfPyramid& brdf, int level, co
   const auto sheen = param.sheen_level(level);
   const auto aniso = param.anisotropy_level(level);
   const auto transmission = param.transmission_level(level);
+  const auto diffuse_transmission = param.diffuse_transmission_level(level);
   const std::vector<LobeChannel> coat_channels = coat_lobe_channels();
   const std::size_t first = static_cast<std::size_t>(y0) * e.width, last = static_cast<std::size_t>(y1) * e.width;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(first, last, kPackGrain), [&](const tbb::blocked_range<std::size_t>& texels) {
@@ -172,6 +175,10 @@ void pack_rows(const ParamPyramid& param, const BrdfPyramid& brdf, int level, co
         for (const float v : {a.strength, a.direction.x, a.direction.y}) put_float(px, layout, next++, v);
       }
       if (ch.transmission) put_float(px, layout, next++, transmission[t]);
+      if (ch.diffuse_transmission) {
+        const DiffuseTransmissionLayer& d = diffuse_transmission[t];
+        for (const float v : {d.share, d.color.r, d.color.g, d.color.b}) put_float(px, layout, next++, v);
+      }
       if (level == 0) continue;
       const BrdfLevel& bl = brdf.level(level);
       put_lobes(px, layout, ch.first_lobe(), ch.slots, bl.texel_lobes(t), ch.lobe);
@@ -210,6 +217,7 @@ void write_mip_file(const fs::path& path, const ParamPyramid& param, const BrdfP
     c.sheen = param.has_sheen();
     c.anisotropy = param.has_anisotropy();
     c.transmission = param.has_transmission();
+    c.diffuse_transmission = param.has_diffuse_transmission();
     if (level == 0) continue;
     const BrdfLevel& bl = brdf.level(level);
     c.slots = bl.slots;
@@ -258,6 +266,8 @@ void write_mip_file(const fs::path& path, const ParamPyramid& param, const BrdfP
       for (const char* c : kParamAnisotropyChannels) add(c, OIIO::TypeDesc::FLOAT);
     if (ch.transmission)
       for (const char* c : kParamTransmissionChannels) add(c, OIIO::TypeDesc::FLOAT);
+    if (ch.diffuse_transmission)
+      for (const char* c : kParamDiffuseTransmissionChannels) add(c, OIIO::TypeDesc::FLOAT);
     for (int k = 0; k < ch.slots; ++k)
       for (const LobeChannel& c : ch.lobe) add("lobe" + std::to_string(k) + "." + c.suffix, c.format);
     if (ch.radial)
@@ -397,6 +407,7 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
   std::vector<std::vector<SheenLayer>> sheen_levels;
   std::vector<std::vector<AnisotropyLayer>> anisotropy_levels;
   std::vector<std::vector<float>> transmission_levels;
+  std::vector<std::vector<DiffuseTransmissionLayer>> diffuse_transmission_levels;
   std::vector<BrdfLevel> coarse, coarse_coat;
   for (int level = 0; level < levels; ++level) {
     const std::string at_level = "level " + std::to_string(level);
@@ -435,8 +446,8 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
     };
     for (const char* c : kParamChannels) need(c);
     // A layer's means (the specular layer's, the coat's, the sheen's, the anisotropy's, the
-    // transmission's): in every level
-    // or in none, as level 0 has them or not; its lobes' channels are per level (below).
+    // transmission's, the diffuse transmission's): in every level or in none, as level 0 has them or
+    // not; its lobes' channels are per level (below).
     const auto means = [&](std::span<const char* const> channels, bool in_level0) {
       const bool here = index.count(channels[0]) > 0;
       if (level > 0 && here != in_level0)
@@ -451,6 +462,8 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
     const bool sheen = means(kParamSheenChannels, !sheen_levels.empty());
     const bool anisotropy = means(kParamAnisotropyChannels, !anisotropy_levels.empty());
     const bool transmission = means(kParamTransmissionChannels, !transmission_levels.empty());
+    const bool diffuse_transmission =
+        means(kParamDiffuseTransmissionChannels, !diffuse_transmission_levels.empty());
     const int coat_slots = level > 0 && coat ? s.get_int_attribute(kCoatSlots, -1) : 0;
     if (coat_slots < 0 || coat_slots > kMaxLobes)
       throw input_error(where(path), at_level + " has " + std::to_string(coat_slots) + " coat lobe slots (" + kCoatSlots + ")");
@@ -508,6 +521,7 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
     std::vector<SheenLayer> sheen_means(sheen ? texels : 0);
     std::vector<AnisotropyLayer> anisotropy_means(anisotropy ? texels : 0);
     std::vector<float> transmission_means(transmission ? texels : 0);
+    std::vector<DiffuseTransmissionLayer> diffuse_transmission_means(diffuse_transmission ? texels : 0);
     for (std::size_t t = 0; t < texels; ++t) {
       const std::size_t row = t / std::size_t(e.width);
       if (t % (std::size_t(rows) * e.width) == 0) {  // the next band
@@ -532,7 +546,9 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
       if (coat) coat_means[t] = {value(next), value(next + 1), {value(next + 2), value(next + 3), value(next + 4)}}, next += 5;
       if (sheen) sheen_means[t] = {{value(next), value(next + 1), value(next + 2)}, value(next + 3)}, next += 4;
       if (anisotropy) anisotropy_means[t] = {value(next), {value(next + 1), value(next + 2)}}, next += 3;
-      if (transmission) transmission_means[t] = value(next);
+      if (transmission) transmission_means[t] = value(next), next += 1;
+      if (diffuse_transmission)
+        diffuse_transmission_means[t] = {value(next), {value(next + 1), value(next + 2), value(next + 3)}};
       if (level == 0) continue;
       // Texel t's lobes into `into`, from `n` slots of `channels` from `first` on.
       const auto read_lobes = [&](BrdfLevel& into, std::size_t first, int n, const std::vector<LobeChannel>& channels,
@@ -576,6 +592,7 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
     if (sheen) sheen_levels.push_back(std::move(sheen_means));
     if (anisotropy) anisotropy_levels.push_back(std::move(anisotropy_means));
     if (transmission) transmission_levels.push_back(std::move(transmission_means));
+    if (diffuse_transmission) diffuse_transmission_levels.push_back(std::move(diffuse_transmission_means));
   }
   if (in->seek_subimage(levels, 0))
     throw input_error(where(path), "has more subimages than the " + std::to_string(levels) + " levels of its level 0");
@@ -584,7 +601,7 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
   std::vector<std::vector<SheenLayer>> brdf_sheen = sheen_levels;
   mip.param = ParamPyramid::from_levels(level0, std::move(param_levels), std::move(specular_levels), ior,
                                         std::move(coat_levels), std::move(sheen_levels), std::move(anisotropy_levels),
-                                        std::move(transmission_levels));
+                                        std::move(transmission_levels), std::move(diffuse_transmission_levels));
   // Level 0's texels are the parameter pyramid's (the same floats).
   mip.level0 = mip.param.level0_texels();
   mip.brdf = BrdfPyramid::from_levels(mip.level0, max_lobes, std::move(coarse),

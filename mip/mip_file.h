@@ -30,6 +30,10 @@
 // and, in every level of a material that transmits (KHR_materials_transmission, thin-walled), 4 bytes
 // (level 0: the texel's own T; above, the mean of the covered texels'):
 //   param.transmission          mean transmission T                                      float
+// and, in every level of a material that transmits diffusely (KHR_materials_diffuse_transmission),
+// 16 bytes (level 0: the texel's own; above, param_pyramid.h diffuse_transmission_mean):
+//   param.diffuseTransmission   mean diffuse transmission share d                        float
+//   param.diffuseTransmission.R/G/B  its share-weighted mean colour (linear)             float
 // and, for L ≥ 1, for each lobe slot k = 0 .. S_L − 1 (lobe.h for the meaning), 26 bytes:
 //   lobeK.weight                fraction of the texel's area, times the lobe's specular-flux
 //                               factor (0: empty slot; slots are packed from 0)          half

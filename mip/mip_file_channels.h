@@ -40,6 +40,10 @@ inline constexpr const char* kParamAnisotropyChannels[3] = {"param.anisotropy", 
                                                             "param.anisotropy.Y"};
 // The transmission's mean, in every level of a material that transmits (mip_file.h).
 inline constexpr const char* kParamTransmissionChannels[1] = {"param.transmission"};
+// The diffuse transmission's means, in every level of a material that has one (mip_file.h).
+inline constexpr const char* kParamDiffuseTransmissionChannels[4] = {
+    "param.diffuseTransmission", "param.diffuseTransmission.R", "param.diffuseTransmission.G",
+    "param.diffuseTransmission.B"};
 // The attribute (int, on every subimage ≥ 1 of a coated material's file) of a level's coat lobe slots.
 inline constexpr const char* kCoatSlots = "svbrdf:coat_slots";
 

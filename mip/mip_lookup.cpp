@@ -177,14 +177,14 @@ LobeMixtureBsdf lookup_brdf(const MipData& mip, const Footprint& footprint, floa
 
 ParamTexel filter_params(const ParamPyramid& pyramid, const Footprint& footprint, WrapModes wrap, int max_probes,
                          SpecularLayer* specular, ParamCoat* coat, SheenLayer* sheen, AnisotropyLayer* anisotropy,
-                         float* transmission) {
+                         float* transmission, DiffuseTransmissionLayer* diffuse_transmission) {
   const ParamStore store{pyramid.level0(),     pyramid.levels(),       pyramid.ior(),
                          !pyramid.specular_level(0).empty(), pyramid.has_coat(), pyramid.has_sheen(),
-                         pyramid.has_anisotropy(), pyramid.has_transmission()};
+                         pyramid.has_anisotropy(), pyramid.has_transmission(), pyramid.has_diffuse_transmission()};
   return filter_params_of(
       store,
       [&](int level, int i, int j, ParamSpecular* s, ParamCoat* c, SheenLayer* h,
-          AnisotropyLayer* a, float* tr) -> const ParamTexel& {
+          AnisotropyLayer* a, float* tr, DiffuseTransmissionLayer* d) -> const ParamTexel& {
         if (s) {
           const SpecularLayer l = pyramid.specular(level, i, j);
           *s = {l.specular, l.color};
@@ -193,9 +193,10 @@ ParamTexel filter_params(const ParamPyramid& pyramid, const Footprint& footprint
         if (h) *h = *pyramid.sheen(level, i, j);
         if (a) *a = *pyramid.anisotropy(level, i, j);
         if (tr) *tr = *pyramid.transmission(level, i, j);
+        if (d) *d = *pyramid.diffuse_transmission(level, i, j);
         return pyramid.texel(level, i, j);
       },
-      footprint, wrap, max_probes, specular, coat, sheen, anisotropy, transmission);
+      footprint, wrap, max_probes, specular, coat, sheen, anisotropy, transmission, diffuse_transmission);
 }
 
 Lobe lookup_param(const ParamPyramid& pyramid, const Footprint& footprint, TextureFilter filter, WrapModes wrap,
@@ -203,9 +204,10 @@ Lobe lookup_param(const ParamPyramid& pyramid, const Footprint& footprint, Textu
   SpecularLayer layer;
   AnisotropyLayer aniso;
   float transmission = 0.0f;
-  const ParamTexel t =
-      filter_params(pyramid, footprint, wrap, max_probes, &layer, nullptr, nullptr, &aniso, &transmission);
-  return param_lobe(t, filter, layer, aniso, transmission);
+  DiffuseTransmissionLayer diffuse_transmission;
+  const ParamTexel t = filter_params(pyramid, footprint, wrap, max_probes, &layer, nullptr, nullptr, &aniso,
+                                     &transmission, &diffuse_transmission);
+  return param_lobe(t, filter, layer, aniso, transmission, diffuse_transmission);
 }
 
 }  // namespace svbrdf

@@ -70,13 +70,15 @@ LobeMixtureBsdf lookup_brdf(const MipData& mip, const Footprint& footprint, floa
 // with `coat`, of the clear coat (ParamCoat{} for a material without one); with `sheen`, of the sheen
 // (SheenLayer{}, colour 0, for a material without one); with `anisotropy`, of the anisotropy as
 // param_pyramid.h anisotropy_from_below averages it (AnisotropyLayer{}, strength 0, for a material
-// without one); with `transmission`, of the mean transmission (0 for a material that does not transmit).
+// without one); with `transmission`, of the mean transmission (0 for a material that does not transmit);
+// with `diffuse_transmission`, of the diffuse transmission as param_pyramid.h diffuse_transmission_mean
+// averages it (share 0 for a material without one).
 ParamTexel filter_params(const ParamPyramid& pyramid, const Footprint& footprint, WrapModes wrap = {},
                          int max_probes = kMaxProbes, SpecularLayer* specular = nullptr, ParamCoat* coat = nullptr,
                          SheenLayer* sheen = nullptr, AnisotropyLayer* anisotropy = nullptr,
-                         float* transmission = nullptr);
+                         float* transmission = nullptr, DiffuseTransmissionLayer* diffuse_transmission = nullptr);
 // The same over any store of a parameter pyramid's texels:
-// `texel(level, i, j, specular, coat, sheen, anisotropy, transmission)`
+// `texel(level, i, j, specular, coat, sheen, anisotropy, transmission, diffuse_transmission)`
 // gives a ParamTexel and fills the layers asked for (not null); the pyramid's level 0, its level count
 // and ior, and which layers it has, given. filter_params is this over ParamPyramid; the out-of-core
 // texture (mip.h) reads records with it, so both sum the same values in the same order.
@@ -85,12 +87,13 @@ struct ParamStore {
   int levels = 0;
   float ior = 1.5f;
   bool specular = false, coat = false, sheen = false, anisotropy = false, transmission = false;
+  bool diffuse_transmission = false;
 };
 template <class Texel>
 ParamTexel filter_params_of(const ParamStore& store, const Texel& texel, const Footprint& footprint,
                             WrapModes wrap, int max_probes, SpecularLayer* specular, ParamCoat* coat,
                             SheenLayer* sheen, AnisotropyLayer* anisotropy = nullptr,
-                            float* transmission = nullptr) {
+                            float* transmission = nullptr, DiffuseTransmissionLayer* diffuse_transmission = nullptr) {
   ParamTexel sum;
   sum.normal = glm::vec3(0.0f);
   if (specular) *specular = {1.0f, glm::vec3(1.0f), store.ior};
@@ -98,6 +101,7 @@ ParamTexel filter_params_of(const ParamStore& store, const Texel& texel, const F
   if (sheen) *sheen = {};
   if (anisotropy) *anisotropy = {};
   if (transmission) *transmission = 0.0f;
+  if (diffuse_transmission) *diffuse_transmission = {};
   if (store.levels == 0) return sum;
   const FilterTaps taps = filter_taps(store.level0, store.levels, footprint, wrap, max_probes);
   const bool layer = specular && store.specular;
@@ -107,17 +111,21 @@ ParamTexel filter_params_of(const ParamStore& store, const Texel& texel, const F
   const bool sheened = sheen && store.sheen;
   const bool stretched = anisotropy && store.anisotropy;
   const bool transmits = transmission && store.transmission;
+  const bool diffuse = diffuse_transmission && store.diffuse_transmission;
   ParamSpecular s;
   ParamCoat c;
   SheenLayer h;
   AnisotropyLayer a;
   float tr = 0.0f;
+  DiffuseTransmissionLayer dt;
+  double dt_total = 0, dt_share = 0;  // Σ weight, Σ weight·d
+  glm::dvec3 dt_color(0.0);            // Σ weight·d·C (param_pyramid.h diffuse_transmission_mean)
   glm::dvec2 axial(0.0);  // Σ weight·axial_anisotropy (param_pyramid.h)
   for (int k = 0; k < taps.count; ++k) {
     const FilterTap& t = taps.taps[static_cast<std::size_t>(k)];
     const ParamTexel& p =
         texel(t.level, t.i, t.j, layer ? &s : nullptr, coated ? &c : nullptr, sheened ? &h : nullptr,
-              stretched ? &a : nullptr, transmits ? &tr : nullptr);
+              stretched ? &a : nullptr, transmits ? &tr : nullptr, diffuse ? &dt : nullptr);
     sum.base_color += t.weight * p.base_color;
     sum.metallic += t.weight * p.metallic;
     sum.roughness += t.weight * p.roughness;
@@ -137,8 +145,14 @@ ParamTexel filter_params_of(const ParamStore& store, const Texel& texel, const F
     }
     if (stretched) axial += double(t.weight) * axial_anisotropy(a);
     if (transmits) *transmission += t.weight * tr;
+    if (diffuse) {
+      dt_total += t.weight;
+      dt_share += double(t.weight) * dt.share;
+      dt_color += (double(t.weight) * dt.share) * glm::dvec3(dt.color);
+    }
   }
   if (stretched) *anisotropy = from_axial_anisotropy(axial);
+  if (diffuse && dt_total > 0) *diffuse_transmission = diffuse_transmission_mean(dt_total, dt_share, dt_color);
   return sum;
 }
 Lobe lookup_param(const ParamPyramid& pyramid, const Footprint& footprint,

@@ -5,6 +5,7 @@
 
 #include "base/error.h"
 #include "mip/coat_layer.h"
+#include "mip/diffuse_transmission.h"
 #include "mip/mip.h"
 #include "mip/mip_lookup.h"
 #include "mip/mip_records.h"
@@ -20,14 +21,14 @@ struct RecordParams {
   const MipRecords& r;
   mutable ParamTexel texel;
   const ParamTexel& operator()(int level, int i, int j, ParamSpecular* s, ParamCoat* c, SheenLayer* h,
-                               AnisotropyLayer* a, float* t) const {
-    decode_params(r.layout, r.source->record(level, i, j), texel, s, c, h, a, t);
+                               AnisotropyLayer* a, float* t, DiffuseTransmissionLayer* d) const {
+    decode_params(r.layout, r.source->record(level, i, j), texel, s, c, h, a, t, d);
     return texel;
   }
 };
 
 ParamStore store_of(const MipRecordLayout& l) {
-  return {l.extent, l.levels, l.ior, l.specular, l.coat, l.sheen, l.anisotropy, l.transmission};
+  return {l.extent, l.levels, l.ior, l.specular, l.coat, l.sheen, l.anisotropy, l.transmission, l.diffuse_transmission};
 }
 
 }  // namespace
@@ -49,11 +50,13 @@ std::span<const Lobe> MipTexture::record_lobes(const Choice& c, Scratch& scratch
     ParamCoat coat;
     AnisotropyLayer aniso;
     float transmission = 0.0f;
+    DiffuseTransmissionLayer diffuse_transmission;
     ParamTexel t = filter_params_of(store_of(l), RecordParams{r, {}}, c.footprint, wrap(), kMaxProbes, &layer,
-                                    &coat, &scratch.sheen, &aniso, &transmission);
+                                    &coat, &scratch.sheen, &aniso, &transmission, &diffuse_transmission);
     t.base_color *= c.tint;
     const ParamLobes p = param_lobes(t, c.filter, layer, l.coat ? &coat : nullptr, l.sheen ? &scratch.sheen : nullptr,
-                                     l.anisotropy ? &aniso : nullptr, transmission);
+                                     l.anisotropy ? &aniso : nullptr, transmission,
+                                     l.diffuse_transmission ? &diffuse_transmission : nullptr);
     scratch.lobe[0] = p.base;
     if (p.coated) scratch.coat = p.coat;
     return {scratch.lobe, 1};
@@ -64,7 +67,8 @@ std::span<const Lobe> MipTexture::record_lobes(const Choice& c, Scratch& scratch
   ParamCoat coat;
   AnisotropyLayer aniso;
   float transmission = 0.0f;
-  decode_params(l, record, t, &specular, &coat, &scratch.sheen, &aniso, &transmission);
+  DiffuseTransmissionLayer diffuse_transmission;
+  decode_params(l, record, t, &specular, &coat, &scratch.sheen, &aniso, &transmission, &diffuse_transmission);
   if (c.level >= 1) {
     const RecordTexel texel =
         decode_brdf(l, c.level, record, scratch.lobe, scratch.coat_lobe, scratch.correction);
@@ -76,8 +80,10 @@ std::span<const Lobe> MipTexture::record_lobes(const Choice& c, Scratch& scratch
     return {scratch.lobe, n};
   }
   // Level 0, as mip.cpp makes its lobe from the parameter pyramid's texel.
-  scratch.lobe[0] = lobe_from_texel(t.base_color * c.tint, t.metallic, t.roughness, t.normal, 1.0f,
-                                    SpecularLayer{specular.specular, specular.color, l.ior}, aniso, transmission);
+  const SpecularLayer layer{specular.specular, specular.color, l.ior};
+  scratch.lobe[0] = lobe_from_texel(t.base_color * c.tint, t.metallic, t.roughness, t.normal, 1.0f, layer, aniso,
+                                    transmission);
+  if (l.diffuse_transmission) add_diffuse_transmission(scratch.lobe[0], t.metallic, layer, transmission, diffuse_transmission);
   if (l.coat) {
     scratch.lobe[0].coat = std::clamp(coat.clearcoat, 0.0f, 1.0f);
     scratch.coat = coat_lobe(CoatLayer{coat.clearcoat, coat.roughness, coat.normal});

@@ -77,6 +77,7 @@ MipRecordLayout MipRecordLayout::of(const ParamPyramid& param, const BrdfPyramid
   o.sheen = param.has_sheen();
   o.anisotropy = param.has_anisotropy();
   o.transmission = param.has_transmission();
+  o.diffuse_transmission = param.has_diffuse_transmission();
   o.ior = param.ior();
   o.level.resize(static_cast<std::size_t>(o.levels));
   if (!brdf) {
@@ -128,7 +129,8 @@ std::string MipRecordLayout::describe(const std::string& key) const {
   std::ostringstream s;
   s << kFormat << " key " << key << " extent " << extent.width << ' ' << extent.height << " levels " << levels
     << " brdf " << brdf << " tint " << tint << " specular " << specular << " coat " << coat << " sheen "
-    << sheen << " anisotropy " << anisotropy << " transmission " << transmission << " ior " << bits_of(ior)
+    << sheen << " anisotropy " << anisotropy << " transmission " << transmission << " diffuse_transmission "
+    << diffuse_transmission << " ior " << bits_of(ior)
     << " max_lobes " << max_lobes << " radial " << bits_of(radial_inner) << ' ' << bits_of(radial_outer);
   for (const Level& v : level)
     s << " level " << v.slots << ' ' << v.coat_slots << ' ' << v.lobe_specular << ' ' << v.lobe_tint << ' '
@@ -161,6 +163,7 @@ std::optional<MipRecordLayout> MipRecordLayout::parse(const std::string& text, c
             expect("brdf") && flag(o.brdf) && expect("tint") && flag(o.tint) && expect("specular") &&
             flag(o.specular) && expect("coat") && flag(o.coat) && expect("sheen") && flag(o.sheen) &&
             expect("anisotropy") && flag(o.anisotropy) && expect("transmission") && flag(o.transmission) &&
+            expect("diffuse_transmission") && flag(o.diffuse_transmission) &&
             expect("ior") && (s >> ior) && expect("max_lobes") && (s >> o.max_lobes) && expect("radial") &&
             (s >> inner >> outer);
   if (!ok) return fail("its description is not a MIP record layout");
@@ -226,6 +229,10 @@ void encode_records(const MipRecordLayout& layout, const ParamPyramid& param, co
         for (const float x : {a.strength, a.direction.x, a.direction.y}) *w++ = bits_of(x);
       }
       if (layout.transmission) *w++ = bits_of(*param.transmission(l, i, j));
+      if (layout.diffuse_transmission) {
+        const DiffuseTransmissionLayer& d = *param.diffuse_transmission(l, i, j);
+        for (const float x : {d.share, d.color.r, d.color.g, d.color.b}) *w++ = bits_of(x);
+      }
       if (!lobes) continue;
       const std::span<const Lobe> texel = brdf->level(l).texel_lobes(t);
       const std::span<const Lobe> coat_texel =
@@ -248,7 +255,7 @@ void encode_records(const MipRecordLayout& layout, const ParamPyramid& param, co
 
 void decode_params(const MipRecordLayout& layout, const std::uint32_t* w, ParamTexel& p,
                    ParamSpecular* specular, ParamCoat* coat, SheenLayer* sheen, AnisotropyLayer* anisotropy,
-                   float* transmission) {
+                   float* transmission, DiffuseTransmissionLayer* diffuse_transmission) {
   p.base_color = {float_of(w[0]), float_of(w[1]), float_of(w[2])};
   p.metallic = float_of(w[3]);
   p.roughness = float_of(w[4]);
@@ -270,7 +277,12 @@ void decode_params(const MipRecordLayout& layout, const std::uint32_t* w, ParamT
     if (anisotropy) *anisotropy = {float_of(w[0]), {float_of(w[1]), float_of(w[2])}};
     w += MipRecordLayout::kAnisotropyWords;
   }
-  if (layout.transmission && transmission) *transmission = float_of(w[0]);
+  if (layout.transmission) {
+    if (transmission) *transmission = float_of(w[0]);
+    w += MipRecordLayout::kTransmissionWords;
+  }
+  if (layout.diffuse_transmission && diffuse_transmission)
+    *diffuse_transmission = {float_of(w[0]), {float_of(w[1]), float_of(w[2]), float_of(w[3])}};
 }
 
 RecordTexel decode_brdf(const MipRecordLayout& layout, int l, const std::uint32_t* w, Lobe* lobes,

@@ -7,8 +7,9 @@
 //
 // A record of level L, in words:
 //   the parameters    8 floats (ParamTexel), then the specular layer's 4 (where the material's is
-//                     not plain), the coat's 5, the sheen's 4, the anisotropy's 3 and the
-//                     transmission's 1 (where it has them): every level;
+//                     not plain), the coat's 5, the sheen's 4, the anisotropy's 3, the
+//                     transmission's 1 and the diffuse transmission's 4 (where it has them): every
+//                     level;
 //   the BRDF texel    for levels ≥ 1 of a texture with its BRDF pyramid: one word of counts (base
 //                     lobes in bits 0–7, coat lobes in bits 8–15), S_L base slots, C_L coat slots and,
 //                     where the level is corrected, the radial correction's 12 halves in 6 words.
@@ -37,7 +38,7 @@ namespace svbrdf {
 
 struct MipRecordLayout {
   static constexpr int kParamWords = 8, kSpecularWords = 4, kCoatWords = 5, kSheenWords = 4, kAnisotropyWords = 3,
-                       kTransmissionWords = 1;
+                       kTransmissionWords = 1, kDiffuseTransmissionWords = 4;
   static constexpr int kCoatLobeWords = 4;  // direction, then 5 halves
   static constexpr int kCorrectionWords = RadialGrid::kNodes / 2;
 
@@ -46,7 +47,7 @@ struct MipRecordLayout {
   bool brdf = false;      // levels ≥ 1 hold the BRDF pyramid's texels
   bool tint = false;      // the BRDF pyramid is tintable
   bool specular = false;  // the parameter pyramid holds the specular layer (not plain)
-  bool coat = false, sheen = false, anisotropy = false, transmission = false;
+  bool coat = false, sheen = false, anisotropy = false, transmission = false, diffuse_transmission = false;
   float ior = 1.5f;
   int max_lobes = 1;
   float radial_inner = 0.0f, radial_outer = 0.0f;  // the radial grid (0: none)
@@ -66,7 +67,8 @@ struct MipRecordLayout {
 
   int param_words() const {
     return kParamWords + (specular ? kSpecularWords : 0) + (coat ? kCoatWords : 0) +
-           (sheen ? kSheenWords : 0) + (anisotropy ? kAnisotropyWords : 0) + (transmission ? kTransmissionWords : 0);
+           (sheen ? kSheenWords : 0) + (anisotropy ? kAnisotropyWords : 0) + (transmission ? kTransmissionWords : 0) +
+           (diffuse_transmission ? kDiffuseTransmissionWords : 0);
   }
   int lobe_words(int l) const { return 1 + (int(roles[static_cast<std::size_t>(l)].size()) + 1) / 2; }
   int words(int l) const;
@@ -88,11 +90,11 @@ struct MipRecordLayout {
 void encode_records(const MipRecordLayout& layout, const ParamPyramid& param, const BrdfPyramid* brdf, int l,
                     int row_begin, int row_end, std::uint32_t* out);
 
-// A record's parameters: the texel's, and its specular layer, coat, sheen, anisotropy and transmission
-// where the layout has them (each left as it is where not).
+// A record's parameters: the texel's, and its specular layer, coat, sheen, anisotropy, transmission and
+// diffuse transmission where the layout has them (each left as it is where not).
 void decode_params(const MipRecordLayout& layout, const std::uint32_t* record, ParamTexel& texel,
                    ParamSpecular* specular, ParamCoat* coat, SheenLayer* sheen, AnisotropyLayer* anisotropy = nullptr,
-                   float* transmission = nullptr);
+                   float* transmission = nullptr, DiffuseTransmissionLayer* diffuse_transmission = nullptr);
 // A level-≥ 1 record's BRDF texel: its base lobes and coat lobes (at most the level's slots each), and its
 // radial correction where the level has one (`corrected` says).
 struct RecordTexel {

@@ -9,6 +9,7 @@
 
 #include "base/error.h"
 #include "mip/coat_layer.h"
+#include "mip/diffuse_transmission.h"
 #include "mip/exact_reference.h"
 #include "mip/sheen_layer.h"
 
@@ -38,9 +39,10 @@ MeanNormal mean_normal(const glm::vec3& mean, TextureFilter filter) {
 }  // namespace
 
 Lobe param_lobe(const ParamTexel& t, TextureFilter filter, const SpecularLayer& layer, const AnisotropyLayer& aniso,
-                float transmission) {
+                float transmission, const DiffuseTransmissionLayer& diffuse_transmission) {
   const MeanNormal m = mean_normal(t.normal, filter);
   Lobe l = lobe_from_texel(t.base_color, t.metallic, t.roughness, m.n, 1.0f, layer, aniso, transmission);
+  add_diffuse_transmission(l, t.metallic, layer, transmission, diffuse_transmission);
   l.alpha2 = std::min(1.0f, l.alpha2 + m.widen);
   // The transmission goes through the widened shape too: a texel's transmits through its own α² (lobe.h).
   if (l.transmission_alpha2 > 0.0f) l.transmission_alpha2 = l.alpha2;
@@ -55,9 +57,11 @@ Lobe param_coat_lobe(const ParamCoat& c, TextureFilter filter) {
 }
 
 ParamLobes param_lobes(const ParamTexel& t, TextureFilter filter, const SpecularLayer& layer, const ParamCoat* coat,
-                       const SheenLayer* sheen, const AnisotropyLayer* aniso, float transmission) {
+                       const SheenLayer* sheen, const AnisotropyLayer* aniso, float transmission,
+                       const DiffuseTransmissionLayer* diffuse_transmission) {
   ParamLobes out;
-  out.base = param_lobe(t, filter, layer, aniso ? *aniso : AnisotropyLayer{}, transmission);
+  out.base = param_lobe(t, filter, layer, aniso ? *aniso : AnisotropyLayer{}, transmission,
+                        diffuse_transmission ? *diffuse_transmission : DiffuseTransmissionLayer{});
   if (sheen) {
     out.sheen = *sheen;
     out.base.sheen = sheen_share(*sheen);
@@ -134,6 +138,22 @@ std::vector<float> transmission_from_below(Extent level0, int level, const std::
       t += w * x;
     });
     return static_cast<float>(t / total);
+  });
+}
+
+// The diffuse transmission's means (diffuse_transmission_mean), weighted as params_from_below weights
+// the parameters.
+std::vector<DiffuseTransmissionLayer> diffuse_transmission_from_below(Extent level0, int level,
+                                                                      const std::vector<DiffuseTransmissionLayer>& fine) {
+  return level_from_below(level0, level, fine, [](const auto& children) {
+    double total = 0, share = 0;
+    glm::dvec3 color(0);
+    children([&](double w, const DiffuseTransmissionLayer& d) {
+      total += w;
+      share += w * d.share;
+      color += (w * d.share) * glm::dvec3(d.color);
+    });
+    return diffuse_transmission_mean(total, share, color);
   });
 }
 
@@ -222,6 +242,11 @@ ParamPyramid ParamPyramid::level0_only(const MaterialTexels& m) {
     for (std::size_t k = 0; k < m.size(); ++k) transmission[k] = m.transmission_at(k);
     p.transmission_.push_back(std::move(transmission));
   }
+  if (m.has_diffuse_transmission()) {
+    std::vector<DiffuseTransmissionLayer> d(m.size());
+    for (std::size_t k = 0; k < m.size(); ++k) d[k] = m.diffuse_transmission_layer(k);
+    p.diffuse_transmission_.push_back(std::move(d));
+  }
   return p;
 }
 
@@ -233,6 +258,8 @@ void ParamPyramid::build_coarse_levels() {
     if (!sheen_.empty()) sheen_.push_back(sheen_from_below(level0_, level, sheen_.back()));
     if (!anisotropy_.empty()) anisotropy_.push_back(anisotropy_from_below(level0_, level, anisotropy_.back()));
     if (!transmission_.empty()) transmission_.push_back(transmission_from_below(level0_, level, transmission_.back()));
+    if (!diffuse_transmission_.empty())
+      diffuse_transmission_.push_back(diffuse_transmission_from_below(level0_, level, diffuse_transmission_.back()));
   }
 }
 
@@ -289,6 +316,16 @@ MaterialTexels ParamPyramid::level0_texels() const {
     m.transmission_factor = 1.0f;
     m.transmission = transmission_.front();
   }
+  if (!diffuse_transmission_.empty()) {
+    // Every texel's own; the factors only say that the material has one (diffuse_transmission_layer reads
+    // the texels').
+    m.diffuse_transmission_factor = 1.0f;
+    m.diffuse_transmission.resize(base.size());
+    m.diffuse_transmission_color.resize(base.size());
+    for (std::size_t k = 0; k < base.size(); ++k)
+      m.diffuse_transmission[k] = diffuse_transmission_.front()[k].share,
+      m.diffuse_transmission_color[k] = diffuse_transmission_.front()[k].color;
+  }
   return m;
 }
 
@@ -297,7 +334,8 @@ ParamPyramid ParamPyramid::from_levels(Extent level0, std::vector<std::vector<Pa
                                        std::vector<std::vector<ParamCoat>> coat,
                                        std::vector<std::vector<SheenLayer>> sheen,
                                        std::vector<std::vector<AnisotropyLayer>> anisotropy,
-                                       std::vector<std::vector<float>> transmission) {
+                                       std::vector<std::vector<float>> transmission,
+                                       std::vector<std::vector<DiffuseTransmissionLayer>> diffuse_transmission) {
   if (static_cast<int>(levels.size()) != level_count(level0))
     throw Error("parameter pyramid: " + std::to_string(levels.size()) + " levels for a " +
                 std::to_string(level0.width) + "x" + std::to_string(level0.height) + " level 0 (expected " +
@@ -316,6 +354,9 @@ ParamPyramid ParamPyramid::from_levels(Extent level0, std::vector<std::vector<Pa
       throw Error("parameter pyramid: the anisotropy's level " + std::to_string(l) + " has the wrong size");
     if (!transmission.empty() && (transmission.size() != levels.size() || transmission[l].size() != levels[l].size()))
       throw Error("parameter pyramid: the transmission's level " + std::to_string(l) + " has the wrong size");
+    if (!diffuse_transmission.empty() &&
+        (diffuse_transmission.size() != levels.size() || diffuse_transmission[l].size() != levels[l].size()))
+      throw Error("parameter pyramid: the diffuse transmission's level " + std::to_string(l) + " has the wrong size");
   }
   ParamPyramid p;
   p.level0_ = level0;
@@ -325,6 +366,7 @@ ParamPyramid ParamPyramid::from_levels(Extent level0, std::vector<std::vector<Pa
   p.sheen_ = std::move(sheen);
   p.anisotropy_ = std::move(anisotropy);
   p.transmission_ = std::move(transmission);
+  p.diffuse_transmission_ = std::move(diffuse_transmission);
   p.ior_ = ior;
   return p;
 }

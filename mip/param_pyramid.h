@@ -55,9 +55,12 @@ struct ParamCoat {
 // `aniso` is the texel's mean anisotropy (none by default), whose stretch the lobe takes as a level-0
 // texel's (lobe.h lobe_from_texel), the filter's widening added to its α² as to an isotropic one's.
 // `transmission` is the texel's mean transmission T (none by default), which the lobe carries as a
-// level-0 texel of it does (lobe.h lobe_from_texel, "Transmission").
+// level-0 texel of it does (lobe.h lobe_from_texel, "Transmission"); `diffuse_transmission` its mean
+// diffuse transmission (none by default), which the lobe carries as a level-0 texel of it does
+// (diffuse_transmission.h add_diffuse_transmission).
 Lobe param_lobe(const ParamTexel& t, TextureFilter filter, const SpecularLayer& layer = {},
-                const AnisotropyLayer& aniso = {}, float transmission = 0.0f);
+                const AnisotropyLayer& aniso = {}, float transmission = 0.0f,
+                const DiffuseTransmissionLayer& diffuse_transmission = {});
 // The coat lobe (coat_layer.h) a parameter texel's mean coat stands for under the same filter: weight
 // the mean clearcoat, normal = normalize(mean coat normal), α from the mean roughness, widened as
 // param_lobe widens the base's from the coat normals' shortened mean. The base lobe's coat share
@@ -77,10 +80,21 @@ struct ParamLobes {
   SheenLayer sheen;      // the mean sheen (colour 0: none)
 };
 // A material with an anisotropy (`aniso` not null) shades its mean (anisotropy_from_below), one that
-// transmits its mean transmission (0 for a material that does not).
+// transmits its mean transmission (0 for a material that does not), one that transmits diffusely
+// (`diffuse_transmission` not null) its mean diffuse transmission (diffuse_transmission_mean).
 ParamLobes param_lobes(const ParamTexel& t, TextureFilter filter, const SpecularLayer& layer, const ParamCoat* coat,
                        const SheenLayer* sheen = nullptr, const AnisotropyLayer* aniso = nullptr,
-                       float transmission = 0.0f);
+                       float transmission = 0.0f, const DiffuseTransmissionLayer* diffuse_transmission = nullptr);
+
+// The mean of diffuse transmissions (KHR_materials_diffuse_transmission) from their weighted sums: the
+// share the mean of the shares, Σw·d, and the colour the share-weighted mean Σw·d·C / Σw·d, so that the
+// mean's d·C (what τd and τd90 are linear in, diffuse_transmission.h) is the mean of the texels' d·C. A
+// texel's colour without a share changes nothing it shades, and takes no part; where no texel has a
+// share the colour is white (the extension's default). `total` is Σw.
+inline DiffuseTransmissionLayer diffuse_transmission_mean(double total, double share, const glm::dvec3& share_color) {
+  if (!(share > 0)) return {static_cast<float>(share / total), glm::vec3(1.0f)};
+  return {static_cast<float>(share / total), glm::vec3(share_color / share)};
+}
 
 // The sheen means of level `level` ≥ 1 from those of level − 1: each the mean of its children's colours
 // and perceptual roughnesses weighted by the level-0 texels they cover, in double, as the parameters'.
@@ -123,7 +137,8 @@ class ParamPyramid {
                                   std::vector<std::vector<ParamCoat>> coat = {},
                                   std::vector<std::vector<SheenLayer>> sheen = {},
                                   std::vector<std::vector<AnisotropyLayer>> anisotropy = {},
-                                  std::vector<std::vector<float>> transmission = {});
+                                  std::vector<std::vector<float>> transmission = {},
+                                  std::vector<std::vector<DiffuseTransmissionLayer>> diffuse_transmission = {});
 
   int levels() const { return static_cast<int>(levels_.size()); }
   Extent level0() const { return level0_; }
@@ -201,6 +216,21 @@ class ParamPyramid {
   }
   static constexpr int kBytesPerTransmissionTexel = 4;  // 1 float, for a material that transmits
 
+  // The diffuse transmission (KHR_materials_diffuse_transmission), a pyramid of its means beside the
+  // parameters' for a material that transmits diffusely (empty otherwise): the mean share of the covered
+  // level-0 texels and their share-weighted mean colour (diffuse_transmission_mean); level 0's are the
+  // texels' own.
+  bool has_diffuse_transmission() const { return !diffuse_transmission_.empty(); }
+  std::span<const DiffuseTransmissionLayer> diffuse_transmission_level(int level) const {
+    return diffuse_transmission_.empty() ? std::span<const DiffuseTransmissionLayer>()
+                                         : diffuse_transmission_[static_cast<std::size_t>(level)];
+  }
+  const DiffuseTransmissionLayer* diffuse_transmission(int level, int i, int j) const {
+    if (diffuse_transmission_.empty()) return nullptr;
+    return &diffuse_transmission_[static_cast<std::size_t>(level)][static_cast<std::size_t>(j) * extent(level).width + i];
+  }
+  static constexpr int kBytesPerDiffuseTransmissionTexel = 4 * 4;  // 4 floats, for a material that has one
+
  private:
   Extent level0_{};
   std::vector<std::vector<ParamTexel>> levels_;
@@ -209,6 +239,7 @@ class ParamPyramid {
   std::vector<std::vector<SheenLayer>> sheen_;        // empty: no sheen
   std::vector<std::vector<AnisotropyLayer>> anisotropy_;  // empty: isotropic
   std::vector<std::vector<float>> transmission_;          // empty: no transmission
+  std::vector<std::vector<DiffuseTransmissionLayer>> diffuse_transmission_;  // empty: none
   float ior_ = 1.5f;
 };
 

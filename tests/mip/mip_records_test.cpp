@@ -22,8 +22,9 @@ namespace {
 
 using testing_records::Records;
 
-// A random-family material with a textured sheen, given a specular layer, a patchy clear coat and a
-// transmission (formulas of the texel index), so every part of a record is exercised.
+// A random-family material with a textured sheen, given a specular layer, a patchy clear coat, a
+// transmission and a diffuse transmission (formulas of the texel index), so every part of a record is
+// exercised.
 MaterialTexels layered(int size) {
   std::uint64_t seed = 1;
   while (!draw_random_material(seed).sheen_textured || !draw_random_material(seed).anisotropy_textured) ++seed;
@@ -48,6 +49,14 @@ MaterialTexels layered(int size) {
   m.transmission_factor = 1.0f;
   m.transmission.resize(m.size());
   for (std::size_t k = 0; k < m.size(); ++k) m.transmission[k] = (k / 4) % 2 ? 0.8f : 0.0f, m.metallic[k] *= 0.5f;
+  // A diffuse transmission in stripes across the transmission's (its τd90 ≠ 0 under the specular layer).
+  m.diffuse_transmission_factor = 1.0f;
+  m.diffuse_transmission.resize(m.size());
+  m.diffuse_transmission_color.resize(m.size());
+  for (std::size_t k = 0; k < m.size(); ++k) {
+    m.diffuse_transmission[k] = (k / 3) % 3 == 0 ? 0.0f : 0.3f * float((k / 3) % 3);
+    m.diffuse_transmission_color[k] = glm::vec3(0.9f, 0.4f + 0.2f * float(k % 2), 0.6f);
+  }
   return m;
 }
 
@@ -108,6 +117,7 @@ TEST(MipRecords, LookupsEqualTheTextureInMemoryBitForBit) {
       const MipRecordLayout layout = memory.record_layout();
       ASSERT_TRUE(layout.brdf && layout.coat && layout.sheen && layout.specular);
       ASSERT_TRUE(layout.level[1].lobe_transmission && layout.level[1].lobe_transmission90);
+      ASSERT_TRUE(layout.level[1].lobe_diffuse_transmission && layout.level[1].lobe_diffuse_transmission90);
       ASSERT_EQ(layout.tint, tint);
       const MipTexture records(layout, std::make_unique<Records>(memory, layout), WrapMode::repeat,
                                WrapMode::mirrored_repeat);
