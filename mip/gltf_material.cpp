@@ -50,7 +50,6 @@ std::string mip_unsupported(const MaterialDesc& m) {
   // which neither the lobes nor the renderer's level 0 model (it refracts as a smooth interface).
   if (m.transmission > 0.0f && m.has_volume()) return "KHR_materials_transmission into a KHR_materials_volume";
   if (m.diffuse_roughness > 0.0f) return "KHR_materials_diffuse_roughness (the MIP lobes are Lambertian)";
-  if (m.diffuse_transmission > 0.0f) return "KHR_materials_diffuse_transmission (the MIP lobes reflect only)";
   if (m.iridescence > 0.0f) return "KHR_materials_iridescence (the MIP lobes' Fresnel is Schlick's)";
   return {};
 }

@@ -167,10 +167,10 @@ glm::vec3 mean_normal(const LobeMixtureBsdf& b, const Frame& frame) {
     float env_pdf = 0.0f;
     Rgb env_radiance(0.0f);
     bool env_visible = false;
-    // A material whose transmission is finite is lit from both sides of the surface:
-    // KHR_materials_diffuse_transmission (shaded at level 0, never by MIP lobes) and
-    // KHR_materials_transmission on a thin wall (at level 0 or by MIP lobes alike).
-    const bool lit_from_behind = (!mip && sp.material->diffuse_transmission > 0.0f) ||
+    // A material whose transmission is finite is lit from both sides of the surface, at level 0 or by
+    // MIP lobes alike: KHR_materials_diffuse_transmission (mip/diffuse_transmission.h) and
+    // KHR_materials_transmission on a thin wall (mip/lobe.h "Transmission").
+    const bool lit_from_behind = sp.material->diffuse_transmission > 0.0f ||
                                  (sp.material->transmission > 0.0f && !sp.material->has_volume());
     if (scatters) {
       if (env_on && s.light_sampling != LightSampling::bsdf) {

@@ -76,6 +76,18 @@ std::vector<TexelInput> texel_inputs(const MaterialDesc& m) {
     };
     in.insert(in.end(), transmission.begin(), transmission.end());
   }
+  // KHR_materials_diffuse_transmission (MaterialTexels::diffuse_transmission_layer): likewise only where
+  // its factor is not 0.
+  if (m.diffuse_transmission > 0.0f) {
+    const Rgb& c = m.diffuse_transmission_color;
+    const std::vector<TexelInput> diffuse_transmission{
+        {"diffuseTransmissionFactor", nullptr, false, {m.diffuse_transmission}},
+        {"diffuseTransmissionTexture", &m.diffuse_transmission_texture, false, {}},
+        {"diffuseTransmissionColorFactor", nullptr, false, {c.r, c.g, c.b}},
+        {"diffuseTransmissionColorTexture", &m.diffuse_transmission_color_texture, true, {}},
+    };
+    in.insert(in.end(), diffuse_transmission.begin(), diffuse_transmission.end());
+  }
   return in;
 }
 

@@ -293,7 +293,7 @@ TEST(MipFile, RefusesOtherVersionsForeignAndMissingFiles) {
 TEST(MipFile, TheFuzzCorpusSeedsAreFilesOfThisVersion) {
   const std::filesystem::path corpus = std::filesystem::path(SVBRDF_SOURCE_DIR) / "fuzz/corpus/mip_file";
   int files = 0;
-  bool layered = false, transmits = false;
+  bool layered = false, transmits = false, diffuse = false;
   for (const auto& e : std::filesystem::directory_iterator(corpus)) {
     ++files;
     try {
@@ -304,6 +304,9 @@ TEST(MipFile, TheFuzzCorpusSeedsAreFilesOfThisVersion) {
       // The lobes' transmission channels (mip_file_channels.h) in a coarse level, beside every other layer's.
       transmits = transmits || (all && mip.level0.has_transmission() && mip.brdf.levels() > 1 &&
                                 mip.brdf.level(1).transmission_layer());
+      // And the lobes' diffuse transmission channels, likewise.
+      diffuse = diffuse || (all && mip.level0.has_diffuse_transmission() && mip.brdf.levels() > 1 &&
+                            mip.brdf.level(1).diffuse_transmission_layer());
     } catch (const Error& err) {
       ADD_FAILURE() << err.what();
     }
@@ -311,6 +314,7 @@ TEST(MipFile, TheFuzzCorpusSeedsAreFilesOfThisVersion) {
   EXPECT_GE(files, 3);
   EXPECT_TRUE(layered) << "no seed carries the specular, coat, sheen and anisotropy layers";
   EXPECT_TRUE(transmits) << "no seed carries a thin wall's transmission with the other layers";
+  EXPECT_TRUE(diffuse) << "no seed carries a diffuse transmission with the other layers";
 }
 
 // Sets the svbrdf:mip_version attribute of every part of a MIP file to `version`, in place: in each

@@ -176,5 +176,39 @@ TEST(MipCacheKey, EachTransmissionInputChangesTheKey) {
   EXPECT_EQ(key_of(scene, unused), key_of(scene, plain));
 }
 
+// The diffuse transmission's inputs (render/texel_inputs.h) are the key's as the transmission's are: each
+// changes it, and a factor of 0 reads neither texture.
+MaterialDesc diffusely_transmitting() {
+  MaterialDesc m;
+  m.base_color_texture = ref(0);
+  m.diffuse_transmission = 0.6f;
+  m.diffuse_transmission_texture = ref(1);
+  m.diffuse_transmission_color = Rgb(0.9f, 0.5f, 0.2f);
+  m.diffuse_transmission_color_texture = ref(2);
+  return m;
+}
+
+TEST(MipCacheKey, EachDiffuseTransmissionInputChangesTheKey) {
+  const Scene scene = scene_with_images(5);
+  const std::string base = key_of(scene, diffusely_transmitting());
+  const std::vector<std::pair<std::string, std::function<void(MaterialDesc&)>>> changes{
+      {"diffuseTransmissionFactor", [](MaterialDesc& m) { m.diffuse_transmission = 0.3f; }},
+      {"diffuseTransmissionTexture", [](MaterialDesc& m) { m.diffuse_transmission_texture = ref(4); }},
+      {"diffuseTransmissionColorFactor", [](MaterialDesc& m) { m.diffuse_transmission_color.g = 0.6f; }},
+      {"diffuseTransmissionColorTexture", [](MaterialDesc& m) { m.diffuse_transmission_color_texture = ref(3); }},
+  };
+  for (const auto& [name, change] : changes) {
+    MaterialDesc m = diffusely_transmitting();
+    change(m);
+    EXPECT_NE(key_of(scene, m), base) << name;
+  }
+  EXPECT_EQ(key_of(scene, diffusely_transmitting()), base);
+  MaterialDesc plain;
+  plain.base_color_texture = ref(0);
+  MaterialDesc unused = diffusely_transmitting();
+  unused.diffuse_transmission = 0.0f;
+  EXPECT_EQ(key_of(scene, unused), key_of(scene, plain));
+}
+
 }  // namespace
 }  // namespace svbrdf
