@@ -195,6 +195,22 @@ inline glm::dvec3 image_mean(const Image& im) {
   return s / double(im.width * im.height);
 }
 
+// The standard error of an image's mean: where every pixel covers the same blocks of the periodic quad
+// (head-on, one 8 × 8 block; from 65° a stretch of them), the pixels are independent estimates of one
+// value, and their spread says how far their mean may lie from it.
+inline glm::dvec3 standard_error(const Image& im) {
+  const glm::dvec3 mean = image_mean(im);
+  glm::dvec3 ss(0);
+  for (int y = 0; y < im.height; ++y)
+    for (int x = 0; x < im.width; ++x) ss += (pixel(im, x, y) - mean) * (pixel(im, x, y) - mean);
+  const double n = double(im.width) * im.height;
+  return glm::sqrt(ss / (n - 1) / n);
+}
+
+inline void expect_within(const glm::dvec3& got, const glm::dvec3& want, const glm::dvec3& se, const std::string& what) {
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], want[c], 4 * se[c]) << what << " channel " << c;
+}
+
 inline void expect_rgb_near(const glm::dvec3& got, const glm::dvec3& want, double rel, const std::string& what) {
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], want[c], rel * std::max(want[c], 1e-3)) << what << " channel " << c;
 }
