@@ -189,6 +189,10 @@ struct HorizonSums {
   }
 };
 
+// A diffuse transmission (diffuse_transmission.h) adds no term: its shape is fixed and a merge keeps its
+// flux, so its union's error is these horizons' with τd for ρ, which changed the transmitted e_log of
+// the layer's measured materials by 10⁻⁴ (docs/mip-algorithm.md §4.7).
+
 // W: the union's weight.
 HorizonSums horizon_sums(std::span<const Member> u, double W);
 
