@@ -37,7 +37,6 @@
 namespace svbrdf {
 
 inline constexpr float kGlintRoughness = 0.3f;
-inline constexpr std::array<double, 3> kAlbedoThetaDeg{0.0, 45.0, 75.0};
 
 // Whether texel (i, j) of `level` is in the glint regime (above).
 bool in_glint_regime(const MaterialTexels& level0, int level, int i, int j);

@@ -122,6 +122,9 @@ const std::vector<TransmissionMetric>& transmission_metrics() {
       {"e_log, reflected", [](const TransmissionFigures& t) { return t.elog_reflected; }},
       {"|flux|, transmitted", [](const TransmissionFigures& t) { return std::abs(t.flux_transmitted); }},
       {"|flux|, reflected", [](const TransmissionFigures& t) { return std::abs(t.flux_reflected); }},
+      {"|transmittance|", [](const TransmissionFigures& t) {
+         return std::max({std::abs(t.transmittance[0]), std::abs(t.transmittance[1]), std::abs(t.transmittance[2])});
+       }},
   };
   return metrics;
 }
@@ -147,9 +150,11 @@ std::string family_table(const std::vector<SeedFigures>& seeds, int size) {
     std::string transmission;
     for (const LevelFigures& l : seed.levels)
       if (l.transmits)
-        transmission += format(" L%d e_log %.4f / %.4f, flux %+.2f / %+.2f %%;", l.level, l.transmission.elog_transmitted,
-                               l.transmission.elog_reflected, 100 * l.transmission.flux_transmitted,
-                               100 * l.transmission.flux_reflected);
+        transmission += format(" L%d e_log %.4f / %.4f, flux %+.2f / %+.2f %%, T %+.2f %+.2f %+.2f %%;", l.level,
+                               l.transmission.elog_transmitted, l.transmission.elog_reflected,
+                               100 * l.transmission.flux_transmitted, 100 * l.transmission.flux_reflected,
+                               100 * l.transmission.transmittance[0], 100 * l.transmission.transmittance[1],
+                               100 * l.transmission.transmittance[2]);
     if (!transmission.empty()) s += "    brdf transmitted / reflected:" + transmission + "\n";
   }
   s += format("\n%-5s %-24s %7s | %-42s | %-46s | %-23s\n", "level", "figure", "target",
@@ -201,7 +206,10 @@ Json family_json(const std::vector<SeedFigures>& seeds, int size) {
         level["brdf_transmission"] = {{"e_log_transmitted", six_digits(l.transmission.elog_transmitted)},
                                       {"e_log_reflected", six_digits(l.transmission.elog_reflected)},
                                       {"flux_transmitted", six_digits(l.transmission.flux_transmitted)},
-                                      {"flux_reflected", six_digits(l.transmission.flux_reflected)}};
+                                      {"flux_reflected", six_digits(l.transmission.flux_reflected)},
+                                      {"transmittance", {six_digits(l.transmission.transmittance[0]),
+                                                         six_digits(l.transmission.transmittance[1]),
+                                                         six_digits(l.transmission.transmittance[2])}}};
       levels.push_back(std::move(level));
     }
     list.push_back({{"seed", seed.seed}, {"drew", seed.summary}, {"levels", std::move(levels)}});

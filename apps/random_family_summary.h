@@ -41,7 +41,8 @@ Distribution distribution(const std::vector<SeedFigures>& seeds, int level, cons
 
 // The transmission's figures (random_family_measure.h, transmission_figures.h), reported over the seeds
 // that transmit: e_log and |flux − 1| of the transmitted radiance, and of the reflected radiance on the
-// same pairs beside them. No target: docs/mip-algorithm.md §4.6 holds the transmission to the reflection.
+// same pairs beside them, and the largest |transmittance| over θ (the level's directional transmittance
+// against the exact's). No target: docs/mip-algorithm.md §4.6 holds the transmission to the reflection.
 struct TransmissionMetric {
   const char* name;
   double (*get)(const TransmissionFigures&);  // NaN where the level has no such figure

@@ -224,6 +224,10 @@ TEST(RandomFamilyCli, ReportsWhatTheLibraryMeasures) {
               1e-5 * f.levels[1].transmission.elog_transmitted);
   EXPECT_NEAR(t["flux_reflected"].get<double>(), f.levels[1].transmission.flux_reflected,
               1e-5 * std::abs(f.levels[1].transmission.flux_reflected));
+  ASSERT_EQ(t["transmittance"].size(), 3u);
+  for (std::size_t a = 0; a < 3; ++a)
+    EXPECT_NEAR(t["transmittance"][a].get<double>(), f.levels[1].transmission.transmittance[a],
+                1e-5 * std::abs(f.levels[1].transmission.transmittance[a]) + 1e-9);
   EXPECT_NE(ok.out.find("brdf transmitted / reflected:"), std::string::npos) << ok.out;
   EXPECT_NE(ok.out.find("brdf, seeds that transmit"), std::string::npos) << ok.out;
 
