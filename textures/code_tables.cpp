@@ -4,6 +4,7 @@
 
 #include <bit>
 #include <cstdint>
+#include <limits>
 
 namespace svbrdf {
 
@@ -21,18 +22,27 @@ void apply_packed(const OCIO::ConstCPUProcessorRcPtr& cpu, float* rgb, std::size
 
 }  // namespace
 
+const std::vector<float>& code_values(int bits) {
+  const auto make = [](auto code) {
+    using Code = decltype(code);
+    const std::size_t n = std::size_t(std::numeric_limits<Code>::max()) + 1;
+    std::vector<Code> codes(n);
+    for (std::size_t k = 0; k < n; ++k) codes[k] = Code(k);
+    std::vector<float> values(n);
+    OIIO::convert_pixel_values(OIIO::BaseTypeFromC<Code>::value, codes.data(), OIIO::TypeDesc::FLOAT, values.data(), int(n));
+    return values;
+  };
+  static const std::vector<float> v8 = make(std::uint8_t{}), v16 = make(std::uint16_t{});
+  return bits == 16 ? v16 : v8;
+}
+
 CodeTables::CodeTables(const OCIO::ConstCPUProcessorRcPtr& cpu) : cpu_(cpu) {
   if (cpu->hasChannelCrosstalk()) return;
-  for (const auto& [type, max_code] : {std::pair{OIIO::TypeDesc::UINT16, 65535}, std::pair{OIIO::TypeDesc::UINT8, 255}}) {
+  for (const int bits : {16, 8}) {
     Table t;
-    t.max_code = max_code;
-    const std::size_t n = std::size_t(max_code) + 1;
-    std::vector<std::uint16_t> codes16(n);
-    std::vector<std::uint8_t> codes8(n);
-    for (std::size_t k = 0; k < n; ++k) codes16[k] = std::uint16_t(k), codes8[k] = std::uint8_t(k);
-    t.in.resize(n);
-    const void* codes = type == OIIO::TypeDesc::UINT16 ? static_cast<const void*>(codes16.data()) : codes8.data();
-    OIIO::convert_pixel_values(type, codes, OIIO::TypeDesc::FLOAT, t.in.data(), int(n));
+    t.in = code_values(bits);
+    t.max_code = int(t.in.size()) - 1;
+    const std::size_t n = t.in.size();
     std::vector<float> rgb(3 * n);
     for (std::size_t k = 0; k < n; ++k) rgb[3 * k] = rgb[3 * k + 1] = rgb[3 * k + 2] = t.in[k];
     apply_packed(cpu, rgb.data(), n);

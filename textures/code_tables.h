@@ -17,6 +17,10 @@
 
 namespace svbrdf {
 
+// The float each code of `bits` bits (8 or 16) reads as: OpenImageIO's conversion to [0, 1], the one
+// read_image applies to a file's stored values. 256 or 65536 values, made once.
+const std::vector<float>& code_values(int bits);
+
 class CodeTables {
  public:
   // The tables of `cpu`, a float-to-float processor; none when it has channel crosstalk.
@@ -26,14 +30,17 @@ class CodeTables {
   // place: bit for bit what `cpu` gives them. Not empty().
   void apply(float* first, std::size_t n, std::size_t stride) const;
 
- private:
-  // One code width: the float each code decodes to (OpenImageIO's conversion, as the files are
-  // read) and the transform's output for it in each channel.
+  // One code width: the float each code decodes to (code_values) and the transform's output for it
+  // in each channel.
   struct Table {
     int max_code = 0;
     std::vector<float> in;
     std::array<std::vector<float>, 3> out;
   };
+  // The table of `bits`-bit codes (8 or 16), for a decoder that reads the codes themselves. Not empty().
+  const Table& codes(int bits) const { return tables_[bits == 16 ? 0 : 1]; }
+
+ private:
   bool found(float v, int channel, float& out) const;
   OCIO_NAMESPACE::ConstCPUProcessorRcPtr cpu_;
   std::vector<Table> tables_;  // 16-bit, then 8-bit; empty: every texel through cpu_

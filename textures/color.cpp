@@ -196,6 +196,10 @@ void ColorConfig::srgb_texture_to_linear(Image& image) const {
 void ColorConfig::srgb_texture_to_linear(std::span<glm::vec3> rgb) const {
   apply_tables(impl_->srgb_to_linear, impl_->srgb_to_linear_tables(), rgb);
 }
+const CodeTables* ColorConfig::srgb_texture_to_linear_codes() const {
+  const CodeTables& tables = impl_->srgb_to_linear_tables();
+  return tables.empty() ? nullptr : &tables;
+}
 void ColorConfig::linear_to_srgb_texture(Image& image) const { apply_processor(impl_->linear_to_srgb, image); }
 
 float ColorConfig::srgb_texture_to_linear(float v) const { return apply_one(impl_->srgb_to_linear, v); }

@@ -22,6 +22,8 @@
 
 namespace svbrdf {
 
+class CodeTables;  // textures/code_tables.h
+
 class ColorConfig {
  public:
   // The config compiled into the library (textures/ocio/config.ocio).
@@ -57,6 +59,10 @@ class ColorConfig {
   void linear_to_srgb_texture(Image& image) const;
   // In place, packed RGB texels (a MaterialTexels colour): the same transform, without an Image.
   void srgb_texture_to_linear(std::span<glm::vec3> rgb) const;
+  // The same transform's output for every 8- and 16-bit code (textures/code_tables.h), for a decoder
+  // that reads a file's codes rather than its floats; null where the transform has channel crosstalk
+  // (every texel then goes through srgb_texture_to_linear).
+  const CodeTables* srgb_texture_to_linear_codes() const;
   // Linear Rec.709 → a display/view of the config (empty: its defaults), for rendered output.
   void linear_to_display(Image& image, const std::string& display = {}, const std::string& view = {}) const;
   // Any two color spaces of the config (names or aliases); throws svbrdf::Error for an unknown name.

@@ -67,19 +67,35 @@ const OIIO::ImageSpec& straight_alpha_config() {
   return config;
 }
 
-// Reads subimage 0, MIP level 0 of an opened input into floats.
-Image read_opened(OIIO::ImageInput& in, const std::string& where, PixelFormat* stored_format = nullptr) {
+// The checks of an opened input's subimage 0, MIP level 0 before any pixel is decoded.
+void check_opened(const OIIO::ImageInput& in, const std::string& where, PixelFormat* stored_format) {
   const OIIO::ImageSpec& spec = in.spec();
   if (stored_format) *stored_format = from_oiio(spec.format);
   check_image_size(where, spec.width, spec.height, spec.nchannels);
   if (spec.nchannels < 1 || spec.nchannels > 64) throw input_error(where, "unsupported channel count " + std::to_string(spec.nchannels));
-  Image img(spec.width, spec.height, spec.nchannels);
-  if (!in.read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, img.pixels.data()))
-    throw input_error(where, "cannot decode image (truncated or corrupt?): " + reason(in.geterror(), "read failed"));
-  // Some decoders (libjpeg, libpng) report a premature end as a warning and fill the rest; OIIO
-  // passes that on as a pending error even when read_image succeeds.
+}
+
+// A read's outcome: some decoders (libjpeg, libpng) report a premature end as a warning and fill the
+// rest; OIIO passes that on as a pending error even when the read succeeds.
+void check_read(bool read, OIIO::ImageInput& in, const std::string& where) {
+  if (!read) throw input_error(where, "cannot decode image (truncated or corrupt?): " + reason(in.geterror(), "read failed"));
   if (in.has_error()) throw input_error(where, "cannot decode image (truncated or corrupt?): " + reason(in.geterror(), "decoder error"));
+}
+
+// Reads subimage 0, MIP level 0 of an opened and checked input into floats.
+Image read_checked(OIIO::ImageInput& in, const std::string& where) {
+  const OIIO::ImageSpec& spec = in.spec();
+  Image img(spec.width, spec.height, spec.nchannels);
+  check_read(in.read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, img.pixels.data()), in, where);
   return img;
+}
+
+// 8 or 16 where the input stores scanlines of one unsigned integer type in every channel, else 0.
+int code_bits_of(const OIIO::ImageSpec& spec) {
+  if (spec.tile_width != 0 || spec.depth > 1) return 0;
+  for (const OIIO::TypeDesc& t : spec.channelformats)
+    if (t != spec.format) return 0;
+  return spec.format == OIIO::TypeDesc::UINT8 ? 8 : spec.format == OIIO::TypeDesc::UINT16 ? 16 : 0;
 }
 
 // The file extension OpenImageIO should try first for these bytes: by signature, else by MIME type.
@@ -219,25 +235,42 @@ class QuietStderr {
   }
 };
 
+// An opened input and what it reads from; members in the order they must be made (and are undone
+// in reverse: the input before its bytes, stderr back last).
+struct OpenedImage {
+  std::string where;
+  std::optional<QuietStderr> quiet;  // while a PNG is open
+  std::vector<std::byte> bytes;      // a PNG file's, read whole for check_png_structure
+  std::optional<OIIO::Filesystem::IOMemReader> proxy;
+  std::unique_ptr<OIIO::ImageInput> in;
+
+  // Opens encoded bytes held in memory (borrowed: they outlive the input); `where` names them.
+  void open_memory(std::span<const std::byte> data, std::string_view mime_type) {
+    if (is_png(data)) quiet.emplace();
+    if (data.empty()) throw input_error(where, "image data is empty");
+    if (is_png(data)) check_png_structure(data, where);
+    check_exr_header(data, where);
+    const std::string ext = extension_for(data, mime_type);
+    if (ext.empty())
+      throw input_error(where, "unsupported image type" + (mime_type.empty() ? std::string() : " \"" + std::string(mime_type) + "\""));
+    proxy.emplace(data.data(), data.size());
+    // OpenImageIO picks the decoder by the name's extension; the proxy supplies the bytes.
+    // OpenImageIO 2.4 takes the proxy from the config when a config is given.
+    OIIO::ImageSpec config = straight_alpha_config();
+    OIIO::Filesystem::IOProxy* proxy_ptr = &*proxy;
+    config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy_ptr);
+    in = OIIO::ImageInput::open("memory" + ext, &config, &*proxy);
+    if (!in) throw input_error(where, "cannot decode image: " + reason(OIIO::geterror(), "unrecognized data"));
+  }
+};
+
 Image decode_memory(std::span<const std::byte> bytes, std::string_view mime_type, const std::string& name,
                     PixelFormat* stored_format) {
-  std::optional<QuietStderr> quiet;
-  if (is_png(bytes)) quiet.emplace();
-  if (bytes.empty()) throw input_error(name, "image data is empty");
-  if (is_png(bytes)) check_png_structure(bytes, name);
-  check_exr_header(bytes, name);
-  const std::string ext = extension_for(bytes, mime_type);
-  if (ext.empty())
-    throw input_error(name, "unsupported image type" + (mime_type.empty() ? std::string() : " \"" + std::string(mime_type) + "\""));
-  OIIO::Filesystem::IOMemReader proxy(bytes.data(), bytes.size());
-  // OpenImageIO picks the decoder by the name's extension; the proxy supplies the bytes.
-  // OpenImageIO 2.4 takes the proxy from the config when a config is given.
-  OIIO::ImageSpec config = straight_alpha_config();
-  OIIO::Filesystem::IOProxy* proxy_ptr = &proxy;
-  config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy_ptr);
-  auto in = OIIO::ImageInput::open("memory" + ext, &config, &proxy);
-  if (!in) throw input_error(name, "cannot decode image: " + reason(OIIO::geterror(), "unrecognized data"));
-  return read_opened(*in, name, stored_format);
+  OpenedImage f;
+  f.where = name;
+  f.open_memory(bytes, mime_type);
+  check_opened(*f.in, name, stored_format);
+  return read_checked(*f.in, name);
 }
 
 int base64_value(char c) {
@@ -275,25 +308,56 @@ Image image_from_stored(const void* data, PixelFormat format, int width, int hei
   check_image_size(where, width, height, channels);
   if (channels < 1 || channels > 64) throw input_error(where, "unsupported channel count " + std::to_string(channels));
   Image img(width, height, channels);
-  // The conversion read_opened's read_image applies to a file's stored values.
+  // The conversion read_checked's read_image applies to a file's stored values.
   if (!OIIO::convert_pixel_values(to_oiio(format), data, OIIO::TypeDesc::FLOAT, img.pixels.data(), int(img.pixels.size())))
     throw Error(where + ": cannot convert the pixel values", Error::Kind::internal);
   return img;
 }
 
+struct ImageFile::Impl : OpenedImage {};
+
 Image read_image(const std::filesystem::path& path, PixelFormat* stored_format) {
-  const std::string where = path.string();
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw input_error(where, "no such image file");
-  if (std::filesystem::is_directory(path, ec)) throw input_error(where, "is a directory, not an image");
-  // PNGs are checked whole before libpng sees them (check_png_structure), so decode from memory.
-  if (char sig[8] = {}; std::ifstream(path, std::ios::binary).read(sig, 8) && is_png(std::as_bytes(std::span(sig))))
-    return decode_memory(read_file_bytes(path), "", where, stored_format);
-  check_exr_file_header(path, where);
-  auto in = OIIO::ImageInput::open(where, &straight_alpha_config());
-  if (!in) throw input_error(where, "cannot read image: " + reason(OIIO::geterror(), "unrecognized format"));
-  return read_opened(*in, where, stored_format);
+  ImageFile file(path);
+  if (stored_format) *stored_format = file.stored_format();
+  return file.read();
 }
+
+ImageFile::ImageFile(const std::filesystem::path& path) : impl_(std::make_unique<Impl>()) {
+  Impl& f = *impl_;
+  f.where = path.string();
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw input_error(f.where, "no such image file");
+  if (std::filesystem::is_directory(path, ec)) throw input_error(f.where, "is a directory, not an image");
+  // PNGs are checked whole before libpng sees them (check_png_structure), so decode from memory.
+  if (char sig[8] = {}; std::ifstream(path, std::ios::binary).read(sig, 8) && is_png(std::as_bytes(std::span(sig)))) {
+    f.bytes = read_file_bytes(path);
+    f.open_memory(f.bytes, "");
+  } else {
+    check_exr_file_header(path, f.where);
+    f.in = OIIO::ImageInput::open(f.where, &straight_alpha_config());
+    if (!f.in) throw input_error(f.where, "cannot read image: " + reason(OIIO::geterror(), "unrecognized format"));
+  }
+  check_opened(*f.in, f.where, &stored_);
+  const OIIO::ImageSpec& spec = f.in->spec();
+  width_ = spec.width, height_ = spec.height, channels_ = spec.nchannels;
+  code_bits_ = code_bits_of(spec);
+}
+
+ImageFile::~ImageFile() = default;
+ImageFile::ImageFile(ImageFile&&) noexcept = default;
+ImageFile& ImageFile::operator=(ImageFile&&) noexcept = default;
+
+void ImageFile::read_codes(int y0, int y1, void* codes) {
+  if (code_bits_ == 0 || y0 < 0 || y1 > height_ || y0 > y1)
+    throw Error(impl_->where + ": rows " + std::to_string(y0) + ".." + std::to_string(y1) + " cannot be read as codes",
+                Error::Kind::internal);
+  OIIO::ImageInput& in = *impl_->in;
+  const OIIO::ImageSpec& spec = in.spec();
+  // The decoder's own rows, straight into `codes` (read_scanlines would copy them through a buffer of its own).
+  check_read(in.read_native_scanlines(0, 0, spec.y + y0, spec.y + y1, 0, codes), in, impl_->where);
+}
+
+Image ImageFile::read() { return read_checked(*impl_->in, impl_->where); }
 
 Image read_image_channels(const std::filesystem::path& path, const std::vector<std::string>& names) {
   const Image all = read_image(path);  // every check of a file read, and its channels in the order of its spec

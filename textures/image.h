@@ -4,6 +4,7 @@
 // OpenImageIO.
 #include <cstddef>
 #include <filesystem>
+#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
@@ -43,6 +44,41 @@ Image read_image_channels(const std::filesystem::path& path, const std::vector<s
 // read_image that also reports how the file stores its values (other integer types report uint16
 // or float32, whichever holds them exactly; other float types float32).
 Image read_image(const std::filesystem::path& path, PixelFormat* stored_format);
+
+// An image file opened for reading: every check read_image makes before it decodes a pixel is made
+// (the file exists, a PNG's chunks and CRCs, an OpenEXR header, the size), then the pixels are read
+// whole, as read_image gives them, or, where the file stores rows of 8- or 16-bit unsigned codes, band
+// by band as stored. A decoder that turns codes into its own values through tables (a 4096² material's
+// texels) then needs neither the image's floats nor the whole image in memory at once.
+class ImageFile {
+ public:
+  // Throws svbrdf::Error naming the file as read_image does.
+  explicit ImageFile(const std::filesystem::path& path);
+  ~ImageFile();
+  ImageFile(ImageFile&&) noexcept;
+  ImageFile& operator=(ImageFile&&) noexcept;
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  int channels() const { return channels_; }
+  PixelFormat stored_format() const { return stored_; }
+  // 8 or 16 where read_codes reads the file: rows of one unsigned integer type for every channel
+  // (PNG, JPEG, a TIFF of strips); 0 for any other (floats, tiles, signed or per-channel types).
+  int code_bits() const { return code_bits_; }
+  // Rows [y0, y1) as the file stores them: width · channels codes a row, interleaved, std::uint8_t
+  // or std::uint16_t as code_bits() says, native byte order; the values read_image scales to [0, 1].
+  // Bands in order from the top (a PNG decodes forward). Throws svbrdf::Error naming the file for a
+  // truncated or corrupt image, with read_image's words.
+  void read_codes(int y0, int y1, void* codes);
+  // Every pixel as read_image gives it (instead of read_codes).
+  Image read();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  int width_ = 0, height_ = 0, channels_ = 0, code_bits_ = 0;
+  PixelFormat stored_ = PixelFormat::float32;
+};
 
 // Writes through OpenImageIO, choosing the format by extension, atomically (temporary + rename).
 // No color-space metadata is written (glTF viewers must ignore it and the Khronos validator warns
