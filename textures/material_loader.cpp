@@ -1,11 +1,9 @@
 #include "textures/material_loader.h"
 
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_invoke.h>
 #include <tbb/parallel_for.h>
 
 #include <cmath>
-#include <exception>
 
 #include "base/error.h"
 #include "textures/normal_map.h"
@@ -262,47 +260,6 @@ MaterialTexels decode_material_texels(const MaterialImages& in, const ColorConfi
     });
   }
   return out;
-}
-
-MaterialTexels load_material_texels(const MaterialFiles& files, const ColorConfig& color) {
-  std::optional<Image> base, mr, normal;
-  PixelFormat base_stored{};
-  // The files decode in parallel (a PNG's inflate runs on one thread); a failure is reported as the
-  // sequential reads would: the first bad file in the order below.
-  std::exception_ptr failed[3];
-  const auto read = [&](int k, const std::optional<std::filesystem::path>& path, std::optional<Image>& image,
-                        PixelFormat* stored) {
-    if (!path) return;
-    try {
-      image = read_image(*path, stored);
-    } catch (...) {
-      failed[k] = std::current_exception();
-    }
-  };
-  tbb::parallel_invoke([&] { read(0, files.base_color, base, &base_stored); },
-                       [&] { read(1, files.metallic_roughness, mr, nullptr); },
-                       [&] { read(2, files.normal, normal, nullptr); });
-  for (const std::exception_ptr& e : failed)
-    if (e) std::rethrow_exception(e);
-  MaterialImages in;
-  if (files.base_color) {
-    in.base_color_is_linear = base_stored == PixelFormat::half || base_stored == PixelFormat::float32;
-    in.base_color = &*base;
-    in.base_color_name = files.base_color->string();
-  }
-  if (files.metallic_roughness) {
-    in.metallic_roughness = &*mr;
-    in.metallic_roughness_name = files.metallic_roughness->string();
-  }
-  if (files.normal) {
-    in.normal = &*normal;
-    in.normal_name = files.normal->string();
-  }
-  in.base_color_factor = files.base_color_factor;
-  in.metallic_factor = files.metallic_factor;
-  in.roughness_factor = files.roughness_factor;
-  in.normal_scale = files.normal_scale;
-  return decode_material_texels(in, color);
 }
 
 }  // namespace svbrdf
