@@ -230,8 +230,8 @@ void write_mip_file(const fs::path& path, const ParamPyramid& param, const BrdfP
                             .diffuse_transmission90 = bl.diffuse_transmission90_layer()});
     c.coat_slots = c.coat ? brdf.coat_level(level).slots : 0;
   }
-  // Each level is packed twice a band of rows at a time, for its checksum (the headers come first) and
-  // to be written, into one buffer: a level's whole pixels would be hundreds of megabytes of fresh pages.
+  // Each level is packed once, a band of rows at a time, into one buffer (a level's whole pixels would
+  // be hundreds of megabytes of fresh pages), fingerprinted for its checksum and written.
   std::unique_ptr<std::byte[]> band_bytes;
   std::size_t band_capacity = 0;
   const auto band_buffer = [&](std::size_t bytes) {
@@ -289,22 +289,25 @@ void write_mip_file(const fs::path& path, const ParamPyramid& param, const BrdfP
       s.attribute(kRadialOuter, radial_outer);
     }
     if (level == 0 && !cache_key.empty()) s.attribute(kCacheKey, cache_key);
-    // Every header is written when the file opens, so the checksums come first: the level packed once
-    // in name order for them, and again as written below.
-    const NativeLayout ordered_layout = name_ordered(s.channelnames, s.channelformats);
-    const int rows = band_rows(e.width, ordered_layout.stride);
-    std::vector<std::uint64_t> bands;
-    for (int y = 0; y < e.height; y += rows) {
-      const int end = std::min(e.height, y + rows);
-      const std::span<std::byte> band = band_buffer(static_cast<std::size_t>(end - y) * e.width * ordered_layout.stride);
-      pack_rows(param, brdf, level, ordered_layout, ch, y, end, band.data());
-      add_band(bands, band);
-    }
-    s.attribute(kChecksum, level_checksum(s, brdf.max_lobes(), radial_inner, radial_outer, bands));
+    // The pixels are packed in the order of the channels' names, the order OpenEXR stores them in and
+    // the checksum takes them in, and the spec lists the channels in that order, so the bands written
+    // are the bands fingerprinted. The checksum, known once the level is written, replaces a
+    // placeholder in the written file (put_checksums).
+    layout = name_ordered(s.channelnames, s.channelformats);
+    std::vector<std::size_t> by_name(s.channelnames.size());
+    std::iota(by_name.begin(), by_name.end(), std::size_t(0));
+    std::sort(by_name.begin(), by_name.end(), [&](std::size_t a, std::size_t b) { return s.channelnames[a] < s.channelnames[b]; });
+    std::vector<std::string> names;
+    std::vector<OIIO::TypeDesc> formats;
+    for (const std::size_t c : by_name) names.push_back(s.channelnames[c]), formats.push_back(s.channelformats[c]);
+    s.channelnames = std::move(names);
+    s.channelformats = std::move(formats);
+    s.attribute(kChecksum, kChecksumPlaceholder);
   }
   // OpenImageIO 2.4's multi-part OpenEXR writer ignores an "oiio:ioproxy" (it writes a file of the
   // given name in the working folder), so the file is written to a temporary by OpenEXR, which throws
   // on a failed write, and renamed after an fsync; a failure there is the machine's (exit 1).
+  std::vector<std::string> checksums(static_cast<std::size_t>(levels));
   write_atomically(path, [&](const fs::path& tmp) {
     std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(tmp.string());
     if (!out) throw environment_error(where(path), "cannot write OpenEXR: " + OIIO::geterror());
@@ -315,16 +318,28 @@ void write_mip_file(const fs::path& path, const ParamPyramid& param, const BrdfP
       if (level > 0 && !out->open(tmp.string(), s, OIIO::ImageOutput::AppendSubimage))
         throw environment_error(where(path), "cannot write level " + std::to_string(level) + ": " + out->geterror());
       const NativeLayout& layout = layouts[static_cast<std::size_t>(level)];
-      const int rows = write_rows(s.width, layout.stride);
+      // Whole checksum bands (the reader's, band_rows) a write, as many as make write_rows' rows.
+      const int band = band_rows(s.width, layout.stride);
+      const int rows = (write_rows(s.width, layout.stride) + band - 1) / band * band;
+      std::vector<std::uint64_t> bands;
       for (int y = 0; y < s.height; y += rows) {
         const int end = std::min(s.height, y + rows);
-        const std::span<std::byte> band = band_buffer(static_cast<std::size_t>(end - y) * s.width * layout.stride);
-        pack_rows(param, brdf, level, layout, channels[static_cast<std::size_t>(level)], y, end, band.data());
-        if (!out->write_scanlines(y, end, 0, OIIO::TypeUnknown, band.data()))
+        const std::size_t row_bytes = std::size_t(s.width) * layout.stride;
+        const std::span<std::byte> pixels = band_buffer(static_cast<std::size_t>(end - y) * row_bytes);
+        pack_rows(param, brdf, level, layout, channels[static_cast<std::size_t>(level)], y, end, pixels.data());
+        std::vector<std::vector<std::uint64_t>> prints(static_cast<std::size_t>((end - y + band - 1) / band));
+        tbb::parallel_for(std::size_t(0), prints.size(), [&](std::size_t b) {
+          const std::size_t first = b * std::size_t(band) * row_bytes;
+          add_band(prints[b], pixels.subspan(first, std::min(pixels.size() - first, std::size_t(band) * row_bytes)));
+        });
+        for (const std::vector<std::uint64_t>& p : prints) bands.insert(bands.end(), p.begin(), p.end());
+        if (!out->write_scanlines(y, end, 0, OIIO::TypeUnknown, pixels.data()))
           throw environment_error(where(path), "cannot write level " + std::to_string(level) + ": " + out->geterror());
       }
+      checksums[static_cast<std::size_t>(level)] = level_checksum(s, brdf.max_lobes(), radial_inner, radial_outer, bands);
     }
     if (!out->close()) throw environment_error(where(path), "cannot finish writing: " + out->geterror());
+    put_checksums(tmp, checksums, where(path));
   });
 }
 

@@ -2,9 +2,16 @@
 
 #include <OpenImageIO/hash.h>
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <system_error>
+
+#include "textures/exr_header.h"
 
 namespace svbrdf::mip_file_checksum {
 
@@ -46,6 +53,32 @@ std::string level_checksum(const OIIO::ImageSpec& s, int max_lobes, float radial
   std::snprintf(hex, sizeof hex, "%016llx%016llx", static_cast<unsigned long long>(OIIO::farmhash::Uint128High64(all)),
                 static_cast<unsigned long long>(OIIO::farmhash::Uint128Low64(all)));
   return hex;
+}
+
+void put_checksums(const std::filesystem::path& file, const std::vector<std::string>& checksums, const std::string& where) {
+  const std::vector<ExrAttributeValue> values = find_exr_attribute(file, kChecksum, where);
+  if (values.size() != checksums.size())
+    throw Error(where + ": the written file has " + std::to_string(values.size()) + " levels, not " +
+                    std::to_string(checksums.size()),
+                Error::Kind::internal);
+  const auto errno_text = [](int e) { return std::error_code(e, std::generic_category()).message(); };
+  const int fd = ::open(file.c_str(), O_RDWR | O_CLOEXEC);
+  if (fd < 0) throw environment_error(where, "cannot reopen the written file: " + errno_text(errno));
+  std::string failed;
+  for (std::size_t p = 0; p < checksums.size() && failed.empty(); ++p) {
+    const ExrAttributeValue& v = values[p];
+    std::string held(kChecksumPlaceholder.size(), '\0');
+    if (v.size != held.size() || checksums[p].size() != held.size() ||
+        ::pread(fd, held.data(), held.size(), off_t(v.offset)) != ssize_t(held.size()) || held != kChecksumPlaceholder) {
+      ::close(fd);
+      throw Error(where + ": level " + std::to_string(p) + "'s header holds no checksum placeholder", Error::Kind::internal);
+    }
+    const ssize_t wrote = ::pwrite(fd, checksums[p].data(), held.size(), off_t(v.offset));
+    if (wrote != ssize_t(held.size()))
+      failed = "cannot write level " + std::to_string(p) + "'s checksum: " + (wrote < 0 ? errno_text(errno) : "a short write");
+  }
+  if (::close(fd) != 0 && failed.empty()) failed = "cannot close the written file: " + errno_text(errno);
+  if (!failed.empty()) throw environment_error(where, failed);
 }
 
 }  // namespace svbrdf::mip_file_checksum

@@ -32,6 +32,17 @@ void add_band(std::vector<std::uint64_t>& bands, std::span<const std::byte> name
 std::string level_checksum(const OIIO::ImageSpec& s, int max_lobes, float radial_inner, float radial_outer,
                            const std::vector<std::uint64_t>& bands);
 
+// What a level's header holds in place of its checksum while the file is written: OpenEXR writes
+// every header when the file opens, before the pixels the checksums fingerprint, so each level's
+// header carries this string of the checksum's length, and put_checksums writes the checksums over
+// them once the pixels are written, without moving a byte of the file.
+inline const std::string kChecksumPlaceholder(32, '0');
+
+// Writes `checksums[p]` (32 hexadecimal digits each) over part p's placeholder in the written OpenEXR
+// file `file`. Throws svbrdf::Error naming `where`: internal when a part's header holds no placeholder,
+// the machine's when the file cannot be written.
+void put_checksums(const std::filesystem::path& file, const std::vector<std::string>& checksums, const std::string& where);
+
 // Checks a level's pixels against its svbrdf:checksum band by band as they are read (`native`: the
 // layout OpenImageIO reads them in): add() each band, then mismatch(), the error when they differ.
 // The constructor throws when the checksum is absent and `required`.

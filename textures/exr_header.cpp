@@ -1,8 +1,10 @@
 #include "textures/exr_header.h"
 
+#include <algorithm>
 #include <fstream>
 #include <functional>
 #include <utility>
+#include <vector>
 
 #include "base/error.h"
 
@@ -71,7 +73,10 @@ std::string value_fits(const std::string& type, std::uint64_t at, std::uint32_t 
   return "";  // a string, or a type OpenEXR keeps as opaque bytes: read at the stated size
 }
 
-void walk_headers(std::uint64_t size, const ReadAt& read, const std::string& where) {
+// Called for every attribute: its part, name, and its value's offset and stated size.
+using Visit = std::function<void(int part, const std::string& name, std::uint64_t at, std::uint32_t size)>;
+
+void walk_headers(std::uint64_t size, const ReadAt& read, const std::string& where, const Visit& visit = {}) {
   const auto fail = [&](const std::string& what) { throw input_error(where, "corrupt OpenEXR header: " + what); };
   unsigned char version[4];
   if (!read(4, version, 4)) fail("the file ends inside the version field");
@@ -109,6 +114,7 @@ void walk_headers(std::uint64_t size, const ReadAt& read, const std::string& whe
              " bytes, but the file has " + std::to_string(size - at) + " after it");
       if (const std::string why = value_fits(type, at, std::uint32_t(stated), max_name, read); !why.empty())
         fail("attribute \"" + name + "\" of part " + std::to_string(part) + " (" + type + "): " + why);
+      if (visit) visit(part, name, at, std::uint32_t(stated));
       at += std::uint64_t(stated);
     }
     if (!multipart) return;
@@ -133,20 +139,50 @@ void check_exr_header(std::span<const std::byte> bytes, const std::string& where
   }, where);
 }
 
-void check_exr_file_header(const std::filesystem::path& path, const std::string& where) {
+namespace {
+// Walks a file's headers, read in blocks (a header is read a byte at a time); false when the file is
+// not OpenEXR or cannot be opened.
+bool walk_file_headers(const std::filesystem::path& path, const std::string& where, const Visit& visit) {
   std::error_code ec;
   const std::uintmax_t size = std::filesystem::file_size(path, ec);
   std::ifstream f(path, std::ios::binary);
   unsigned char magic[4];
-  if (ec || !f || !f.read(reinterpret_cast<char*>(magic), 4) ||
-      !is_exr(std::as_bytes(std::span(magic))))
-    return;
+  if (ec || !f || !f.read(reinterpret_cast<char*>(magic), 4) || !is_exr(std::as_bytes(std::span(magic)))) return false;
+  constexpr std::uint64_t kBlock = 1 << 16;
+  std::vector<unsigned char> block;
+  std::uint64_t block_at = 0;
   walk_headers(size, [&](std::uint64_t offset, unsigned char* out, std::size_t n) {
     if (offset > size || size - offset < n) return false;
-    f.clear();
-    f.seekg(std::streamoff(offset));
-    return bool(f.read(reinterpret_cast<char*>(out), std::streamsize(n)));
-  }, where);
+    if (offset < block_at || offset + n > block_at + block.size()) {
+      block_at = offset;
+      block.resize(std::size_t(std::min<std::uint64_t>(std::max<std::uint64_t>(kBlock, n), size - offset)));
+      f.clear();
+      f.seekg(std::streamoff(offset));
+      if (!f.read(reinterpret_cast<char*>(block.data()), std::streamsize(block.size()))) {
+        block.clear();
+        return false;
+      }
+    }
+    std::copy_n(block.data() + (offset - block_at), n, out);
+    return true;
+  }, where, visit);
+  return true;
+}
+}  // namespace
+
+void check_exr_file_header(const std::filesystem::path& path, const std::string& where) {
+  walk_file_headers(path, where, {});
+}
+
+std::vector<ExrAttributeValue> find_exr_attribute(const std::filesystem::path& path, const std::string& name,
+                                                  const std::string& where) {
+  std::vector<ExrAttributeValue> found;
+  const bool exr = walk_file_headers(path, where, [&](int part, const std::string& n, std::uint64_t at, std::uint32_t size) {
+    if (found.size() <= std::size_t(part)) found.resize(std::size_t(part) + 1);
+    if (n == name) found[std::size_t(part)] = {at, size};
+  });
+  if (!exr) throw input_error(where, "not an OpenEXR file");
+  return found;
 }
 
 }  // namespace svbrdf

@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace svbrdf {
 
@@ -29,5 +30,16 @@ void check_exr_header(std::span<const std::byte> bytes, const std::string& where
 // The same for a file, reading only its headers. A file that is not OpenEXR passes (its reader
 // refuses it); one that cannot be opened too (the caller's open says why).
 void check_exr_file_header(const std::filesystem::path& path, const std::string& where);
+
+// Where attribute `name`'s value lies in each part's header of an OpenEXR file, in part order: its
+// offset in the file and its stated size (a part without it: size 0 at offset 0). Throws
+// svbrdf::Error naming `where` for a file that is not OpenEXR or whose headers check_exr_file_header
+// refuses.
+struct ExrAttributeValue {
+  std::uint64_t offset = 0;
+  std::uint32_t size = 0;
+};
+std::vector<ExrAttributeValue> find_exr_attribute(const std::filesystem::path& path, const std::string& name,
+                                                  const std::string& where);
 
 }  // namespace svbrdf
