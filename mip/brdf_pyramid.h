@@ -22,6 +22,7 @@
 #include <span>
 #include <vector>
 
+#include "base/huge_pages.h"
 #include "mip/cache_lines.h"
 #include "mip/coat_layer.h"
 #include "mip/lobe.h"
@@ -97,7 +98,7 @@ struct BrdfLevel {
   void reset(Extent e, std::size_t texels) {
     extent = e;
     counts.assign(texels, 0);
-    single.assign(texels, Lobe{});
+    assign_huge(single, texels, Lobe{});  // a 4096² material's level 1: 4 Mi lobes
     first.assign(texels, 0);
     lobes.clear();
   }

@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 
 #include "base/error.h"
+#include "base/huge_pages.h"
 #include "mip/coat_layer.h"
 #include "mip/diffuse_transmission.h"
 #include "mip/exact_reference.h"
@@ -209,9 +210,12 @@ ParamPyramid ParamPyramid::level0_only(const MaterialTexels& m) {
   ParamPyramid p;
   p.level0_ = {m.width, m.height};
   if (level_count(p.level0_) == 0) return p;
-  std::vector<ParamTexel> base(m.size());
-  for (std::size_t k = 0; k < m.size(); ++k)
-    base[k] = {m.base_color[k], m.metallic[k], m.roughness[k], m.normal[k]};
+  // Level 0 is the texels: 512 MB at 4096², in huge pages and filled in parallel.
+  std::vector<ParamTexel> base;
+  assign_huge(base, m.size(), ParamTexel{});
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m.size(), 1 << 16), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t k = r.begin(); k != r.end(); ++k) base[k] = {m.base_color[k], m.metallic[k], m.roughness[k], m.normal[k]};
+  });
   p.levels_.push_back(std::move(base));
   p.ior_ = m.ior;
   if (!m.specular.empty() || !m.specular_color.empty() || m.specular_factor != 1.0f ||

@@ -4,7 +4,6 @@
 // that float, code_tables.h): the same texels bit for bit, without each image's floats in memory (a
 // 4096² RGBA image is 256 MB of them) or a second pass over them. Any other set (float or tiled files,
 // a failed check) is read whole and goes through decode_material_texels.
-#include <sys/mman.h>
 #include <tbb/parallel_invoke.h>
 
 #include <algorithm>
@@ -17,6 +16,7 @@
 #include <vector>
 
 #include "base/error.h"
+#include "base/huge_pages.h"
 #include "textures/code_tables.h"
 #include "textures/material_loader.h"
 #include "textures/normal_map.h"
@@ -123,22 +123,6 @@ void for_bands(ImageFile& file, const Body& body) {
   }
 }
 
-// `v` made n texels of `value`, in memory the kernel may back with transparent huge pages (madvise(2),
-// MADV_HUGEPAGE: under the usual `madvise` setting of /sys/kernel/mm/transparent_hugepage/enabled
-// Linux gives them only where asked): a 4096² material's texels are 512 MB, and their first touch
-// otherwise takes a page fault every 4 KiB, which cost more CPU time than the decode's own work.
-template <class T>
-void allocate(std::vector<T>& v, std::size_t n, const T& value) {
-  v.reserve(n);
-#ifdef MADV_HUGEPAGE
-  constexpr std::uintptr_t kHuge = std::uintptr_t(1) << 21;
-  const std::uintptr_t begin = (reinterpret_cast<std::uintptr_t>(v.data()) + kHuge - 1) & ~(kHuge - 1);
-  const std::uintptr_t end = reinterpret_cast<std::uintptr_t>(v.data() + n) & ~(kHuge - 1);
-  if (end > begin) ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);  // advice: may be refused
-#endif
-  v.assign(n, value);
-}
-
 // One file's codes → its slot of the texels, as decode_material_texels decodes the floats the codes
 // read as (texel(): a gray image's value in R, G and B).
 template <class Code>
@@ -205,9 +189,9 @@ MaterialTexels load_material_texels(const MaterialFiles& files, const ColorConfi
   out.height = height;
   const std::size_t n = out.size();
   const auto slot = [&](int k) {
-    if (k == kBaseColor) allocate(out.base_color, n, glm::vec3(files.base_color_factor));
-    if (k == kMetallicRoughness) allocate(out.metallic, n, files.metallic_factor), allocate(out.roughness, n, files.roughness_factor);
-    if (k == kNormal) allocate(out.normal, n, glm::vec3(0, 0, 1));
+    if (k == kBaseColor) assign_huge(out.base_color, n, glm::vec3(files.base_color_factor));
+    if (k == kMetallicRoughness) assign_huge(out.metallic, n, files.metallic_factor), assign_huge(out.roughness, n, files.roughness_factor);
+    if (k == kNormal) assign_huge(out.normal, n, glm::vec3(0, 0, 1));
     if (!*o.paths[std::size_t(k)]) return;
     try {
       ImageFile& file = *o.files[std::size_t(k)];
