@@ -102,6 +102,26 @@ double sheen_distribution(double cos_h, double alpha) {
 
 double sheen_lambda(double cos_theta, double alpha) { return lambda_of(lambda_fit(alpha), cos_theta); }
 
+SheenLambda::SheenLambda(double alpha) {
+  const LambdaFit p = lambda_fit(alpha);
+  a_ = p.a, b_ = p.b, c_ = p.c, d_ = p.d, e_ = p.e;
+  l_half_ = fit_l(p, 0.5);
+  af_ = float(a_), bf_ = float(b_), cf_ = float(c_), df_ = float(d_), ef_ = float(e_), l_half_f_ = float(l_half_);
+}
+
+float SheenLambda::operator()(float cos_theta) const {
+  const float c = std::clamp(cos_theta, 0.0f, 1.0f);
+  const auto l = [&](float x) { return af_ / (1.0f + bf_ * std::pow(x, cf_)) + df_ * x + ef_; };
+  return c < 0.5f ? std::exp(l(c)) : std::exp(2.0f * l_half_f_ - l(1.0f - c));
+}
+
+double SheenLambda::operator()(double cos_theta) const {
+  // lambda_of's expression, with L(0.5) from the constructor.
+  const LambdaFit p{a_, b_, c_, d_, e_};
+  const double c = std::clamp(cos_theta, 0.0, 1.0);
+  return c < 0.5 ? std::exp(fit_l(p, c)) : std::exp(2.0 * l_half_ - fit_l(p, 1.0 - c));
+}
+
 double sheen_visibility(double cos_i, double cos_o, double alpha) {
   const LambdaFit fit = lambda_fit(alpha);
   return sheen_visibility_of(lambda_of(fit, cos_i), lambda_of(fit, cos_o), cos_i, cos_o);

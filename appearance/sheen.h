@@ -36,6 +36,22 @@ double sheen_distribution(double cos_h, double alpha);
 //   and it would break reciprocity.
 double sheen_lambda(double cos_theta, double alpha);
 
+// sheen_lambda at one α, the fit's constants and its L(0.5) taken once: for callers that take Λ at many
+// cosines of one α (a coarse texel's spread normals, mip/sheen_layer.cpp). Equal to sheen_lambda bit
+// for bit.
+class SheenLambda {
+ public:
+  explicit SheenLambda(double alpha);
+  double operator()(double cos_theta) const;
+  // The same expression in float (the renderer's spread sheen; within 1e-5 relative of the double).
+  float operator()(float cos_theta) const;
+
+ private:
+  double a_, b_, c_, d_, e_;
+  double l_half_;  // L(0.5)
+  float af_, bf_, cf_, df_, ef_, l_half_f_;
+};
+
 // The sheen visibility V = G2 / (4 cos θi cos θo) with the height-correlated Smith
 // G2 = 1 / (1 + Λ(ωi) + Λ(ωo)) (the extension's "Charlie" sheen visibility); cosines > 0.
 double sheen_visibility(double cos_i, double cos_o, double alpha);

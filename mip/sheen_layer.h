@@ -23,16 +23,17 @@
 // and the sheen itself is the base lobes' normals (the extension's sheen lies on the base's shading
 // normal, which the base lobes already stand for, with their spread and horizons) weighted by their
 // sheen shares:
-//   f_sheen,eff = C̄ · Σ_k w_k·σ_k·D(n̂_k·h, r̄)·V(n̂_k·wi, n̂_k·wo, r̄)·E_k[max(0, n·wi)]·P_k(n·wo > 0)
+//   f_sheen,eff = C̄ · Σ_k w_k·σ_k·E_k[D(n·h, r̄)·V(n·wi, n·wo, r̄)·max(0, n·wi)·[n·wo > 0]]
 //                     / (Σ_k w_k·σ_k · wi.z),
-// the two factors after V each lobe's clipped cosine and facing probability (lobe.h). At level 0 (one
+// E_k the mean over lobe k's normals n, spread about n̂_k as its horizons assume (lobe.h; the term at
+// n̂_k for a lobe without spread; sheen_layer.cpp, spread_sheen, says how and why). At level 0 (one
 // texel, one lobe of weight 1, σ = max(C), C̄ = C, r̄ = r) both are f_eff above exactly. Why this form:
 // s_x is linear in max(C_x) for one E, so a base lobe's own mean max(C) carries the correlation of the
 // sheen with the base it scales, as a lobe's coat share does (a texel-wide s would scale a rough sheen-
 // less part by a glossy part's sheen); the sheen's normals are the base's, so separate sheen lobes
 // would store a second copy of them. What it does not carry: a sheen colour or roughness that varies
 // within the texel other than through σ_k (C̄ and r̄ are one per texel), the curvature of D and E in the
-// roughness, and the base lobes' normals standing for their texels'. At K base lobes the MIP file stores
+// roughness, and normals whose spread is not the horizons' Gaussian. At K base lobes the MIP file stores
 // 2·K bytes (σ_k as a half) beside the parameter pyramid's 16 bytes of sheen means (mip_file.h).
 #include <algorithm>
 #include <span>

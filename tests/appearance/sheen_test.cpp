@@ -69,6 +69,20 @@ TEST(Sheen, FittedLambdaFollowsTheExactSmithLambda) {
   }
 }
 
+// SheenLambda takes the fit's constants and L(0.5) once for many cosines of one α: the same Λ, bit for
+// bit, on both branches of the fit and past its clamps; in float, the same to float's precision.
+TEST(Sheen, LambdaOfOneAlphaIsTheFunctions) {
+  for (double alpha : {0.07, 0.2, 0.5, 1.0}) {
+    const SheenLambda lambda(alpha);
+    for (double c = -0.1; c <= 1.1; c += 1.0 / 64) {
+      EXPECT_EQ(lambda(c), sheen_lambda(c, alpha)) << "alpha " << alpha << " cos " << c;
+      // Its float form, at the float nearest c: within 1e-5 relative (float's rounding through exp).
+      const float cf = static_cast<float>(c);
+      EXPECT_NEAR(lambda(cf), lambda(double(cf)), 1e-5 * lambda(double(cf))) << "alpha " << alpha << " cos " << c;
+    }
+  }
+}
+
 TEST(Sheen, ZeroBelowTheHorizonAndReciprocal) {
   Rng rng(5, 3);
   const Rgb color(0.9f, 0.6f, 0.3f);
