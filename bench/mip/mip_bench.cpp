@@ -1,6 +1,7 @@
 // MIP benchmarks (bench/results/mip.md): BRDF and parameter pyramid builds of the procedural
 // presets, and the renderer's per-hit cost — a lookup plus an eval of a `brdf` texel against a
-// level-0 `gltf` eval (the texel's frame, the model, the f_eff factor), without and with a clear coat.
+// level-0 `gltf` eval (the texel's frame, the model, the f_eff factor), without and with a clear coat
+// or a sheen.
 #include <benchmark/benchmark.h>
 
 #include <map>
@@ -107,15 +108,21 @@ void BM_LookupEvalBrdf(benchmark::State& state) {
 }
 BENCHMARK(BM_LookupEvalBrdf)->ArgsProduct({{1, 2, 4, 8}, {64}})->Args({4, 1})->Args({4, 4});
 
+// The 1024² tray with a layer on top, `add` setting its factors.
+template <class Layer>
+MipData tray_with(const Layer& add) {
+  MaterialTexels m = material(0, 1024);
+  add(m);
+  return build_mip(std::move(m));
+}
+
 // The same on the tray under a clear coat (weight 1, roughness 0.1, no coat normal map: car paint's
 // coat): the texel's base lobes with their coat shares and its coat lobes, the layered eval.
 const MipData& coated_tray_mip() {
-  static const MipData mip = [] {
-    MaterialTexels m = material(0, 1024);
+  static const MipData mip = tray_with([](MaterialTexels& m) {
     m.clearcoat_factor = 1.0f;
     m.clearcoat_roughness_factor = 0.1f;
-    return build_mip(std::move(m));
-  }();
+  });
   return mip;
 }
 void BM_LookupEvalBrdfCoated(benchmark::State& state) {
@@ -123,44 +130,65 @@ void BM_LookupEvalBrdfCoated(benchmark::State& state) {
 }
 BENCHMARK(BM_LookupEvalBrdfCoated)->Arg(64);
 
-// The same texel's mixture evaluated again (what the integrator does for light samples).
-void BM_EvalBrdfTexel(benchmark::State& state) {
-  const MipData& mip = tray_mip(4);
+// The same on the tray under a sheen (colour 0.5, roughness 0.5 everywhere): the texel's base lobes with
+// their sheen shares and the texel's sheen means, the sheen taken over each lobe's spread normals.
+const MipData& sheen_tray_mip() {
+  static const MipData mip = tray_with([](MaterialTexels& m) {
+    m.sheen_color_factor = glm::vec3(0.5f);
+    m.sheen_roughness_factor = 0.5f;
+  });
+  return mip;
+}
+void BM_LookupEvalBrdfSheen(benchmark::State& state) {
+  lookup_eval(state, sheen_tray_mip(), static_cast<float>(state.range(0)));
+}
+BENCHMARK(BM_LookupEvalBrdfSheen)->Arg(64);
+
+// The same texel's mixture evaluated again (what the integrator does for light samples), without the
+// lookup's cache misses: 64 texels of level state.range(0), each as `texel(mip, level, i, j)` makes it.
+template <class Texel>
+void eval_texels(benchmark::State& state, const MipData& mip, const Texel& texel) {
   const std::vector<Hit> hs = hits(4096, 1024, 64);
   const int level = static_cast<int>(state.range(0));
   const Extent e = mip.extent(level);
   std::vector<LobeMixtureBsdf> texels;
-  for (int t = 0; t < 64; ++t) {
-    Lobe scratch;
-    texels.emplace_back(brdf_texel(mip, level, (t * 37) % e.width, (t * 11) % e.height, scratch));
-  }
+  for (int t = 0; t < 64; ++t) texels.push_back(texel(mip, level, (t * 37) % e.width, (t * 11) % e.height));
+  // One eval before the clock: the first sheen eval builds the sheen's albedo table (appearance/sheen.h).
+  benchmark::DoNotOptimize(texels[0].eval(hs[0].wi, hs[0].wo));
   std::size_t k = 0;
   for (auto _ : state) {
     const Hit& h = hs[k & 4095];
     benchmark::DoNotOptimize(texels[k++ & 63].eval(h.wi, h.wo));
   }
+}
+
+void BM_EvalBrdfTexel(benchmark::State& state) {
+  eval_texels(state, tray_mip(4), [](const MipData& mip, int level, int i, int j) {
+    Lobe scratch;
+    return LobeMixtureBsdf(brdf_texel(mip, level, i, j, scratch));
+  });
 }
 BENCHMARK(BM_EvalBrdfTexel)->Arg(0)->Arg(3)->Arg(6);
 
-// The same on the coated tray: the layered eval alone, without the lookup's cache misses.
+// The coated tray's layered eval.
 void BM_EvalBrdfTexelCoated(benchmark::State& state) {
-  const MipData& mip = coated_tray_mip();
-  const std::vector<Hit> hs = hits(4096, 1024, 64);
-  const int level = static_cast<int>(state.range(0));
-  const Extent e = mip.extent(level);
-  std::vector<LobeMixtureBsdf> texels;
-  for (int t = 0; t < 64; ++t) {
+  eval_texels(state, coated_tray_mip(), [](const MipData& mip, int level, int i, int j) {
     Lobe scratch, coat_scratch;
-    const int i = (t * 37) % e.width, j = (t * 11) % e.height;
-    texels.emplace_back(brdf_texel(mip, level, i, j, scratch), brdf_coat(mip, level, i, j, coat_scratch).lobes);
-  }
-  std::size_t k = 0;
-  for (auto _ : state) {
-    const Hit& h = hs[k & 4095];
-    benchmark::DoNotOptimize(texels[k++ & 63].eval(h.wi, h.wo));
-  }
+    return LobeMixtureBsdf(brdf_texel(mip, level, i, j, scratch), brdf_coat(mip, level, i, j, coat_scratch).lobes);
+  });
 }
 BENCHMARK(BM_EvalBrdfTexelCoated)->Arg(0)->Arg(3)->Arg(6);
+
+// The sheen tray's: the texel's lobes under its sheen, each lobe's sheen over its spread normals.
+void BM_EvalBrdfTexelSheen(benchmark::State& state) {
+  eval_texels(state, sheen_tray_mip(), [](const MipData& mip, int level, int i, int j) {
+    Lobe scratch;
+    LobeMixtureBsdf b(brdf_texel(mip, level, i, j, scratch));
+    b.set_sheen(*brdf_sheen(mip, level, i, j));
+    return b;
+  });
+}
+BENCHMARK(BM_EvalBrdfTexelSheen)->Arg(0)->Arg(3)->Arg(6);
 
 // Level 0 as the renderer would shade it: the hit's texel of the 1024² tray, the texel's frame, the
 // model `eval(t, local wi, local wo)` in it, the f_eff factor max(0, n·wi)/wi.z.
@@ -201,6 +229,17 @@ void BM_Level0CoatedEval(benchmark::State& state) {
   });
 }
 BENCHMARK(BM_Level0CoatedEval);
+
+// With the surface BSDF under the sheen tray's sheen: the sheened level 0 as the renderer shades it.
+void BM_Level0SheenEval(benchmark::State& state) {
+  level0_eval(state, [](const MaterialTexels& m, std::size_t t, const Frame&, const glm::vec3& wi, const glm::vec3& wo) {
+    ShadingParams p;
+    p.base_color = m.base_color[t], p.metallic = m.metallic[t], p.roughness = m.roughness[t];
+    p.sheen_color = Rgb(0.5f), p.sheen_roughness = 0.5f;
+    return SurfaceBsdf(p).eval(wi, wo);
+  });
+}
+BENCHMARK(BM_Level0SheenEval);
 
 // The bare model on fixed parameters in its own frame: no texel fetch, no frame, no f_eff factor.
 void BM_GltfEvalOnly(benchmark::State& state) {
