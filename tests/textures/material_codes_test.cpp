@@ -40,7 +40,16 @@ struct AllCodes {
   }
 };
 
-MaterialFiles factors_of(MaterialFiles f) {
+// A material of every code in `dir`: base colour and metallic-roughness of `channels` channels, the
+// normal map of at least 3, with factors other than 1.
+MaterialFiles code_set(const AllCodes& codes, const std::filesystem::path& dir, int channels) {
+  codes.write(dir / "base.png", channels);
+  codes.write(dir / "mr.png", channels);
+  codes.write(dir / "normal.png", std::max(channels, 3));
+  MaterialFiles f;
+  f.base_color = dir / "base.png";
+  f.metallic_roughness = dir / "mr.png";
+  f.normal = dir / "normal.png";
   f.base_color_factor = {0.7f, 0.9f, 0.35f, 1.0f};
   f.metallic_factor = 0.8f;
   f.roughness_factor = 0.6f;
@@ -59,15 +68,8 @@ TEST(MaterialCodes, EveryCodeFollowsTheGltfFormulas) {
   const TempDir dir;
   for (const int bits : {8, 16}) {
     const AllCodes codes(bits);
-    codes.write(dir / "base.png", 3);
-    codes.write(dir / "mr.png", 3);
-    codes.write(dir / "normal.png", 3);
+    const MaterialFiles f = code_set(codes, dir.path(), 3);
     ASSERT_EQ(ImageFile(dir / "base.png").code_bits(), bits);
-    MaterialFiles f;
-    f.base_color = dir / "base.png";
-    f.metallic_roughness = dir / "mr.png";
-    f.normal = dir / "normal.png";
-    f = factors_of(f);
     const MaterialTexels t = load_material_texels(f);
     ASSERT_EQ(t.width, codes.side);
     const double s = f.normal_scale, m = codes.max;
@@ -100,14 +102,7 @@ TEST(MaterialCodes, EveryCodeDecodesAsItsFloat) {
   for (const int bits : {8, 16}) {
     const AllCodes codes(bits);
     for (const int channels : {1, 2, 3, 4}) {
-      codes.write(dir / "base.png", channels);
-      codes.write(dir / "mr.png", channels);
-      codes.write(dir / "normal.png", std::max(channels, 3));
-      MaterialFiles f;
-      f.base_color = dir / "base.png";
-      f.metallic_roughness = dir / "mr.png";
-      f.normal = dir / "normal.png";
-      f = factors_of(f);
+      const MaterialFiles f = code_set(codes, dir.path(), channels);
       const MaterialTexels t = load_material_texels(f);
       const Image base = read_image(dir / "base.png"), mr = read_image(dir / "mr.png"), normal = read_image(dir / "normal.png");
       MaterialImages in;
