@@ -10,6 +10,8 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <functional>
+#include <future>
 #include <iterator>
 #include <map>
 #include <numeric>
@@ -518,7 +520,15 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
     const std::size_t texels = static_cast<std::size_t>(e.width) * e.height;
     LevelCheck check(path, s, layout, !cache_key.empty());
     const int rows = band_rows(e.width, layout.stride);
-    std::vector<std::byte> buf(std::size_t(std::min(rows, e.height)) * e.width * layout.stride);
+    const std::size_t row_bytes = std::size_t(e.width) * layout.stride;
+    // Two bands: OpenEXR inflates the next (on its own threads) while this thread unpacks one.
+    std::array<std::vector<std::byte>, 2> bands;
+    for (std::vector<std::byte>& b : bands) b.resize(std::size_t(std::min(rows, e.height)) * row_bytes);
+    const auto read_band = [&](int first_row, std::vector<std::byte>& into) {
+      if (!in->read_scanlines(level, 0, first_row, std::min(e.height, first_row + rows), 0, 0, s.nchannels,
+                              OIIO::TypeUnknown, into.data()))
+        throw input_error(where(path), "cannot read " + at_level + ": " + in->geterror());
+    };
     std::vector<ParamTexel> params(texels);
     BrdfLevel bl, cl;  // the base lobes, the coat lobes
     if (level > 0) {
@@ -537,62 +547,64 @@ MipData read_mip_file(const fs::path& path, const std::string& cache_key) {
     std::vector<AnisotropyLayer> anisotropy_means(anisotropy ? texels : 0);
     std::vector<float> transmission_means(transmission ? texels : 0);
     std::vector<DiffuseTransmissionLayer> diffuse_transmission_means(diffuse_transmission ? texels : 0);
-    for (std::size_t t = 0; t < texels; ++t) {
-      const std::size_t row = t / std::size_t(e.width);
-      if (t % (std::size_t(rows) * e.width) == 0) {  // the next band
-        const int end = std::min(e.height, int(row) + rows);
-        if (!in->read_scanlines(level, 0, int(row), end, 0, 0, s.nchannels, OIIO::TypeUnknown, buf.data()))
-          throw input_error(where(path), "cannot read " + at_level + ": " + in->geterror());
-        check.add(std::span(buf).first(std::size_t(end - int(row)) * e.width * layout.stride));
-      }
-      const std::byte* px = buf.data() + (t - (row - row % std::size_t(rows)) * e.width) * layout.stride;
-      const auto value = [&](std::size_t c) {
-        float v = 0.0f;
-        get_float(px + order[c], formats[c], v);
-        return v;
-      };
-      ParamTexel& p = params[t];
-      p.base_color = {value(0), value(1), value(2)};
-      p.metallic = value(3);
-      p.roughness = value(4);
-      p.normal = {value(5), value(6), value(7)};
-      std::size_t next = 8;
-      if (param_specular) specular[t] = {value(8), {value(9), value(10), value(11)}}, next = 12;
-      if (coat) coat_means[t] = {value(next), value(next + 1), {value(next + 2), value(next + 3), value(next + 4)}}, next += 5;
-      if (sheen) sheen_means[t] = {{value(next), value(next + 1), value(next + 2)}, value(next + 3)}, next += 4;
-      if (anisotropy) anisotropy_means[t] = {value(next), {value(next + 1), value(next + 2)}}, next += 3;
-      if (transmission) transmission_means[t] = value(next), next += 1;
-      if (diffuse_transmission)
-        diffuse_transmission_means[t] = {value(next), {value(next + 1), value(next + 2), value(next + 3)}};
-      if (level == 0) continue;
-      // Texel t's lobes into `into`, from `n` slots of `channels` from `first` on.
-      const auto read_lobes = [&](BrdfLevel& into, std::size_t first, int n, const std::vector<LobeChannel>& channels,
-                                  bool coat_lobes) {
-        into.first[t] = static_cast<std::uint32_t>(into.lobes.size());
-        // Lobes are packed from slot 0: the first empty slot (weight 0) ends the texel's.
-        for (int k = 0; k < n; ++k) {
-          LobeValues v;
-          v[Role::f90] = 1.0f;  // the plain layer's, where the level has no specular channels
-          for (std::size_t c = 0; c < channels.size(); ++c) {
-            const std::size_t ch = first + static_cast<std::size_t>(k) * channels.size() + c;
-            const Role role = channels[c].role;
-            if (role == Role::normal_direction) std::memcpy(&v.direction, px + order[ch], 4);
-            else v[role] = value(ch);
+    // Declared after the bands it writes: leaving early waits for the read in flight before they go.
+    std::future<void> ahead = std::async(std::launch::async, read_band, 0, std::ref(bands[0]));
+    for (int first_row = 0, band = 0; first_row < e.height; first_row += rows, ++band) {
+      ahead.get();
+      const int end = std::min(e.height, first_row + rows);
+      if (end < e.height) ahead = std::async(std::launch::async, read_band, end, std::ref(bands[(band + 1) % 2]));
+      const std::vector<std::byte>& buf = bands[band % 2];
+      check.add(std::span(buf).first(std::size_t(end - first_row) * row_bytes));
+      for (std::size_t t = std::size_t(first_row) * e.width; t < std::size_t(end) * e.width; ++t) {
+        const std::byte* px = buf.data() + (t - std::size_t(first_row) * e.width) * layout.stride;
+        const auto value = [&](std::size_t c) {
+          float v = 0.0f;
+          get_float(px + order[c], formats[c], v);
+          return v;
+        };
+        ParamTexel& p = params[t];
+        p.base_color = {value(0), value(1), value(2)};
+        p.metallic = value(3);
+        p.roughness = value(4);
+        p.normal = {value(5), value(6), value(7)};
+        std::size_t next = 8;
+        if (param_specular) specular[t] = {value(8), {value(9), value(10), value(11)}}, next = 12;
+        if (coat) coat_means[t] = {value(next), value(next + 1), {value(next + 2), value(next + 3), value(next + 4)}}, next += 5;
+        if (sheen) sheen_means[t] = {{value(next), value(next + 1), value(next + 2)}, value(next + 3)}, next += 4;
+        if (anisotropy) anisotropy_means[t] = {value(next), {value(next + 1), value(next + 2)}}, next += 3;
+        if (transmission) transmission_means[t] = value(next), next += 1;
+        if (diffuse_transmission)
+          diffuse_transmission_means[t] = {value(next), {value(next + 1), value(next + 2), value(next + 3)}};
+        if (level == 0) continue;
+        // Texel t's lobes into `into`, from `n` slots of `channels` from `first` on.
+        const auto read_lobes = [&](BrdfLevel& into, std::size_t first, int n, const std::vector<LobeChannel>& channels,
+                                    bool coat_lobes) {
+          into.first[t] = static_cast<std::uint32_t>(into.lobes.size());
+          // Lobes are packed from slot 0: the first empty slot (weight 0) ends the texel's.
+          for (int k = 0; k < n; ++k) {
+            LobeValues v;
+            v[Role::f90] = 1.0f;  // the plain layer's, where the level has no specular channels
+            for (std::size_t c = 0; c < channels.size(); ++c) {
+              const std::size_t ch = first + static_cast<std::size_t>(k) * channels.size() + c;
+              const Role role = channels[c].role;
+              if (role == Role::normal_direction) std::memcpy(&v.direction, px + order[ch], 4);
+              else v[role] = value(ch);
+            }
+            Lobe l = unpack_lobe(v);
+            if (!(l.weight > 0)) break;
+            if (coat_lobes) set_coat_colours(l);
+            into.lobes.push_back(l);
+            into.counts[t] = static_cast<std::uint8_t>(k + 1);
           }
-          Lobe l = unpack_lobe(v);
-          if (!(l.weight > 0)) break;
-          if (coat_lobes) set_coat_colours(l);
-          into.lobes.push_back(l);
-          into.counts[t] = static_cast<std::uint8_t>(k + 1);
-        }
-        // A texel's lone lobe goes to its own slot (brdf_pyramid.h).
-        if (into.counts[t] == 1) into.single[t] = into.lobes.back(), into.lobes.pop_back();
-      };
-      read_lobes(bl, first_lobe, slots, lobe_ch, false);
-      read_lobes(cl, first_coat_lobe, coat_slots, coat_ch, true);
-      if (radial)
-        for (int r = 0; r < RadialGrid::kNodes; ++r)
-          bl.correction[t].ratio[static_cast<std::size_t>(r)] = value(first_lobe + static_cast<std::size_t>(slots) * lobe_ch.size() + r);
+          // A texel's lone lobe goes to its own slot (brdf_pyramid.h).
+          if (into.counts[t] == 1) into.single[t] = into.lobes.back(), into.lobes.pop_back();
+        };
+        read_lobes(bl, first_lobe, slots, lobe_ch, false);
+        read_lobes(cl, first_coat_lobe, coat_slots, coat_ch, true);
+        if (radial)
+          for (int r = 0; r < RadialGrid::kNodes; ++r)
+            bl.correction[t].ratio[static_cast<std::size_t>(r)] = value(first_lobe + static_cast<std::size_t>(slots) * lobe_ch.size() + r);
+      }
     }
     // Said after the whole file is read: a more telling refusal of a later level (a missing grid)
     // comes first.
