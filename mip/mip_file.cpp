@@ -46,7 +46,7 @@ std::string radial_channel(int node) { return "radial.R" + std::to_string(node);
 std::string where(const fs::path& p) { return p.string(); }
 
 // A level's pixels are checked in bands of whole rows, about this many bytes each, as they are read:
-// the reader keeps one band, not a second copy of the level.
+// the reader keeps two (one being unpacked, the next being read), not a second copy of the level.
 constexpr std::size_t kBandBytes = std::size_t(1) << 22;
 int band_rows(int width, std::size_t stride) {
   return static_cast<int>(std::max<std::size_t>(1, kBandBytes / (std::size_t(std::max(width, 1)) * std::max<std::size_t>(stride, 1))));
